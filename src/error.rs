@@ -1,0 +1,81 @@
+//! The library's error type: every failure a user can cause or meet, with a message that names
+//! the culprit and, for bad input, the allowed range.
+
+use thiserror::Error;
+
+/// Everything that can go wrong in fiberfold's library.
+#[derive(Debug, Error)]
+pub enum Error {
+    /// A parameter value outside its allowed range (user input).
+    #[error("invalid value {value} for `{name}`: allowed range is {allowed}")]
+    InvalidParameter {
+        name: String,
+        value: String,
+        allowed: String,
+    },
+
+    /// A parameter name that does not exist (user input).
+    #[error("unknown parameter `{name}`; known parameters are: {known}")]
+    UnknownParameter { name: String, known: String },
+
+    /// A parameter file or `--set` value that cannot be parsed (user input).
+    #[error("cannot read parameters: {0}")]
+    ParameterSyntax(String),
+
+    /// A deformation with `J = det F <= 0`: the material is inverted or crushed.
+    #[error("deformation gradient with J = det F = {jacobian:.6e} <= 0 (inverted material)")]
+    NonPositiveJacobian { jacobian: f64 },
+
+    /// A scalar equation without a root in the searched interval.
+    #[error("no root of {what} in [{lower}, {upper}]")]
+    NoRoot {
+        what: String,
+        lower: f64,
+        upper: f64,
+    },
+
+    /// A computation that produced a non-finite number.
+    #[error("non-finite value in {0}")]
+    NonFinite(String),
+
+    /// Reading or writing a file.
+    #[error("{path}: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+
+    /// Rendering a plot.
+    #[error("plot {path}: {message}")]
+    Plot { path: String, message: String },
+}
+
+impl Error {
+    /// Whether the error was caused by bad user input (the CLI exits with code 2 for these).
+    pub fn is_user_input(&self) -> bool {
+        matches!(
+            self,
+            Error::InvalidParameter { .. } | Error::UnknownParameter { .. } | Error::ParameterSyntax(_)
+        )
+    }
+
+    /// A helper for range violations.
+    pub fn invalid(name: &str, value: impl ToString, allowed: &str) -> Self {
+        Error::InvalidParameter {
+            name: name.to_string(),
+            value: value.to_string(),
+            allowed: allowed.to_string(),
+        }
+    }
+
+    /// Attaches a path to an I/O error.
+    pub fn io(path: &std::path::Path, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.display().to_string(),
+            source,
+        }
+    }
+}
+
+pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -1,0 +1,180 @@
+//! The homogeneously compressed state (paper eq. 4, Fig. 2): `x = (lambda_1 X, lambda_2 Y)` in
+//! each layer with `lambda_1 = 1 - d` and `lambda_2` such that `sigma_22 = 0`.
+
+use crate::error::{Error, Result};
+use crate::material::{Bilayer, CauchyStress, Hyperelastic, Tensor2};
+use crate::numerics::roots::brent;
+use crate::parameters::validate_compression;
+use serde::Serialize;
+
+/// Both layers at one end-shortening `d`.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct HomogeneousState {
+    pub d: f64,
+    pub lambda1: f64,
+    pub lambda2_layer: f64,
+    pub lambda2_substrate: f64,
+}
+
+impl HomogeneousState {
+    /// Deformation gradient of the layer, `diag(lambda_1, lambda_2l)`.
+    pub fn layer_gradient(&self) -> Tensor2 {
+        [self.lambda1, 0.0, 0.0, self.lambda2_layer]
+    }
+
+    /// Deformation gradient of the substrate, `diag(lambda_1, lambda_2s)`.
+    pub fn substrate_gradient(&self) -> Tensor2 {
+        [self.lambda1, 0.0, 0.0, self.lambda2_substrate]
+    }
+}
+
+/// Smallest and largest transverse stretch searched for a root.
+const STRETCH_RANGE: (f64, f64) = (1e-3, 1e3);
+
+/// Solves `sigma_22(diag(lambda_1, lambda_2)) = 0` for `lambda_2` (eq. 4a or 4b).
+///
+/// Since `sigma_22 = P_22 lambda_2 / J`, the root of `P_22` is sought; it is bracketed by
+/// expanding geometrically from `lambda_2 = 1` and then refined by Brent's method.
+pub fn transverse_stretch<M: Hyperelastic>(material: &M, lambda1: f64) -> Result<f64> {
+    let p22 = |lambda2: f64| -> Result<f64> { Ok(material.first_piola(&[lambda1, 0.0, 0.0, lambda2])?[3]) };
+    let what = format!("sigma_22 = 0 at lambda_1 = {lambda1}");
+    let (mut lower, mut upper) = (1.0, 1.0);
+    let start = p22(1.0)?;
+    if start == 0.0 {
+        return Ok(1.0);
+    }
+    // P22 grows with lambda_2 for a stable material: expand towards the sign change.
+    let expand = if start < 0.0 { 1.5 } else { 1.0 / 1.5 };
+    loop {
+        let next = if start < 0.0 { upper * expand } else { lower * expand };
+        if !(STRETCH_RANGE.0..=STRETCH_RANGE.1).contains(&next) {
+            return Err(Error::NoRoot { what, lower: STRETCH_RANGE.0, upper: STRETCH_RANGE.1 });
+        }
+        let value = p22(next)?;
+        if start < 0.0 {
+            (lower, upper) = (upper, next);
+        } else {
+            (upper, lower) = (lower, next);
+        }
+        if value.signum() != start.signum() {
+            break;
+        }
+    }
+    brent(&what, p22, lower, upper, 1e-15)
+}
+
+/// The homogeneous state of both layers at end-shortening `d` (eq. 4).
+pub fn homogeneous_state(materials: &Bilayer, d: f64) -> Result<HomogeneousState> {
+    validate_compression("d", d)?;
+    let lambda1 = 1.0 - d;
+    Ok(HomogeneousState {
+        d,
+        lambda1,
+        lambda2_layer: transverse_stretch(&materials.layer, lambda1)?,
+        lambda2_substrate: transverse_stretch(&materials.substrate, lambda1)?,
+    })
+}
+
+/// One row of the homogeneous-state table: stretches, Jacobians and Cauchy stresses.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct HomogeneousRow {
+    pub state: HomogeneousState,
+    pub layer_stress: CauchyStress,
+    pub substrate_stress: CauchyStress,
+}
+
+impl HomogeneousRow {
+    pub fn new(materials: &Bilayer, d: f64) -> Result<Self> {
+        let state = homogeneous_state(materials, d)?;
+        Ok(HomogeneousRow {
+            state,
+            layer_stress: materials.layer.cauchy(&state.layer_gradient())?,
+            substrate_stress: materials.substrate.cauchy(&state.substrate_gradient())?,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::parameters::Parameters;
+
+    /// Eq. (4a) as printed but with the matrix term weighted by mu_s (NOTES.md): sigma_22 of the
+    /// substrate, written out independently of the material module.
+    fn eq_4a(p: &Parameters, l1: f64, l2: f64) -> f64 {
+        let j = l1 * l2;
+        let f_prime = |eta: f64| p.mu_f / 2.0 * (eta - p.lambda_f * p.lambda_f);
+        let (c, s) = (p.beta.cos(), p.beta.sin());
+        let matrix = p.mu_s * (2.0 / 3.0 * l2 * l2 - (l1 * l1 + 1.0) / 3.0) / j.powf(5.0 / 3.0) + p.K_s * j.ln() / j;
+        p.phi_m * matrix + 4.0 * p.phi_f * s * s * l2 / l1 * f_prime(l1 * l1 * c * c + l2 * l2 * s * s)
+    }
+
+    /// Eq. (4b): sigma_22 of the layer.
+    fn eq_4b(p: &Parameters, l1: f64, l2: f64) -> f64 {
+        let j = l1 * l2;
+        p.mu_l * (2.0 / 3.0 * l2 * l2 - (l1 * l1 + 1.0) / 3.0) / j.powf(5.0 / 3.0) + p.K_l * j.ln() / j
+    }
+
+    #[test]
+    fn energy_derived_sigma22_matches_eq_4() {
+        for beta in [0.0, 0.3, std::f64::consts::FRAC_PI_4, 1.2, std::f64::consts::FRAC_PI_2] {
+            for lambda_f in [1.0, 0.8] {
+                let p = Parameters { beta, lambda_f, ..Parameters::default() };
+                let m = Bilayer::new(&p);
+                for (l1, l2) in [(0.9, 1.05), (0.7, 1.3), (0.5, 1.8), (1.0, 1.0)] {
+                    let f = [l1, 0.0, 0.0, l2];
+                    let s = m.substrate.cauchy(&f).unwrap()[2];
+                    let l = m.layer.cauchy(&f).unwrap()[2];
+                    assert!((s - eq_4a(&p, l1, l2)).abs() < 1e-12, "4a beta={beta}: {s} vs {}", eq_4a(&p, l1, l2));
+                    assert!((l - eq_4b(&p, l1, l2)).abs() < 1e-12, "4b: {l} vs {}", eq_4b(&p, l1, l2));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn solved_state_satisfies_eq_4() {
+        for beta in [0.0, 0.7, std::f64::consts::FRAC_PI_2] {
+            let p = Parameters { beta, ..Parameters::default() };
+            let m = Bilayer::new(&p);
+            for d in [0.05, 0.2, 0.4, 0.6] {
+                let s = homogeneous_state(&m, d).unwrap();
+                assert!(eq_4a(&p, s.lambda1, s.lambda2_substrate).abs() < 1e-11);
+                assert!(eq_4b(&p, s.lambda1, s.lambda2_layer).abs() < 1e-10);
+                assert!(s.lambda2_substrate > 1.0 && s.lambda2_layer > 1.0);
+            }
+        }
+    }
+
+    #[test]
+    fn zero_compression_leaves_the_reference_state() {
+        let s = homogeneous_state(&Bilayer::new(&Parameters::default()), 0.0).unwrap();
+        assert!((s.lambda2_layer - 1.0).abs() < 1e-14 && (s.lambda2_substrate - 1.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn without_fibre_stiffness_the_substrate_is_neo_hookean() {
+        // mu_f = 0 and phi_m = 1 leaves the matrix alone; with equal moduli both layers coincide.
+        let p = Parameters { mu_f: 0.0, phi_m: 1.0, mu_l: 1.0, K_l: 3.0, beta: 0.6, ..Parameters::default() };
+        let m = Bilayer::new(&p);
+        for d in [0.1, 0.3, 0.5] {
+            let s = homogeneous_state(&m, d).unwrap();
+            assert!((s.lambda2_layer - s.lambda2_substrate).abs() < 1e-13);
+        }
+    }
+
+    #[test]
+    fn incompressible_limit_approaches_inverse_stretch() {
+        let p = Parameters { K_l: 1e6, K_s: 1e5, mu_f: 0.0, ..Parameters::default() };
+        let s = homogeneous_state(&Bilayer::new(&p), 0.3).unwrap();
+        assert!((s.lambda2_substrate - 1.0 / 0.7).abs() < 1e-4);
+        assert!((s.lambda2_layer - 1.0 / 0.7).abs() < 1e-4);
+    }
+
+    #[test]
+    fn compression_out_of_range_is_rejected() {
+        let m = Bilayer::new(&Parameters::default());
+        assert!(homogeneous_state(&m, 1.0).is_err());
+        assert!(homogeneous_state(&m, -0.1).is_err());
+    }
+}

@@ -1,0 +1,15 @@
+//! fiberfold: wrinkling, creasing and folding of a stiff layer bonded to a fibre-reinforced
+//! substrate under compression.
+//!
+//! Data flows one way: [`parameters`] -> [`material`] -> ([`homogeneous`] state | stability |
+//! finite elements) -> results -> [`output`].
+
+pub mod error;
+pub mod homogeneous;
+pub mod material;
+pub mod numerics;
+pub mod output;
+pub mod parameters;
+
+pub use error::{Error, Result};
+pub use parameters::Parameters;

@@ -1,0 +1,73 @@
+//! The two tissues of the model: the layer (cortex, neo-Hookean) and the fibre-reinforced
+//! substrate (white matter, eq. 3 mixture `phi_m W_m + phi_f (f1 + f2)`), built from `Parameters`.
+
+use super::{FibreFamily, NeoHookean, StrainEnergy};
+use crate::parameters::Parameters;
+use num_dual::DualNum;
+
+/// Substrate: neo-Hookean matrix plus two fibre families at `+-beta`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FibreReinforced {
+    pub matrix: NeoHookean,
+    pub matrix_fraction: f64,
+    pub fibre_fraction: f64,
+    pub fibres: [FibreFamily; 2],
+}
+
+impl StrainEnergy for FibreReinforced {
+    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 4], f33: D) -> D {
+        let fibres = self.fibres[0].density(f, f33) + self.fibres[1].density(f, f33);
+        self.matrix.density(f, f33) * self.matrix_fraction + fibres * self.fibre_fraction
+    }
+}
+
+/// Either tissue, so that code looping over elements of both layers needs one type.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Tissue {
+    Layer(NeoHookean),
+    Substrate(FibreReinforced),
+}
+
+impl StrainEnergy for Tissue {
+    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 4], f33: D) -> D {
+        match self {
+            Tissue::Layer(m) => m.density(f, f33),
+            Tissue::Substrate(m) => m.density(f, f33),
+        }
+    }
+}
+
+/// The materials of both layers, from the parameters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bilayer {
+    pub layer: NeoHookean,
+    pub substrate: FibreReinforced,
+}
+
+impl Bilayer {
+    pub fn new(p: &Parameters) -> Self {
+        let family = |sign: f64| FibreFamily {
+            stiffness: p.mu_f,
+            prestretch: p.lambda_f,
+            direction: [p.beta.cos(), sign * p.beta.sin()],
+            tension_only: p.tension_only,
+        };
+        Bilayer {
+            layer: NeoHookean { mu: p.mu_l, bulk: p.K_l },
+            substrate: FibreReinforced {
+                matrix: NeoHookean { mu: p.mu_s, bulk: p.K_s },
+                matrix_fraction: p.phi_m,
+                fibre_fraction: p.phi_f,
+                fibres: [family(1.0), family(-1.0)],
+            },
+        }
+    }
+
+    pub fn layer_tissue(&self) -> Tissue {
+        Tissue::Layer(self.layer)
+    }
+
+    pub fn substrate_tissue(&self) -> Tissue {
+        Tissue::Substrate(self.substrate)
+    }
+}

@@ -1,0 +1,3 @@
+//! Small numerical utilities that no dependency provides in the form needed here.
+
+pub mod roots;

@@ -1,0 +1,22 @@
+//! Results on disk: CSV tables flushed row by row, JSON summaries, PNG/SVG figures.
+
+pub mod plot;
+pub mod table;
+
+use crate::error::{Error, Result};
+use serde::Serialize;
+use std::path::Path;
+
+pub use plot::{Figure, LineStyle, Series};
+pub use table::CsvWriter;
+
+/// Creates the output directory (and parents).
+pub fn ensure_dir(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))
+}
+
+/// Writes a pretty-printed JSON summary.
+pub fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<()> {
+    let text = serde_json::to_string_pretty(value).map_err(|e| Error::NonFinite(format!("{}: {e}", path.display())))?;
+    std::fs::write(path, text + "\n").map_err(|e| Error::io(path, e))
+}

@@ -1,0 +1,176 @@
+//! Line plots rendered to PNG and SVG with an embedded font (no fontconfig, no system fonts).
+
+use crate::error::{Error, Result};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::{Path, PathBuf};
+use std::sync::Once;
+
+const FONT: &str = "sans-serif";
+static REGISTER_FONT: Once = Once::new();
+
+fn register_font() {
+    REGISTER_FONT.call_once(|| {
+        let bytes: &'static [u8] = include_bytes!("../../assets/DejaVuSans.ttf");
+        plotters::style::register_font(FONT, FontStyle::Normal, bytes)
+            .unwrap_or_else(|_| panic!("the embedded DejaVuSans.ttf is a valid font"));
+    });
+}
+
+/// How a series is drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LineStyle {
+    Solid,
+    Dashed,
+    /// Open circles, no line.
+    Circles,
+    /// Crosses, no line.
+    Crosses,
+    /// Filled dots joined by a line.
+    DotsAndLine,
+}
+
+/// One curve of a figure.
+#[derive(Clone, Debug)]
+pub struct Series {
+    pub label: String,
+    pub points: Vec<(f64, f64)>,
+    pub style: LineStyle,
+    /// Index into the palette; series with the same index share a colour.
+    pub color: usize,
+}
+
+impl Series {
+    pub fn new(label: impl Into<String>, points: Vec<(f64, f64)>, style: LineStyle, color: usize) -> Self {
+        Series { label: label.into(), points, style, color }
+    }
+}
+
+/// One panel: axes, labels and curves.
+#[derive(Clone, Debug, Default)]
+pub struct Figure {
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub series: Vec<Series>,
+    /// Fixed axis ranges; `None` fits the data with a margin.
+    pub x_range: Option<(f64, f64)>,
+    pub y_range: Option<(f64, f64)>,
+}
+
+const PALETTE: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(148, 103, 189),
+    RGBColor(255, 127, 14),
+    RGBColor(0, 0, 0),
+];
+
+impl Figure {
+    pub fn new(title: impl Into<String>, x_label: impl Into<String>, y_label: impl Into<String>) -> Self {
+        Figure { title: title.into(), x_label: x_label.into(), y_label: y_label.into(), ..Default::default() }
+    }
+
+    pub fn with(mut self, series: Series) -> Self {
+        self.series.push(series);
+        self
+    }
+
+    fn range(&self, pick: impl Fn(&(f64, f64)) -> f64, fixed: Option<(f64, f64)>) -> (f64, f64) {
+        if let Some(r) = fixed {
+            return r;
+        }
+        let values = self.series.iter().flat_map(|s| s.points.iter().map(&pick)).filter(|v| v.is_finite());
+        let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+        if !lo.is_finite() {
+            return (0.0, 1.0);
+        }
+        let margin = if hi > lo { 0.05 * (hi - lo) } else { 0.05 * lo.abs().max(1.0) };
+        (lo - margin, hi + margin)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> std::result::Result<(), String> {
+        let (x0, x1) = self.range(|p| p.0, self.x_range);
+        let (y0, y1) = self.range(|p| p.1, self.y_range);
+        let mut chart = ChartBuilder::on(area)
+            .caption(&self.title, (FONT, 20))
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(65)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(|e| e.to_string())?;
+        chart
+            .configure_mesh()
+            .x_desc(&self.x_label)
+            .y_desc(&self.y_label)
+            .label_style((FONT, 14))
+            .axis_desc_style((FONT, 16))
+            .light_line_style(WHITE.mix(0.0))
+            .draw()
+            .map_err(|e| e.to_string())?;
+        for s in &self.series {
+            let color = PALETTE[s.color % PALETTE.len()];
+            let line = color.stroke_width(2);
+            let points = s.points.iter().copied().filter(|(x, y)| x.is_finite() && y.is_finite());
+            let anno = match s.style {
+                LineStyle::Solid => chart.draw_series(LineSeries::new(points, line)),
+                LineStyle::Dashed => chart.draw_series(DashedLineSeries::new(points, 8, 5, line)),
+                LineStyle::Circles => chart.draw_series(points.map(|p| Circle::new(p, 5, color.stroke_width(2)))),
+                LineStyle::Crosses => chart.draw_series(points.map(|p| Cross::new(p, 7, color.stroke_width(3)))),
+                LineStyle::DotsAndLine => {
+                    chart.draw_series(LineSeries::new(points.clone(), line)).map_err(|e| e.to_string())?;
+                    chart.draw_series(points.map(|p| Circle::new(p, 3, color.filled())))
+                }
+            }
+            .map_err(|e| e.to_string())?;
+            if !s.label.is_empty() {
+                let style = s.style;
+                anno.label(&s.label).legend(move |(x, y)| match style {
+                    LineStyle::Circles | LineStyle::Crosses => Circle::new((x + 10, y), 4, color.stroke_width(2)).into_dyn(),
+                    LineStyle::Dashed => PathElement::new(vec![(x, y), (x + 8, y)], color.stroke_width(2)).into_dyn(),
+                    _ => PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)).into_dyn(),
+                });
+            }
+        }
+        if self.series.iter().any(|s| !s.label.is_empty()) {
+            chart
+                .configure_series_labels()
+                .label_font((FONT, 14))
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .position(SeriesLabelPosition::UpperRight)
+                .draw()
+                .map_err(|e| e.to_string())?;
+        }
+        Ok(())
+    }
+}
+
+fn render<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, panels: &[Figure]) -> std::result::Result<(), String> {
+    root.fill(&WHITE).map_err(|e| e.to_string())?;
+    let areas = root.split_evenly((1, panels.len()));
+    for (panel, area) in panels.iter().zip(areas.iter()) {
+        panel.draw(area)?;
+    }
+    root.present().map_err(|e| e.to_string())
+}
+
+/// Writes `dir/stem.png` and `dir/stem.svg` with the panels side by side.
+pub fn save_panels(panels: &[Figure], dir: &Path, stem: &str) -> Result<Vec<PathBuf>> {
+    register_font();
+    let size = (640 * panels.len() as u32, 480);
+    let png = dir.join(format!("{stem}.png"));
+    let svg = dir.join(format!("{stem}.svg"));
+    let fail = |path: &Path, message: String| Error::Plot { path: path.display().to_string(), message };
+    render(BitMapBackend::new(&png, size).into_drawing_area(), panels).map_err(|m| fail(&png, m))?;
+    render(SVGBackend::new(&svg, size).into_drawing_area(), panels).map_err(|m| fail(&svg, m))?;
+    Ok(vec![png, svg])
+}
+
+impl Figure {
+    /// Writes `dir/stem.png` and `dir/stem.svg`.
+    pub fn save(&self, dir: &Path, stem: &str) -> Result<Vec<PathBuf>> {
+        save_panels(std::slice::from_ref(self), dir, stem)
+    }
+}

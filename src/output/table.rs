@@ -1,0 +1,63 @@
+//! CSV tables with a header, appended and flushed row by row so that a killed run keeps what it
+//! computed. A row with a non-finite number is refused: no NaN ever reaches a file.
+
+use crate::error::{Error, Result};
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+/// A CSV file being written.
+pub struct CsvWriter {
+    path: PathBuf,
+    columns: usize,
+    out: BufWriter<File>,
+}
+
+impl CsvWriter {
+    /// Creates (truncates) `path` and writes the header.
+    pub fn create(path: &Path, header: &[&str]) -> Result<Self> {
+        let file = File::create(path).map_err(|e| Error::io(path, e))?;
+        let mut writer = CsvWriter { path: path.to_path_buf(), columns: header.len(), out: BufWriter::new(file) };
+        writer.write_line(&header.join(","))?;
+        Ok(writer)
+    }
+
+    /// Appends one row of numbers and flushes it to disk.
+    pub fn append(&mut self, row: &[f64]) -> Result<()> {
+        self.append_labelled(None, row)
+    }
+
+    /// Appends one row whose first column is a text label.
+    pub fn append_labelled(&mut self, label: Option<&str>, row: &[f64]) -> Result<()> {
+        let width = row.len() + usize::from(label.is_some());
+        assert_eq!(width, self.columns, "row width does not match the header of {}", self.path.display());
+        if let Some(bad) = row.iter().position(|x| !x.is_finite()) {
+            return Err(Error::NonFinite(format!("column {} of a row for {}", bad + 1, self.path.display())));
+        }
+        let numbers = row.iter().map(|x| format!("{x}"));
+        let line: Vec<String> = label.map(str::to_string).into_iter().chain(numbers).collect();
+        self.write_line(&line.join(","))
+    }
+
+    fn write_line(&mut self, line: &str) -> Result<()> {
+        writeln!(self.out, "{line}")
+            .and_then(|_| self.out.flush())
+            .map_err(|e| Error::io(&self.path, e))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn refuses_non_finite_rows_and_keeps_earlier_ones() {
+        let dir = std::env::temp_dir().join(format!("fiberfold-csv-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("t.csv");
+        let mut w = CsvWriter::create(&path, &["a", "b"]).unwrap();
+        w.append(&[1.0, 2.5]).unwrap();
+        assert!(w.append(&[f64::NAN, 1.0]).is_err());
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "a,b\n1,2.5\n");
+    }
+}

@@ -1,0 +1,256 @@
+//! Model parameters: one typed, validated struct with the paper's Table 1 as `Default`,
+//! loadable from TOML and overridable key by key (`--set KEY=VALUE`).
+//!
+//! Units are the paper's: lengths by the layer thickness H, moduli by the substrate shear
+//! modulus (so `mu_s = 1` by default).
+
+use crate::error::{Error, Result};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// Material parameters of the bilayer (paper, Table 1 and eqs. 1-3, corrected per NOTES.md).
+#[allow(non_snake_case)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Parameters {
+    /// Shear modulus of the layer (cortex).
+    pub mu_l: f64,
+    /// Bulk modulus of the layer.
+    pub K_l: f64,
+    /// Shear modulus of the substrate matrix (the unit of stress).
+    pub mu_s: f64,
+    /// Bulk modulus of the substrate matrix.
+    pub K_s: f64,
+    /// Volume fraction of the substrate matrix.
+    pub phi_m: f64,
+    /// Volume fraction of the fibres (multiplies the sum over both families).
+    pub phi_f: f64,
+    /// Fibre stiffness in `f(I4) = mu_f/4 (I4 - lambda_f^2)^2`.
+    pub mu_f: f64,
+    /// Fibre pre-stretch parameter (`lambda_f < 1`: fibres in tension in the reference state).
+    pub lambda_f: f64,
+    /// Fibre angle in radians: families along `(cos beta, +-sin beta)`.
+    pub beta: f64,
+    /// When true, fibres carry no load while `I4 < lambda_f^2`.
+    pub tension_only: bool,
+}
+
+impl Default for Parameters {
+    /// The paper's Table 1 (benchmark values) with horizontal fibres.
+    fn default() -> Self {
+        Parameters {
+            mu_l: 10.0,
+            K_l: 30.0,
+            mu_s: 1.0,
+            K_s: 3.0,
+            phi_m: 0.9,
+            phi_f: 0.1,
+            mu_f: 10.0,
+            lambda_f: 1.0,
+            beta: 0.0,
+            tension_only: false,
+        }
+    }
+}
+
+/// The parameter names, in the order they are printed.
+pub const PARAMETER_NAMES: [&str; 10] = [
+    "mu_l",
+    "K_l",
+    "mu_s",
+    "K_s",
+    "phi_m",
+    "phi_f",
+    "mu_f",
+    "lambda_f",
+    "beta",
+    "tension_only",
+];
+
+impl Parameters {
+    /// Reads a TOML file; keys not given keep their Table 1 defaults.
+    pub fn from_toml_file(path: &Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        Self::from_toml_str(&text).map_err(|e| match e {
+            Error::ParameterSyntax(m) => Error::ParameterSyntax(format!("{}: {m}", path.display())),
+            other => other,
+        })
+    }
+
+    /// Parses TOML text; keys not given keep their Table 1 defaults.
+    pub fn from_toml_str(text: &str) -> Result<Self> {
+        let table: toml::Table = text
+            .parse()
+            .map_err(|e: toml::de::Error| Error::ParameterSyntax(e.message().to_string()))?;
+        let mut params = Parameters::default();
+        for (key, value) in table {
+            params.set_value(&key, value)?;
+        }
+        params.validate()?;
+        Ok(params)
+    }
+
+    /// Applies one `KEY=VALUE` override (the command line's `--set`).
+    pub fn set(&mut self, assignment: &str) -> Result<()> {
+        let (key, value) = assignment.split_once('=').ok_or_else(|| {
+            Error::ParameterSyntax(format!("`--set {assignment}` must have the form KEY=VALUE"))
+        })?;
+        let key = key.trim();
+        if !PARAMETER_NAMES.contains(&key) {
+            return Err(unknown_parameter(key));
+        }
+        let text = value.trim();
+        let value = if key == "tension_only" {
+            toml::Value::Boolean(parse_bool(key, text)?)
+        } else {
+            toml::Value::Float(parse_number(key, text)?)
+        };
+        self.set_value(key, value)
+    }
+
+    fn set_value(&mut self, key: &str, value: toml::Value) -> Result<()> {
+        if key == "tension_only" {
+            self.tension_only = match value {
+                toml::Value::Boolean(b) => b,
+                other => return Err(Error::invalid(key, other, "true or false")),
+            };
+            return Ok(());
+        }
+        let number = match value {
+            toml::Value::Float(x) => x,
+            toml::Value::Integer(i) => i as f64,
+            other => return Err(Error::invalid(key, other, "a number")),
+        };
+        *self.number_mut(key)? = number;
+        Ok(())
+    }
+
+    /// The numeric parameter called `key` (the names of `PARAMETER_NAMES`).
+    pub fn number(&self, key: &str) -> Result<f64> {
+        let mut copy = self.clone();
+        copy.number_mut(key).map(|x| *x)
+    }
+
+    /// Mutable access to the numeric parameter called `key`, for sweeps.
+    pub fn number_mut(&mut self, key: &str) -> Result<&mut f64> {
+        Ok(match key {
+            "mu_l" => &mut self.mu_l,
+            "K_l" => &mut self.K_l,
+            "mu_s" => &mut self.mu_s,
+            "K_s" => &mut self.K_s,
+            "phi_m" => &mut self.phi_m,
+            "phi_f" => &mut self.phi_f,
+            "mu_f" => &mut self.mu_f,
+            "lambda_f" => &mut self.lambda_f,
+            "beta" => &mut self.beta,
+            _ => return Err(unknown_parameter(key)),
+        })
+    }
+
+    /// Checks every range; the message names the parameter and its allowed range.
+    pub fn validate(&self) -> Result<()> {
+        let positive = [
+            ("mu_l", self.mu_l),
+            ("K_l", self.K_l),
+            ("mu_s", self.mu_s),
+            ("K_s", self.K_s),
+            ("lambda_f", self.lambda_f),
+        ];
+        for (name, value) in positive {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(Error::invalid(name, value, "(0, inf), a finite number > 0"));
+            }
+        }
+        if !(self.mu_f.is_finite() && self.mu_f >= 0.0) {
+            return Err(Error::invalid("mu_f", self.mu_f, "[0, inf), a finite number >= 0"));
+        }
+        for (name, value) in [("phi_m", self.phi_m), ("phi_f", self.phi_f)] {
+            if !(value.is_finite() && (0.0..=1.0).contains(&value)) {
+                return Err(Error::invalid(name, value, "[0, 1]"));
+            }
+        }
+        if !self.beta.is_finite() {
+            return Err(Error::invalid("beta", self.beta, "a finite angle in radians"));
+        }
+        Ok(())
+    }
+
+    /// The resolved set as TOML that `--params` reads back.
+    pub fn to_toml(&self) -> String {
+        toml::to_string(self).expect("a struct of numbers always serialises")
+    }
+}
+
+fn unknown_parameter(key: &str) -> Error {
+    Error::UnknownParameter {
+        name: key.to_string(),
+        known: PARAMETER_NAMES.join(", "),
+    }
+}
+
+/// Validates an end-shortening `d = 1 - lambda_1`.
+pub fn validate_compression(name: &str, d: f64) -> Result<()> {
+    if d.is_finite() && (0.0..1.0).contains(&d) {
+        Ok(())
+    } else {
+        Err(Error::invalid(name, d, "[0, 1)"))
+    }
+}
+
+/// Parses a finite number given for `name`.
+pub fn parse_number(name: &str, text: &str) -> Result<f64> {
+    match text.parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        _ => Err(Error::invalid(name, text, "a finite number")),
+    }
+}
+
+fn parse_bool(name: &str, text: &str) -> Result<bool> {
+    text.parse::<bool>()
+        .map_err(|_| Error::invalid(name, text, "true or false"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_table_1_and_round_trip_through_toml() {
+        let p = Parameters::default();
+        p.validate().unwrap();
+        assert_eq!(Parameters::from_toml_str(&p.to_toml()).unwrap(), p);
+    }
+
+    #[test]
+    fn set_overrides_and_rejects() {
+        let mut p = Parameters::default();
+        p.set("beta=0.5").unwrap();
+        p.set("tension_only=true").unwrap();
+        assert_eq!(p.beta, 0.5);
+        assert!(p.tension_only);
+        let unknown = p.set("gamma=1").unwrap_err().to_string();
+        assert!(unknown.contains("gamma") && unknown.contains("mu_f"), "{unknown}");
+        assert!(p.set("mu_l=abc").is_err());
+        assert!(p.set("mu_l").is_err());
+    }
+
+    #[test]
+    fn integers_in_toml_are_numbers() {
+        let p = Parameters::from_toml_str("mu_f = 20\nbeta = 0.25").unwrap();
+        assert_eq!(p.mu_f, 20.0);
+        assert_eq!(p.beta, 0.25);
+    }
+
+    #[test]
+    fn validation_names_parameter_and_range() {
+        let mut p = Parameters::default();
+        p.phi_f = 1.5;
+        let msg = p.validate().unwrap_err().to_string();
+        assert!(msg.contains("phi_f") && msg.contains("[0, 1]"), "{msg}");
+        let mut p = Parameters::default();
+        p.mu_l = -1.0;
+        assert!(p.validate().unwrap_err().to_string().contains("mu_l"));
+        assert!(validate_compression("d", 1.0).is_err());
+        assert!(validate_compression("d", f64::NAN).is_err());
+    }
+}
