@@ -28,11 +28,7 @@ pub enum Error {
 
     /// A scalar equation without a root in the searched interval.
     #[error("no root of {what} in [{lower}, {upper}]")]
-    NoRoot {
-        what: String,
-        lower: f64,
-        upper: f64,
-    },
+    NoRoot { what: String, lower: f64, upper: f64 },
 
     /// A computation that produced a non-finite number.
     #[error("non-finite value in {0}")]

@@ -48,7 +48,11 @@ pub fn transverse_stretch<M: Hyperelastic>(material: &M, lambda1: f64) -> Result
     loop {
         let next = if start < 0.0 { upper * expand } else { lower * expand };
         if !(STRETCH_RANGE.0..=STRETCH_RANGE.1).contains(&next) {
-            return Err(Error::NoRoot { what, lower: STRETCH_RANGE.0, upper: STRETCH_RANGE.1 });
+            return Err(Error::NoRoot {
+                what,
+                lower: STRETCH_RANGE.0,
+                upper: STRETCH_RANGE.1,
+            });
         }
         let value = p22(next)?;
         if start < 0.0 {
@@ -119,14 +123,26 @@ mod tests {
     fn energy_derived_sigma22_matches_eq_4() {
         for beta in [0.0, 0.3, std::f64::consts::FRAC_PI_4, 1.2, std::f64::consts::FRAC_PI_2] {
             for lambda_f in [1.0, 0.8] {
-                let p = Parameters { beta, lambda_f, ..Parameters::default() };
+                let p = Parameters {
+                    beta,
+                    lambda_f,
+                    ..Parameters::default()
+                };
                 let m = Bilayer::new(&p);
                 for (l1, l2) in [(0.9, 1.05), (0.7, 1.3), (0.5, 1.8), (1.0, 1.0)] {
                     let f = [l1, 0.0, 0.0, l2];
                     let s = m.substrate.cauchy(&f).unwrap()[2];
                     let l = m.layer.cauchy(&f).unwrap()[2];
-                    assert!((s - eq_4a(&p, l1, l2)).abs() < 1e-12, "4a beta={beta}: {s} vs {}", eq_4a(&p, l1, l2));
-                    assert!((l - eq_4b(&p, l1, l2)).abs() < 1e-12, "4b: {l} vs {}", eq_4b(&p, l1, l2));
+                    assert!(
+                        (s - eq_4a(&p, l1, l2)).abs() < 1e-12,
+                        "4a beta={beta}: {s} vs {}",
+                        eq_4a(&p, l1, l2)
+                    );
+                    assert!(
+                        (l - eq_4b(&p, l1, l2)).abs() < 1e-12,
+                        "4b: {l} vs {}",
+                        eq_4b(&p, l1, l2)
+                    );
                 }
             }
         }
@@ -135,7 +151,10 @@ mod tests {
     #[test]
     fn solved_state_satisfies_eq_4() {
         for beta in [0.0, 0.7, std::f64::consts::FRAC_PI_2] {
-            let p = Parameters { beta, ..Parameters::default() };
+            let p = Parameters {
+                beta,
+                ..Parameters::default()
+            };
             let m = Bilayer::new(&p);
             for d in [0.05, 0.2, 0.4, 0.6] {
                 let s = homogeneous_state(&m, d).unwrap();
@@ -155,7 +174,14 @@ mod tests {
     #[test]
     fn without_fibre_stiffness_the_substrate_is_neo_hookean() {
         // mu_f = 0 and phi_m = 1 leaves the matrix alone; with equal moduli both layers coincide.
-        let p = Parameters { mu_f: 0.0, phi_m: 1.0, mu_l: 1.0, K_l: 3.0, beta: 0.6, ..Parameters::default() };
+        let p = Parameters {
+            mu_f: 0.0,
+            phi_m: 1.0,
+            mu_l: 1.0,
+            K_l: 3.0,
+            beta: 0.6,
+            ..Parameters::default()
+        };
         let m = Bilayer::new(&p);
         for d in [0.1, 0.3, 0.5] {
             let s = homogeneous_state(&m, d).unwrap();
@@ -165,7 +191,12 @@ mod tests {
 
     #[test]
     fn incompressible_limit_approaches_inverse_stretch() {
-        let p = Parameters { K_l: 1e6, K_s: 1e5, mu_f: 0.0, ..Parameters::default() };
+        let p = Parameters {
+            K_l: 1e6,
+            K_s: 1e5,
+            mu_f: 0.0,
+            ..Parameters::default()
+        };
         let s = homogeneous_state(&Bilayer::new(&p), 0.3).unwrap();
         assert!((s.lambda2_substrate - 1.0 / 0.7).abs() < 1e-4);
         assert!((s.lambda2_layer - 1.0 / 0.7).abs() < 1e-4);

@@ -10,6 +10,7 @@ pub mod material;
 pub mod numerics;
 pub mod output;
 pub mod parameters;
+pub mod studies;
 
 pub use error::{Error, Result};
 pub use parameters::Parameters;

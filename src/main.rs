@@ -1,3 +1,7 @@
-fn main() {
-    println!("Hello, world!");
+//! The `fiberfold` command line: a thin layer over the library.
+
+mod cli;
+
+fn main() -> std::process::ExitCode {
+    cli::run()
 }

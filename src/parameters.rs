@@ -70,7 +70,8 @@ pub const PARAMETER_NAMES: [&str; 10] = [
 impl Parameters {
     /// Reads a TOML file; keys not given keep their Table 1 defaults.
     pub fn from_toml_file(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| Error::ParameterSyntax(format!("--params {}: {e}", path.display())))?;
         Self::from_toml_str(&text).map_err(|e| match e {
             Error::ParameterSyntax(m) => Error::ParameterSyntax(format!("{}: {m}", path.display())),
             other => other,
@@ -92,9 +93,9 @@ impl Parameters {
 
     /// Applies one `KEY=VALUE` override (the command line's `--set`).
     pub fn set(&mut self, assignment: &str) -> Result<()> {
-        let (key, value) = assignment.split_once('=').ok_or_else(|| {
-            Error::ParameterSyntax(format!("`--set {assignment}` must have the form KEY=VALUE"))
-        })?;
+        let (key, value) = assignment
+            .split_once('=')
+            .ok_or_else(|| Error::ParameterSyntax(format!("`--set {assignment}` must have the form KEY=VALUE")))?;
         let key = key.trim();
         if !PARAMETER_NAMES.contains(&key) {
             return Err(unknown_parameter(key));
@@ -243,12 +244,10 @@ mod tests {
 
     #[test]
     fn validation_names_parameter_and_range() {
-        let mut p = Parameters::default();
-        p.phi_f = 1.5;
+        let p = Parameters { phi_f: 1.5, ..Parameters::default() };
         let msg = p.validate().unwrap_err().to_string();
         assert!(msg.contains("phi_f") && msg.contains("[0, 1]"), "{msg}");
-        let mut p = Parameters::default();
-        p.mu_l = -1.0;
+        let p = Parameters { mu_l: -1.0, ..Parameters::default() };
         assert!(p.validate().unwrap_err().to_string().contains("mu_l"));
         assert!(validate_compression("d", 1.0).is_err());
         assert!(validate_compression("d", f64::NAN).is_err());

@@ -16,7 +16,7 @@ pub use tissue::{Bilayer, FibreReinforced, Tissue};
 
 use crate::error::{Error, Result};
 use nalgebra::SVector;
-use num_dual::{gradient, hessian, DualNum, DualSVec64, Dual2SVec64};
+use num_dual::{gradient, hessian, Dual2SVec64, DualNum, DualSVec64};
 
 /// A plane deformation gradient `[F11, F12, F21, F22]`.
 pub type Tensor2 = [f64; 4];

@@ -36,9 +36,17 @@ fn materials() -> Vec<(String, Tissue)> {
     let mut list = Vec::new();
     for beta in [0.0, std::f64::consts::FRAC_PI_4, std::f64::consts::FRAC_PI_2, 1.1] {
         for (lambda_f, tension_only) in [(1.0, false), (0.9, false), (1.0, true)] {
-            let p = Parameters { beta, lambda_f, tension_only, ..Parameters::default() };
+            let p = Parameters {
+                beta,
+                lambda_f,
+                tension_only,
+                ..Parameters::default()
+            };
             let b = Bilayer::new(&p);
-            list.push((format!("substrate beta={beta} lambda_f={lambda_f} tension_only={tension_only}"), b.substrate_tissue()));
+            list.push((
+                format!("substrate beta={beta} lambda_f={lambda_f} tension_only={tension_only}"),
+                b.substrate_tissue(),
+            ));
             list.push(("layer".into(), b.layer_tissue()));
         }
     }
@@ -48,9 +56,10 @@ fn materials() -> Vec<(String, Tissue)> {
 /// Whether a tension-only fibre sits at its kink `I4 = lambda_f^2`, where `A` jumps.
 fn at_fibre_kink(m: &Tissue, f: &Tensor2) -> bool {
     match m {
-        Tissue::Substrate(s) => s.fibres.iter().any(|fam| {
-            fam.tension_only && (fam.stretch_invariant(f) - fam.prestretch.powi(2)).abs() < 1e-4
-        }),
+        Tissue::Substrate(s) => s
+            .fibres
+            .iter()
+            .any(|fam| fam.tension_only && (fam.stretch_invariant(f) - fam.prestretch.powi(2)).abs() < 1e-4),
         Tissue::Layer(_) => false,
     }
 }
@@ -109,7 +118,12 @@ fn energy_is_frame_indifferent() {
         for f in sample_gradients() {
             for angle in [0.3, 1.7, -2.5] {
                 let (c, s) = (f64::cos(angle), f64::sin(angle));
-                let qf = [c * f[0] - s * f[2], c * f[1] - s * f[3], s * f[0] + c * f[2], s * f[1] + c * f[3]];
+                let qf = [
+                    c * f[0] - s * f[2],
+                    c * f[1] - s * f[3],
+                    s * f[0] + c * f[2],
+                    s * f[1] + c * f[3],
+                ];
                 let (w, wq) = (m.energy(&f).unwrap(), m.energy(&qf).unwrap());
                 assert!((w - wq).abs() <= 1e-12 * w.abs().max(1.0), "{name}: W(QF) != W(F)");
             }
@@ -123,7 +137,10 @@ fn reference_state_is_stress_free_without_prestretch() {
     for (name, m) in materials().into_iter().filter(|(n, _)| !n.contains("lambda_f=0.9")) {
         let p = m.first_piola(&identity).unwrap();
         let sigma = m.cauchy(&identity).unwrap();
-        assert!(p.iter().chain(sigma.iter()).all(|x| x.abs() < 1e-14), "{name}: {p:?} {sigma:?}");
+        assert!(
+            p.iter().chain(sigma.iter()).all(|x| x.abs() < 1e-14),
+            "{name}: {p:?} {sigma:?}"
+        );
         assert!(m.energy(&identity).unwrap().abs() < 1e-14);
     }
 }
@@ -134,7 +151,12 @@ fn neo_hookean_cauchy_stress_matches_closed_form() {
     let m = NeoHookean { mu: 1.3, bulk: 4.1 };
     for f in sample_gradients() {
         let j = jacobian(&f);
-        let b = [f[0] * f[0] + f[1] * f[1], f[0] * f[2] + f[1] * f[3], f[2] * f[2] + f[3] * f[3], 1.0];
+        let b = [
+            f[0] * f[0] + f[1] * f[1],
+            f[0] * f[2] + f[1] * f[3],
+            f[2] * f[2] + f[3] * f[3],
+            1.0,
+        ];
         let i1 = b[0] + b[2] + 1.0;
         let pressure = m.bulk * j.ln() / j;
         let expected = [
@@ -145,7 +167,10 @@ fn neo_hookean_cauchy_stress_matches_closed_form() {
         ];
         let sigma = m.cauchy(&f).unwrap();
         for a in 0..4 {
-            assert!((sigma[a] - expected[a]).abs() < 1e-12 * (1.0 + expected[a].abs()), "{sigma:?} {expected:?}");
+            assert!(
+                (sigma[a] - expected[a]).abs() < 1e-12 * (1.0 + expected[a].abs()),
+                "{sigma:?} {expected:?}"
+            );
         }
     }
 }
@@ -163,7 +188,11 @@ fn inverted_deformation_is_an_error_not_a_nan() {
 
 #[test]
 fn tension_only_fibres_are_unloaded_in_compression() {
-    let p = Parameters { tension_only: true, mu_f: 50.0, ..Parameters::default() };
+    let p = Parameters {
+        tension_only: true,
+        mu_f: 50.0,
+        ..Parameters::default()
+    };
     let fibres = Bilayer::new(&p).substrate.fibres[0];
     assert_eq!(fibres.energy(&[0.8, 0.0, 0.0, 1.2]).unwrap(), 0.0);
     assert!(fibres.energy(&[1.1, 0.0, 0.0, 0.9]).unwrap() > 0.0);

@@ -53,9 +53,15 @@ impl Bilayer {
             tension_only: p.tension_only,
         };
         Bilayer {
-            layer: NeoHookean { mu: p.mu_l, bulk: p.K_l },
+            layer: NeoHookean {
+                mu: p.mu_l,
+                bulk: p.K_l,
+            },
             substrate: FibreReinforced {
-                matrix: NeoHookean { mu: p.mu_s, bulk: p.K_s },
+                matrix: NeoHookean {
+                    mu: p.mu_s,
+                    bulk: p.K_s,
+                },
                 matrix_fraction: p.phi_m,
                 fibre_fraction: p.phi_f,
                 fibres: [family(1.0), family(-1.0)],

@@ -42,7 +42,12 @@ pub struct Series {
 
 impl Series {
     pub fn new(label: impl Into<String>, points: Vec<(f64, f64)>, style: LineStyle, color: usize) -> Self {
-        Series { label: label.into(), points, style, color }
+        Series {
+            label: label.into(),
+            points,
+            style,
+            color,
+        }
     }
 }
 
@@ -69,7 +74,12 @@ const PALETTE: [RGBColor; 6] = [
 
 impl Figure {
     pub fn new(title: impl Into<String>, x_label: impl Into<String>, y_label: impl Into<String>) -> Self {
-        Figure { title: title.into(), x_label: x_label.into(), y_label: y_label.into(), ..Default::default() }
+        Figure {
+            title: title.into(),
+            x_label: x_label.into(),
+            y_label: y_label.into(),
+            ..Default::default()
+        }
     }
 
     pub fn with(mut self, series: Series) -> Self {
@@ -81,12 +91,20 @@ impl Figure {
         if let Some(r) = fixed {
             return r;
         }
-        let values = self.series.iter().flat_map(|s| s.points.iter().map(&pick)).filter(|v| v.is_finite());
+        let values = self
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter().map(&pick))
+            .filter(|v| v.is_finite());
         let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
         if !lo.is_finite() {
             return (0.0, 1.0);
         }
-        let margin = if hi > lo { 0.05 * (hi - lo) } else { 0.05 * lo.abs().max(1.0) };
+        let margin = if hi > lo {
+            0.05 * (hi - lo)
+        } else {
+            0.05 * lo.abs().max(1.0)
+        };
         (lo - margin, hi + margin)
     }
 
@@ -119,7 +137,9 @@ impl Figure {
                 LineStyle::Circles => chart.draw_series(points.map(|p| Circle::new(p, 5, color.stroke_width(2)))),
                 LineStyle::Crosses => chart.draw_series(points.map(|p| Cross::new(p, 7, color.stroke_width(3)))),
                 LineStyle::DotsAndLine => {
-                    chart.draw_series(LineSeries::new(points.clone(), line)).map_err(|e| e.to_string())?;
+                    chart
+                        .draw_series(LineSeries::new(points.clone(), line))
+                        .map_err(|e| e.to_string())?;
                     chart.draw_series(points.map(|p| Circle::new(p, 3, color.filled())))
                 }
             }
@@ -127,7 +147,9 @@ impl Figure {
             if !s.label.is_empty() {
                 let style = s.style;
                 anno.label(&s.label).legend(move |(x, y)| match style {
-                    LineStyle::Circles | LineStyle::Crosses => Circle::new((x + 10, y), 4, color.stroke_width(2)).into_dyn(),
+                    LineStyle::Circles | LineStyle::Crosses => {
+                        Circle::new((x + 10, y), 4, color.stroke_width(2)).into_dyn()
+                    }
                     LineStyle::Dashed => PathElement::new(vec![(x, y), (x + 8, y)], color.stroke_width(2)).into_dyn(),
                     _ => PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)).into_dyn(),
                 });
@@ -162,7 +184,10 @@ pub fn save_panels(panels: &[Figure], dir: &Path, stem: &str) -> Result<Vec<Path
     let size = (640 * panels.len() as u32, 480);
     let png = dir.join(format!("{stem}.png"));
     let svg = dir.join(format!("{stem}.svg"));
-    let fail = |path: &Path, message: String| Error::Plot { path: path.display().to_string(), message };
+    let fail = |path: &Path, message: String| Error::Plot {
+        path: path.display().to_string(),
+        message,
+    };
     render(BitMapBackend::new(&png, size).into_drawing_area(), panels).map_err(|m| fail(&png, m))?;
     render(SVGBackend::new(&svg, size).into_drawing_area(), panels).map_err(|m| fail(&svg, m))?;
     Ok(vec![png, svg])

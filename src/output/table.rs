@@ -17,7 +17,11 @@ impl CsvWriter {
     /// Creates (truncates) `path` and writes the header.
     pub fn create(path: &Path, header: &[&str]) -> Result<Self> {
         let file = File::create(path).map_err(|e| Error::io(path, e))?;
-        let mut writer = CsvWriter { path: path.to_path_buf(), columns: header.len(), out: BufWriter::new(file) };
+        let mut writer = CsvWriter {
+            path: path.to_path_buf(),
+            columns: header.len(),
+            out: BufWriter::new(file),
+        };
         writer.write_line(&header.join(","))?;
         Ok(writer)
     }
@@ -30,11 +34,20 @@ impl CsvWriter {
     /// Appends one row whose first column is a text label.
     pub fn append_labelled(&mut self, label: Option<&str>, row: &[f64]) -> Result<()> {
         let width = row.len() + usize::from(label.is_some());
-        assert_eq!(width, self.columns, "row width does not match the header of {}", self.path.display());
+        assert_eq!(
+            width,
+            self.columns,
+            "row width does not match the header of {}",
+            self.path.display()
+        );
         if let Some(bad) = row.iter().position(|x| !x.is_finite()) {
-            return Err(Error::NonFinite(format!("column {} of a row for {}", bad + 1, self.path.display())));
+            return Err(Error::NonFinite(format!(
+                "column {} of a row for {}",
+                bad + 1,
+                self.path.display()
+            )));
         }
-        let numbers = row.iter().map(|x| format!("{x}"));
+        let numbers = row.iter().map(|&x| format_number(x));
         let line: Vec<String> = label.map(str::to_string).into_iter().chain(numbers).collect();
         self.write_line(&line.join(","))
     }
@@ -43,6 +56,15 @@ impl CsvWriter {
         writeln!(self.out, "{line}")
             .and_then(|_| self.out.flush())
             .map_err(|e| Error::io(&self.path, e))
+    }
+}
+
+/// Shortest round-trip text of a number, scientific when very small or large.
+pub fn format_number(x: f64) -> String {
+    if x == 0.0 || (1e-4..1e6).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
     }
 }
 

@@ -1,0 +1,60 @@
+//! Arguments and helpers shared by every command.
+
+use clap::Args;
+use fiberfold::{Parameters, Result};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::{Path, PathBuf};
+
+/// Model parameters: Table 1 of the paper, then a TOML file, then `--set` overrides.
+#[derive(Args, Clone, Debug, Default)]
+pub struct ParamArgs {
+    /// TOML file of model parameters (keys as printed by `fiberfold params`); keys it omits keep
+    /// their Table 1 defaults.
+    #[arg(long, value_name = "FILE")]
+    pub params: Option<PathBuf>,
+
+    /// Override one parameter, repeatable, e.g. `--set beta=0.785398 --set mu_f=20`. Keys
+    /// (defaults): mu_l (10), K_l (30), mu_s (1), K_s (3), phi_m (0.9), phi_f (0.1),
+    /// mu_f (10), lambda_f (1), beta (0, radians), tension_only (false). Moduli in units of mu_s.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
+}
+
+impl ParamArgs {
+    /// The validated parameter set.
+    pub fn resolve(&self) -> Result<Parameters> {
+        let mut params = match &self.params {
+            Some(path) => Parameters::from_toml_file(path)?,
+            None => Parameters::default(),
+        };
+        for assignment in &self.set {
+            params.set(assignment)?;
+        }
+        params.validate()?;
+        Ok(params)
+    }
+}
+
+/// Creates the output folder and says where results go.
+pub fn prepare_out(dir: &Path) -> Result<()> {
+    fiberfold::output::ensure_dir(dir)
+}
+
+/// Lists the files a command wrote.
+pub fn report_files(files: &[PathBuf]) {
+    for f in files {
+        println!("  wrote {}", f.display());
+    }
+}
+
+/// A progress bar on standard error (drawn only on a terminal).
+pub fn progress(len: usize, what: &str) -> ProgressBar {
+    let bar = ProgressBar::new(len as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{msg:>14} [{bar:40}] {pos}/{len} ({elapsed}, eta {eta})")
+            .expect("static template")
+            .progress_chars("=> "),
+    );
+    bar.set_message(what.to_string());
+    bar
+}

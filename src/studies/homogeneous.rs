@@ -1,0 +1,133 @@
+//! The homogeneous-state table and the paper's Fig. 2.
+
+use super::{linspace, validate_points, Tick};
+use crate::error::Result;
+use crate::homogeneous::HomogeneousRow;
+use crate::material::Bilayer;
+use crate::output::{write_json, CsvWriter, Figure, LineStyle, Series};
+use crate::parameters::{validate_compression, Parameters};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+
+/// Range of the homogeneous-state table.
+#[derive(Clone, Copy, Debug)]
+pub struct HomogeneousStudy {
+    /// Largest end-shortening d.
+    pub d_max: f64,
+    /// Number of equally spaced d values from 0 to `d_max`.
+    pub points: usize,
+}
+
+impl Default for HomogeneousStudy {
+    fn default() -> Self {
+        HomogeneousStudy {
+            d_max: 0.5,
+            points: 101,
+        }
+    }
+}
+
+#[derive(Serialize)]
+struct Summary<'a> {
+    command: &'static str,
+    parameters: &'a Parameters,
+    d_max: f64,
+    points: usize,
+    at_d_max: &'a HomogeneousRow,
+    files: Vec<String>,
+}
+
+pub const CSV_HEADER: [&str; 12] = [
+    "d",
+    "lambda1",
+    "lambda2_layer",
+    "lambda2_substrate",
+    "J_layer",
+    "J_substrate",
+    "sigma11_layer",
+    "sigma22_layer",
+    "sigma33_layer",
+    "sigma11_substrate",
+    "sigma22_substrate",
+    "sigma33_substrate",
+];
+
+impl HomogeneousStudy {
+    pub fn validate(&self) -> Result<()> {
+        validate_compression("d-max", self.d_max)?;
+        validate_points("points", self.points, 2)
+    }
+}
+
+/// Computes the table, writes `homogeneous.csv`, `homogeneous.json`, `fig2.png`, `fig2.svg`.
+pub fn run(params: &Parameters, study: &HomogeneousStudy, out: &Path, tick: Tick) -> Result<Vec<PathBuf>> {
+    params.validate()?;
+    study.validate()?;
+    crate::output::ensure_dir(out)?;
+    let materials = Bilayer::new(params);
+    let rows = linspace(0.0, study.d_max, study.points)
+        .into_iter()
+        .map(|d| {
+            let row = HomogeneousRow::new(&materials, d);
+            tick();
+            row
+        })
+        .collect::<Result<Vec<_>>>()?;
+
+    let csv = out.join("homogeneous.csv");
+    let mut table = CsvWriter::create(&csv, &CSV_HEADER)?;
+    for r in &rows {
+        let s = &r.state;
+        let (l, m) = (&r.layer_stress, &r.substrate_stress);
+        table.append(&[
+            s.d,
+            s.lambda1,
+            s.lambda2_layer,
+            s.lambda2_substrate,
+            s.lambda1 * s.lambda2_layer,
+            s.lambda1 * s.lambda2_substrate,
+            l[0],
+            l[2],
+            l[3],
+            m[0],
+            m[2],
+            m[3],
+        ])?;
+    }
+    let mut files = vec![csv];
+    files.extend(fig2(params, &rows).save(out, "fig2")?);
+    let json = out.join("homogeneous.json");
+    let summary = Summary {
+        command: "homogeneous",
+        parameters: params,
+        d_max: study.d_max,
+        points: study.points,
+        at_d_max: rows.last().expect("at least two points"),
+        files: files.iter().map(|f| f.display().to_string()).collect(),
+    };
+    write_json(&json, &summary)?;
+    files.push(json);
+    Ok(files)
+}
+
+/// Fig. 2: substrate stretch `lambda_2s` against `lambda_1`, compressible (eq. 4a) and
+/// incompressible (`1/lambda_1`).
+fn fig2(params: &Parameters, rows: &[HomogeneousRow]) -> Figure {
+    let compressible = rows
+        .iter()
+        .map(|r| (r.state.lambda1, r.state.lambda2_substrate))
+        .collect();
+    let incompressible = rows.iter().map(|r| (r.state.lambda1, 1.0 / r.state.lambda1)).collect();
+    Figure::new(
+        format!("Fig. 2: substrate stretch, beta = {:.4}", params.beta),
+        "lambda_1 = 1 - d",
+        "lambda_2s",
+    )
+    .with(Series::new("compressible (eq. 4a)", compressible, LineStyle::Solid, 0))
+    .with(Series::new(
+        "incompressible, 1/lambda_1",
+        incompressible,
+        LineStyle::Dashed,
+        5,
+    ))
+}

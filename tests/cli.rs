@@ -1,0 +1,166 @@
+//! The command line as a user meets it: bad input gives a one-line error naming the parameter
+//! and its allowed range with exit code 2; good input writes the promised files.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn fiberfold(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_fiberfold"))
+        .args(args)
+        .output()
+        .expect("binary runs")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("fiberfold-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+/// Runs a command that must be rejected; returns its stderr.
+fn rejected(args: &[&str], must_mention: &[&str]) -> String {
+    let out = fiberfold(args);
+    let stderr = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(out.status.code(), Some(2), "{args:?} should exit 2, stderr: {stderr}");
+    assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
+    for word in must_mention {
+        assert!(stderr.contains(word), "{args:?}: `{word}` missing from: {stderr}");
+    }
+    stderr
+}
+
+#[test]
+fn volume_fraction_out_of_range() {
+    rejected(
+        &["homogeneous", "--set", "phi_f=1.5", "--out", "/nonexistent/x"],
+        &["phi_f", "[0, 1]"],
+    );
+    rejected(&["homogeneous", "--set", "phi_m=-0.1"], &["phi_m", "[0, 1]"]);
+}
+
+#[test]
+fn non_positive_modulus() {
+    for key in ["mu_l", "K_l", "mu_s", "K_s", "lambda_f"] {
+        rejected(&["params", "--set", &format!("{key}=0")], &[key, "> 0"]);
+    }
+    rejected(&["params", "--set", "mu_f=-1"], &["mu_f", ">= 0"]);
+}
+
+#[test]
+fn non_finite_and_malformed_values() {
+    rejected(&["params", "--set", "mu_l=nan"], &["mu_l", "finite"]);
+    rejected(&["params", "--set", "beta=inf"], &["beta", "finite"]);
+    rejected(&["params", "--set", "mu_l=ten"], &["mu_l"]);
+    rejected(
+        &["params", "--set", "tension_only=maybe"],
+        &["tension_only", "true or false"],
+    );
+    rejected(&["params", "--set", "mu_l"], &["KEY=VALUE"]);
+}
+
+#[test]
+fn unknown_key_lists_the_known_ones() {
+    rejected(&["params", "--set", "gamma=1"], &["gamma", "mu_l", "tension_only"]);
+    let dir = scratch("unknown-toml");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("p.toml");
+    std::fs::write(&file, "mu_l = 5\nmu_x = 1\n").unwrap();
+    rejected(&["params", "--params", file.to_str().unwrap()], &["mu_x", "mu_l"]);
+}
+
+#[test]
+fn unreadable_or_malformed_parameter_file() {
+    rejected(
+        &["params", "--params", "/nonexistent/params.toml"],
+        &["/nonexistent/params.toml"],
+    );
+    let dir = scratch("bad-toml");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("p.toml");
+    std::fs::write(&file, "mu_l = = 5\n").unwrap();
+    rejected(
+        &["params", "--params", file.to_str().unwrap()],
+        &["cannot read parameters"],
+    );
+    std::fs::write(&file, "mu_l = \"stiff\"\n").unwrap();
+    rejected(&["params", "--params", file.to_str().unwrap()], &["mu_l", "number"]);
+}
+
+#[test]
+fn compression_and_points_out_of_range() {
+    let dir = scratch("bad-d");
+    let out = dir.to_str().unwrap();
+    rejected(&["homogeneous", "--d-max", "1.0", "--out", out], &["d-max", "[0, 1)"]);
+    rejected(&["homogeneous", "--d-max", "-0.2", "--out", out], &["d-max", "[0, 1)"]);
+    rejected(&["homogeneous", "--points", "1", "--out", out], &["points", "[2,"]);
+    assert!(
+        !dir.join("homogeneous.csv").exists(),
+        "no file may be written for bad input"
+    );
+}
+
+#[test]
+fn params_round_trip_through_a_file() {
+    let dir = scratch("roundtrip");
+    let out = fiberfold(&[
+        "params",
+        "--set",
+        "beta=0.5",
+        "--set",
+        "mu_f=20",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let printed = String::from_utf8(out.stdout).unwrap();
+    let file = dir.join("params.toml");
+    assert_eq!(std::fs::read_to_string(&file).unwrap().trim(), printed.trim());
+    let again = fiberfold(&["params", "--params", file.to_str().unwrap()]);
+    assert_eq!(String::from_utf8(again.stdout).unwrap(), printed);
+}
+
+#[test]
+fn homogeneous_writes_table_summary_and_figure() {
+    let dir = scratch("homog");
+    let out = fiberfold(&[
+        "homogeneous",
+        "--set",
+        "beta=0.75",
+        "--points",
+        "11",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let csv = std::fs::read_to_string(dir.join("homogeneous.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert!(lines
+        .next()
+        .unwrap()
+        .starts_with("d,lambda1,lambda2_layer,lambda2_substrate"));
+    assert_eq!(lines.count(), 11);
+    assert!(!csv.to_lowercase().contains("nan"));
+    for f in ["homogeneous.json", "fig2.png", "fig2.svg"] {
+        assert!(dir.join(f).metadata().unwrap().len() > 0, "{f} missing");
+    }
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("homogeneous.json")).unwrap()).unwrap();
+    assert_eq!(summary["parameters"]["beta"], 0.75);
+}
+
+#[test]
+fn help_documents_flags_with_defaults() {
+    let out = fiberfold(&["homogeneous", "--help"]);
+    let help = String::from_utf8(out.stdout).unwrap();
+    for flag in [
+        "--d-max",
+        "--points",
+        "--out",
+        "--set",
+        "--params",
+        "default: 0.5",
+        "default: 101",
+    ] {
+        assert!(help.contains(flag), "`{flag}` missing from help:\n{help}");
+    }
+}
