@@ -5,8 +5,11 @@
 //! finite elements) -> results -> [`output`].
 
 pub mod error;
+pub mod fem;
 pub mod homogeneous;
+pub mod stability;
 pub mod material;
+pub mod mesh;
 pub mod numerics;
 pub mod output;
 pub mod parameters;

@@ -1,0 +1,1 @@
+//! Nonlinear plane-strain finite elements (in progress).

@@ -1,0 +1,1 @@
+//! Structured meshes of the bilayer (in progress).
