@@ -7,12 +7,12 @@
 pub mod error;
 pub mod fem;
 pub mod homogeneous;
-pub mod stability;
 pub mod material;
 pub mod mesh;
 pub mod numerics;
 pub mod output;
 pub mod parameters;
+pub mod stability;
 pub mod studies;
 
 pub use error::{Error, Result};

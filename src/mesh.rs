@@ -1,1 +1,333 @@
-//! Structured meshes of the bilayer (in progress).
+//! Structured meshes of the bilayer: 9-node biquadratic (Q2) quadrilaterals over the reference
+//! domain `0 <= X <= L`, `-D <= Y <= 1` (NOTES.md, "The finite-element set-up"). Elements are
+//! uniform in X and through the layer `0 <= Y <= 1`; in the substrate they grow geometrically
+//! from `h0` at the interface, `h_k = h0 r^k`, with `r` chosen so that `sum_k h_k = D` exactly.
+//!
+//! Nodes form a `(2 nx + 1) x (2 ny + 1)` grid numbered column by column (Y fastest, the shorter
+//! direction): grid node `(i, j)` is `i (2 ny + 1) + j`, with `i = 0` at `X = 0` and `j = 0` at
+//! `Y = -D`. Element nodes are in tensor-product order: local node `a + 3 b` sits at
+//! `(xi, eta) = (a - 1, b - 1)`. Displacement unknown `c` (0: x, 1: y) of node `n` is `2 n + c`.
+
+use crate::error::{Error, Result};
+
+/// Thickness of the stiff layer: the unit of length.
+pub const LAYER_THICKNESS: f64 = 1.0;
+
+/// Which tissue an element belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Region {
+    /// The stiff layer, `0 <= Y <= 1`.
+    Layer,
+    /// The fibre-reinforced substrate, `-D <= Y <= 0`.
+    Substrate,
+}
+
+/// Size and grading of a structured bilayer mesh.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeshSpec {
+    /// Number of elements along X.
+    pub nx: usize,
+    /// Number of (uniform) elements through the layer.
+    pub layer_elements: usize,
+    /// Number of (geometrically graded) elements through the substrate.
+    pub substrate_elements: usize,
+    /// Thickness `h0` of the top substrate element, at the interface `Y = 0`.
+    pub top_substrate_thickness: f64,
+    /// Half-length `L` of the domain.
+    pub length: f64,
+    /// Depth `D` of the substrate.
+    pub depth: f64,
+}
+
+impl MeshSpec {
+    /// Any mesh of the domain `[0, length] x [-depth, 1]`; validated by [`Mesh::new`].
+    pub fn new(
+        nx: usize,
+        layer_elements: usize,
+        substrate_elements: usize,
+        top_substrate_thickness: f64,
+        length: f64,
+        depth: f64,
+    ) -> Self {
+        MeshSpec {
+            nx,
+            layer_elements,
+            substrate_elements,
+            top_substrate_thickness,
+            length,
+            depth,
+        }
+    }
+
+    /// 100 / 2 / 25 elements, `h0 = 0.5` (bottom element about 5): 22,110 unknowns.
+    pub fn coarse() -> Self {
+        Self::new(100, 2, 25, 0.5, 50.0, 50.0)
+    }
+
+    /// 200 / 4 / 45 elements, `h0 = 0.25` (bottom element about 3): 79,398 unknowns.
+    pub fn fine() -> Self {
+        Self::new(200, 4, 45, 0.25, 50.0, 50.0)
+    }
+
+    /// 400 / 8 / 90 elements, `h0 = 0.125`: 315,594 unknowns.
+    pub fn extra() -> Self {
+        Self::new(400, 8, 90, 0.125, 50.0, 50.0)
+    }
+
+    /// Number of elements through the thickness, `layer_elements + substrate_elements`.
+    pub fn ny(&self) -> usize {
+        self.layer_elements + self.substrate_elements
+    }
+
+    /// Number of unknowns before boundary conditions, two per node.
+    pub fn num_dofs(&self) -> usize {
+        2 * (2 * self.nx + 1) * (2 * self.ny() + 1)
+    }
+
+    /// Checks counts and lengths; the grading needs `h0 < D` (or `h0 = D` for one element).
+    pub fn validate(&self) -> Result<()> {
+        for (name, count) in [
+            ("mesh.nx", self.nx),
+            ("mesh.layer_elements", self.layer_elements),
+            ("mesh.substrate_elements", self.substrate_elements),
+        ] {
+            if count == 0 {
+                return Err(Error::invalid(name, count, "an integer >= 1"));
+            }
+        }
+        for (name, value) in [("mesh.length", self.length), ("mesh.depth", self.depth)] {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(Error::invalid(name, value, "(0, inf)"));
+            }
+        }
+        let h0 = self.top_substrate_thickness;
+        let feasible = if self.substrate_elements == 1 {
+            (h0 - self.depth).abs() <= 1e-12 * self.depth
+        } else {
+            h0.is_finite() && h0 > 0.0 && h0 < self.depth
+        };
+        if feasible {
+            Ok(())
+        } else {
+            let allowed = if self.substrate_elements == 1 {
+                "= depth for one element"
+            } else {
+                "(0, depth)"
+            };
+            Err(Error::invalid("mesh.top_substrate_thickness", h0, allowed))
+        }
+    }
+
+    /// Growth ratio `r` of the substrate elements, from `h0 (r^n - 1) / (r - 1) = D` (bisection).
+    pub fn grading_ratio(&self) -> f64 {
+        let (n, h0, depth) = (self.substrate_elements, self.top_substrate_thickness, self.depth);
+        let total = |r: f64| h0 * (0..n).map(|k| r.powi(k as i32)).sum::<f64>();
+        if n == 1 || (n as f64 * h0 - depth).abs() <= 1e-14 * depth {
+            return 1.0;
+        }
+        // total(r) grows with r; the root lies in (0, 1) when n h0 > D, else in (1, (D/h0)^(1/(n-1))].
+        let (mut lower, mut upper) = if n as f64 * h0 > depth {
+            (0.0, 1.0)
+        } else {
+            (1.0, (depth / h0).powf(1.0 / (n - 1) as f64))
+        };
+        while upper - lower > 4.0 * f64::EPSILON * upper {
+            let middle = 0.5 * (lower + upper);
+            if total(middle) < depth {
+                lower = middle;
+            } else {
+                upper = middle;
+            }
+        }
+        0.5 * (lower + upper)
+    }
+
+    /// Substrate element thicknesses from the interface down; they sum to `D` exactly.
+    pub fn substrate_thicknesses(&self) -> Vec<f64> {
+        let r = self.grading_ratio();
+        let n = self.substrate_elements;
+        let mut h: Vec<f64> = (0..n)
+            .map(|k| self.top_substrate_thickness * r.powi(k as i32))
+            .collect();
+        // Absorb the bisection's round-off into the bottom element.
+        h[n - 1] = self.depth - h[..n - 1].iter().sum::<f64>();
+        h
+    }
+
+    /// Y of the element boundaries from the bottom `-D` to the top `1`.
+    fn element_rows(&self) -> Vec<f64> {
+        let mut rows = vec![0.0];
+        for h in self.substrate_thicknesses() {
+            rows.push(rows.last().unwrap() - h);
+        }
+        *rows.last_mut().unwrap() = -self.depth;
+        rows.reverse();
+        let nl = self.layer_elements as f64;
+        rows.extend((1..=self.layer_elements).map(|k| LAYER_THICKNESS * k as f64 / nl));
+        rows
+    }
+}
+
+/// A structured Q2 mesh: reference node coordinates, element connectivity and regions.
+#[derive(Clone, Debug)]
+pub struct Mesh {
+    spec: MeshSpec,
+    coordinates: Vec<[f64; 2]>,
+    elements: Vec<[usize; 9]>,
+    regions: Vec<Region>,
+}
+
+impl Mesh {
+    /// The perfect (unperturbed) mesh of `spec`.
+    pub fn new(spec: MeshSpec) -> Result<Self> {
+        spec.validate()?;
+        let (columns, rows) = (2 * spec.nx + 1, 2 * spec.ny() + 1);
+        let element_rows = spec.element_rows();
+        let node_y: Vec<f64> = (0..rows)
+            .map(|j| match j % 2 {
+                0 => element_rows[j / 2],
+                _ => 0.5 * (element_rows[j / 2] + element_rows[j / 2 + 1]),
+            })
+            .collect();
+        let dx = spec.length / (2 * spec.nx) as f64;
+        let mut coordinates = Vec::with_capacity(columns * rows);
+        for i in 0..columns {
+            let x = if i + 1 == columns { spec.length } else { dx * i as f64 };
+            coordinates.extend(node_y.iter().map(|&y| [x, y]));
+        }
+        let mut elements = Vec::with_capacity(spec.nx * spec.ny());
+        let mut regions = Vec::with_capacity(spec.nx * spec.ny());
+        for ex in 0..spec.nx {
+            for ey in 0..spec.ny() {
+                elements.push(std::array::from_fn(|local| {
+                    (2 * ex + local % 3) * rows + 2 * ey + local / 3
+                }));
+                regions.push(if ey < spec.substrate_elements {
+                    Region::Substrate
+                } else {
+                    Region::Layer
+                });
+            }
+        }
+        Ok(Mesh {
+            spec,
+            coordinates,
+            elements,
+            regions,
+        })
+    }
+
+    /// Moves every node `X` to `X + displacement(X)` (an imperfection of the reference geometry);
+    /// node sets and regions keep following the grid.
+    pub fn perturbed(mut self, displacement: impl Fn([f64; 2]) -> [f64; 2]) -> Self {
+        for x in &mut self.coordinates {
+            let [dx, dy] = displacement(*x);
+            *x = [x[0] + dx, x[1] + dy];
+        }
+        self
+    }
+
+    /// The specification the mesh was built from.
+    pub fn spec(&self) -> &MeshSpec {
+        &self.spec
+    }
+
+    /// Reference coordinates `[X, Y]` of every node.
+    pub fn coordinates(&self) -> &[[f64; 2]] {
+        &self.coordinates
+    }
+
+    /// The nine nodes of every element (tensor-product order, see the module docs).
+    pub fn elements(&self) -> &[[usize; 9]] {
+        &self.elements
+    }
+
+    /// The region of every element.
+    pub fn regions(&self) -> &[Region] {
+        &self.regions
+    }
+
+    /// Number of nodes.
+    pub fn num_nodes(&self) -> usize {
+        self.coordinates.len()
+    }
+
+    /// Number of unknowns, two per node.
+    pub fn num_dofs(&self) -> usize {
+        2 * self.num_nodes()
+    }
+
+    /// Number of node columns, `2 nx + 1`.
+    pub fn columns(&self) -> usize {
+        2 * self.spec.nx + 1
+    }
+
+    /// Number of node rows, `2 ny + 1`.
+    pub fn rows(&self) -> usize {
+        2 * self.spec.ny() + 1
+    }
+
+    /// The node in grid column `i` (from `X = 0`) and row `j` (from `Y = -D`).
+    pub fn node(&self, i: usize, j: usize) -> usize {
+        i * self.rows() + j
+    }
+
+    /// Nodes on the left edge `X = 0`, bottom to top.
+    pub fn left(&self) -> Vec<usize> {
+        (0..self.rows()).map(|j| self.node(0, j)).collect()
+    }
+
+    /// Nodes on the right edge `X = L`, bottom to top.
+    pub fn right(&self) -> Vec<usize> {
+        (0..self.rows()).map(|j| self.node(self.columns() - 1, j)).collect()
+    }
+
+    /// Nodes on the bottom `Y = -D`, sorted by X.
+    pub fn bottom(&self) -> Vec<usize> {
+        self.grid_row(0)
+    }
+
+    /// Nodes on the top surface `Y = 1`, sorted by X.
+    pub fn top(&self) -> Vec<usize> {
+        self.grid_row(self.rows() - 1)
+    }
+
+    /// Nodes on the interface `Y = 0`, sorted by X.
+    pub fn interface(&self) -> Vec<usize> {
+        self.grid_row(2 * self.spec.substrate_elements)
+    }
+
+    fn grid_row(&self, j: usize) -> Vec<usize> {
+        (0..self.columns()).map(|i| self.node(i, j)).collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn small_mesh_numbering_and_sets() {
+        let mesh = Mesh::new(MeshSpec::new(2, 1, 2, 2.0, 4.0, 5.0)).unwrap();
+        assert_eq!((mesh.columns(), mesh.rows(), mesh.num_nodes()), (5, 7, 35));
+        assert_eq!(mesh.elements().len(), 6);
+        // First element: bottom-left corner at node 0, centre at grid (1, 1).
+        assert_eq!(mesh.elements()[0][0], 0);
+        assert_eq!(mesh.elements()[0][4], mesh.node(1, 1));
+        assert_eq!(mesh.elements()[0][8], mesh.node(2, 2));
+        assert_eq!(mesh.regions()[2], Region::Layer);
+        assert_eq!(mesh.coordinates()[mesh.top()[4]], [4.0, 1.0]);
+        assert_eq!(mesh.coordinates()[mesh.bottom()[0]], [0.0, -5.0]);
+        assert_eq!(mesh.coordinates()[mesh.interface()[2]][1], 0.0);
+        assert_eq!(mesh.coordinates()[mesh.node(0, 1)][1], -3.5);
+        assert_eq!(mesh.spec().substrate_thicknesses(), vec![2.0, 3.0]);
+    }
+
+    #[test]
+    fn invalid_specs_are_rejected() {
+        assert!(Mesh::new(MeshSpec::new(0, 1, 1, 5.0, 4.0, 5.0)).is_err());
+        assert!(Mesh::new(MeshSpec::new(1, 1, 3, 6.0, 4.0, 5.0)).is_err());
+        assert!(Mesh::new(MeshSpec::new(1, 1, 1, 2.0, 4.0, 5.0)).is_err());
+        assert!(Mesh::new(MeshSpec::new(1, 1, 1, 5.0, 4.0, 5.0)).is_ok());
+    }
+}

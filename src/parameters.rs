@@ -244,10 +244,16 @@ mod tests {
 
     #[test]
     fn validation_names_parameter_and_range() {
-        let p = Parameters { phi_f: 1.5, ..Parameters::default() };
+        let p = Parameters {
+            phi_f: 1.5,
+            ..Parameters::default()
+        };
         let msg = p.validate().unwrap_err().to_string();
         assert!(msg.contains("phi_f") && msg.contains("[0, 1]"), "{msg}");
-        let p = Parameters { mu_l: -1.0, ..Parameters::default() };
+        let p = Parameters {
+            mu_l: -1.0,
+            ..Parameters::default()
+        };
         assert!(p.validate().unwrap_err().to_string().contains("mu_l"));
         assert!(validate_compression("d", 1.0).is_err());
         assert!(validate_compression("d", f64::NAN).is_err());

@@ -1,1 +1,14 @@
-//! Nonlinear plane-strain finite elements (in progress).
+//! Nonlinear plane-strain finite elements of the bilayer: Q2 elements ([`element`]), prescribed
+//! displacements ([`boundary`]), assembly on the free unknowns ([`assembly`]), a sparse
+//! `L D L^T` solver with inertia ([`linear_solver`]) and Newton's method ([`newton`]).
+
+pub mod assembly;
+pub mod boundary;
+pub mod element;
+pub mod linear_solver;
+pub mod newton;
+
+pub use assembly::{Assembled, System};
+pub use boundary::{dof, model_conditions, Dirichlet};
+pub use linear_solver::{Factorisation, SparseLdlt};
+pub use newton::{Newton, NewtonError, NewtonReport, NewtonSettings, Timings};

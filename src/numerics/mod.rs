@@ -1,3 +1,5 @@
 //! Small numerical utilities that no dependency provides in the form needed here.
 
+pub mod banded;
+pub mod minimize;
 pub mod roots;

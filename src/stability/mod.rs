@@ -1,1 +1,32 @@
-//! Linear stability (in progress).
+//! Linear (Biot-type) stability of the compressed bilayer (paper, Appendix A).
+//!
+//! At the homogeneous state (eq. 4) an incremental displacement `u1 = a(Y) sin kX`,
+//! `u2 = b(Y) cos kX` obeys `Div(A : Grad u) = 0` with the tangent `A = d2W/dF dF` of the one
+//! material law ([`crate::material`]); the printed coefficients (6c)-(6q) are never used. The
+//! critical compression `d_c(k)` is the smallest `d` with a non-trivial solution that is
+//! traction free on `Y = 1`, continuous across `Y = 0` and decays as `Y -> -inf`.
+//!
+//! Two independent solvers: [`exact`] (Stroh formalism: surface impedance of the half-space and
+//! transfer matrix of the layer, a real determinant) and [`discrete`] (quadratic finite elements
+//! in `Y` whose stiffness loses positive definiteness at `d_c`).
+
+pub mod discrete;
+pub mod ellipticity;
+pub mod exact;
+pub mod moduli;
+mod search;
+
+pub use moduli::IncrementalModuli;
+pub use search::{Onset, StabilityAnalysis};
+
+/// Which solver computes `d_c(k)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Method {
+    /// Stroh formalism: exact for the infinite bilayer (the default).
+    Exact,
+    /// Quadratic finite elements in `Y` on a truncated, graded depth (a cross-check).
+    Discrete(discrete::DiscreteOptions),
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,302 @@
+//! Sparse symmetric direct solver: faer's supernodal `L D L^T` with the symbolic analysis (AMD
+//! ordering) done once per sparsity pattern, sequential (`Par::Seq` is the fastest on this
+//! machine; see notes/rust-ecosystem.md). The inertia comes for free from `D`: by Sylvester's law
+//! the number of negative pivots is the number of negative eigenvalues of `K`. When `L D L^T`
+//! meets a zero pivot, the intranode Bunch-Kaufman `L B L^T` takes over.
+
+use crate::error::{Error, Result};
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
+use faer::perm::PermRef;
+use faer::sparse::linalg::cholesky::supernodal::{SupernodalLdltRef, SymbolicSupernodalCholesky};
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, CholeskySymbolicParams, IntranodeLbltRef, LdltRef, SymbolicCholesky,
+    SymbolicCholeskyRaw, SymmetricOrdering,
+};
+use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Conj, MatMut, Par, Side};
+use std::time::{Duration, Instant};
+
+/// Which factorisation currently holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Factorisation {
+    /// `L D L^T` without pivoting (the default).
+    Ldlt,
+    /// Intranode Bunch-Kaufman `L B L^T` (1x1 and 2x2 pivots within supernodes).
+    Lblt,
+}
+
+/// A reusable factorisation of symmetric matrices sharing one sparsity pattern.
+pub struct SparseLdlt {
+    symbolic: SymbolicCholesky<usize>,
+    values: Vec<f64>,
+    subdiag: Vec<f64>,
+    perm_forward: Vec<usize>,
+    perm_inverse: Vec<usize>,
+    scratch: MemBuffer,
+    state: Option<Factorisation>,
+    symbolic_time: Duration,
+    factorisation_time: Duration,
+    solve_time: Duration,
+}
+
+impl SparseLdlt {
+    /// Symbolic analysis (AMD ordering, supernodal structure) of a pattern with both triangles.
+    /// Panics only if memory runs out, like any allocation.
+    pub fn new(pattern: SymbolicSparseColMatRef<'_, usize>) -> Self {
+        let start = Instant::now();
+        let params = CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            ..Default::default()
+        };
+        let symbolic = factorize_symbolic_cholesky(pattern, Side::Lower, SymmetricOrdering::Amd, params)
+            .expect("symbolic factorisation fails only when out of memory");
+        let par = Par::Seq;
+        let scratch = MemBuffer::new(StackReq::any_of(&[
+            symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()),
+            symbolic.factorize_numeric_intranode_lblt_scratch::<f64>(par, Default::default()),
+            symbolic.solve_in_place_scratch::<f64>(1, par),
+        ]));
+        let n = symbolic.nrows();
+        SparseLdlt {
+            values: vec![0.0; symbolic.len_val()],
+            subdiag: vec![0.0; n],
+            perm_forward: vec![0; n],
+            perm_inverse: vec![0; n],
+            symbolic,
+            scratch,
+            state: None,
+            symbolic_time: start.elapsed(),
+            factorisation_time: Duration::ZERO,
+            solve_time: Duration::ZERO,
+        }
+    }
+
+    /// Dimension of the matrices.
+    pub fn dimension(&self) -> usize {
+        self.symbolic.nrows()
+    }
+
+    /// Number of stored factor values (lower triangle plus the dense diagonal blocks).
+    pub fn factor_size(&self) -> usize {
+        self.symbolic.len_val()
+    }
+
+    /// `L D L^T` of `a` (same pattern as at construction); falls back to `L B L^T` on a zero pivot.
+    pub fn factorize(&mut self, a: SparseColMatRef<'_, usize, f64>) -> Factorisation {
+        let start = Instant::now();
+        let ldlt = self.symbolic.factorize_numeric_ldlt(
+            &mut self.values,
+            a,
+            Side::Lower,
+            LdltRegularization::default(),
+            Par::Seq,
+            MemStack::new(&mut self.scratch),
+            Default::default(),
+        );
+        let kind = if ldlt.is_ok() {
+            self.state = Some(Factorisation::Ldlt);
+            Factorisation::Ldlt
+        } else {
+            self.factorize_pivoted(a)
+        };
+        self.factorisation_time = start.elapsed();
+        kind
+    }
+
+    /// Intranode Bunch-Kaufman `L B L^T` of `a`: slower, but stable for indefinite matrices.
+    pub fn factorize_pivoted(&mut self, a: SparseColMatRef<'_, usize, f64>) -> Factorisation {
+        let start = Instant::now();
+        self.symbolic.factorize_numeric_intranode_lblt(
+            &mut self.values,
+            &mut self.subdiag,
+            &mut self.perm_forward,
+            &mut self.perm_inverse,
+            a,
+            Side::Lower,
+            Par::Seq,
+            MemStack::new(&mut self.scratch),
+            Default::default(),
+        );
+        self.state = Some(Factorisation::Lblt);
+        self.factorisation_time = start.elapsed();
+        Factorisation::Lblt
+    }
+
+    /// The factorisation in place, if any.
+    pub fn factorisation(&self) -> Option<Factorisation> {
+        self.state
+    }
+
+    /// Solves `A x = b` in place (`rhs` holds `b`, then `x`); a non-finite `x` is an error.
+    pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
+        let start = Instant::now();
+        let n = self.dimension();
+        assert_eq!(rhs.len(), n, "right-hand side length");
+        let x = MatMut::from_column_major_slice_mut(rhs, n, 1);
+        let stack = MemStack::new(&mut self.scratch);
+        match self.state {
+            None => panic!("solve_in_place called before factorize"),
+            Some(Factorisation::Ldlt) => {
+                LdltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(Conj::No, x, Par::Seq, stack)
+            }
+            Some(Factorisation::Lblt) => {
+                let perm = PermRef::new_checked(&self.perm_forward, &self.perm_inverse, n);
+                IntranodeLbltRef::new(&self.symbolic, &self.values, &self.subdiag, perm).solve_in_place_with_conj(
+                    Conj::No,
+                    x,
+                    Par::Seq,
+                    stack,
+                )
+            }
+        }
+        self.solve_time = start.elapsed();
+        if rhs.iter().all(|v| v.is_finite()) {
+            Ok(())
+        } else {
+            Err(Error::NonFinite(
+                "solution of the tangent system (singular tangent)".into(),
+            ))
+        }
+    }
+
+    /// Number of negative eigenvalues of the factorised matrix (negative pivots of `D` or `B`).
+    pub fn negative_pivots(&self) -> Option<usize> {
+        let kind = self.state?;
+        let SymbolicCholeskyRaw::Supernodal(supernodal) = self.symbolic.raw() else {
+            unreachable!("the symbolic analysis forces a supernodal factor")
+        };
+        Some(match kind {
+            Factorisation::Ldlt => self.diagonal_blocks(supernodal).filter(|&(d, _)| d < 0.0).count(),
+            Factorisation::Lblt => self.block_inertia(supernodal),
+        })
+    }
+
+    /// `(d_ii, subdiag_i)` of every pivot, in factor order. The `L B L^T` values share the
+    /// `L D L^T` layout, so both are read through `SupernodalLdltRef`.
+    fn diagonal_blocks<'a>(
+        &'a self,
+        supernodal: &'a SymbolicSupernodalCholesky<usize>,
+    ) -> impl Iterator<Item = (f64, f64)> + 'a {
+        let factor = SupernodalLdltRef::new(supernodal, &self.values);
+        (0..supernodal.n_supernodes()).flat_map(move |s| {
+            let node = factor.supernode(s);
+            let block = node.val();
+            (0..block.ncols()).map(move |i| (block[(i, i)], self.subdiag[node.start() + i]))
+        })
+    }
+
+    /// Negative eigenvalues of `B`: 1x1 pivots by sign, 2x2 blocks by determinant and trace.
+    fn block_inertia(&self, supernodal: &SymbolicSupernodalCholesky<usize>) -> usize {
+        let pivots: Vec<(f64, f64)> = self.diagonal_blocks(supernodal).collect();
+        let (mut negative, mut i) = (0, 0);
+        while i < pivots.len() {
+            let (d, s) = pivots[i];
+            if s == 0.0 {
+                negative += usize::from(d < 0.0);
+                i += 1;
+            } else {
+                let e = pivots[i + 1].0;
+                let det = d * e - s * s;
+                negative += if det < 0.0 { 1 } else { 2 * usize::from(d + e < 0.0) };
+                i += 2;
+            }
+        }
+        negative
+    }
+
+    /// Wall time of the symbolic analysis.
+    pub fn symbolic_time(&self) -> Duration {
+        self.symbolic_time
+    }
+
+    /// Wall time of the last numeric factorisation.
+    pub fn factorisation_time(&self) -> Duration {
+        self.factorisation_time
+    }
+
+    /// Wall time of the last solve.
+    pub fn solve_time(&self) -> Duration {
+        self.solve_time
+    }
+}
+
+/// `y = A x` for a matrix stored with both triangles.
+pub fn multiply(a: SparseColMatRef<'_, usize, f64>, x: &[f64]) -> Vec<f64> {
+    let mut y = vec![0.0; a.nrows()];
+    for (j, &xj) in x.iter().enumerate() {
+        for (&i, &v) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
+            y[i] += v * xj;
+        }
+    }
+    y
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use faer::sparse::{SparseColMat, Triplet};
+
+    /// The 1D Laplacian shifted by `sigma`: eigenvalues `2 - 2 cos(k pi / (n + 1)) - sigma`.
+    fn shifted_laplacian(n: usize, sigma: f64) -> SparseColMat<usize, f64> {
+        let mut t = Vec::new();
+        for i in 0..n {
+            t.push(Triplet::new(i, i, 2.0 - sigma));
+            if i + 1 < n {
+                t.push(Triplet::new(i, i + 1, -1.0));
+                t.push(Triplet::new(i + 1, i, -1.0));
+            }
+        }
+        SparseColMat::try_new_from_triplets(n, n, &t).unwrap()
+    }
+
+    fn below(n: usize, sigma: f64) -> usize {
+        (1..=n)
+            .filter(|&k| 2.0 - 2.0 * (k as f64 * std::f64::consts::PI / (n as f64 + 1.0)).cos() < sigma)
+            .count()
+    }
+
+    #[test]
+    fn solves_and_counts_negative_eigenvalues() {
+        let n = 200;
+        for sigma in [0.0, 0.013, 0.5, 1.7] {
+            let a = shifted_laplacian(n, sigma);
+            let mut solver = SparseLdlt::new(a.symbolic());
+            let b: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).cos()).collect();
+            for kind in [Factorisation::Ldlt, Factorisation::Lblt] {
+                match kind {
+                    Factorisation::Ldlt => assert_eq!(solver.factorize(a.as_ref()), Factorisation::Ldlt),
+                    Factorisation::Lblt => assert_eq!(solver.factorize_pivoted(a.as_ref()), Factorisation::Lblt),
+                }
+                assert_eq!(
+                    solver.negative_pivots(),
+                    Some(below(n, sigma)),
+                    "sigma {sigma}, {kind:?}"
+                );
+                let mut x = b.clone();
+                solver.solve_in_place(&mut x).unwrap();
+                let ax = multiply(a.as_ref(), &x);
+                let error = ax.iter().zip(&b).map(|(p, q)| (p - q).abs()).fold(0.0, f64::max);
+                assert!(error < 1e-9, "sigma {sigma}, {kind:?}: {error}");
+            }
+        }
+    }
+
+    #[test]
+    fn zero_pivot_falls_back_to_bunch_kaufman() {
+        // [[0, 1], [1, 0]] has no L D L^T without pivoting; eigenvalues -1 and 1.
+        let t = [
+            Triplet::new(0, 1, 1.0),
+            Triplet::new(1, 0, 1.0),
+            Triplet::new(0, 0, 0.0),
+        ];
+        let a = SparseColMat::<usize, f64>::try_new_from_triplets(2, 2, &t).unwrap();
+        let mut solver = SparseLdlt::new(a.symbolic());
+        assert_eq!(solver.factorize(a.as_ref()), Factorisation::Lblt);
+        assert_eq!(solver.negative_pivots(), Some(1));
+        let mut x = vec![2.0, 3.0];
+        solver.solve_in_place(&mut x).unwrap();
+        assert!((x[0] - 3.0).abs() < 1e-14 && (x[1] - 2.0).abs() < 1e-14);
+    }
+}

@@ -1,0 +1,355 @@
+//! Full Newton's method with the consistent tangent and a backtracking line search.
+//!
+//! A call moves the prescribed unknowns from their current values to `bc`'s: the first steps
+//! solve `K_ff du_f = -(r_f + K_fc du_c)` (the lifted, linearised system) and move both
+//! `u_f` and `u_c`, halving the step only while it inverts an element; once `u_c` has reached its
+//! values, steps must decrease `|r_f|` by the factor `1 - c alpha` (Armijo on the residual norm).
+//! Convergence: `|r_f| <= rtol |f| + atol`, where `|f|` is the internal force on all unknowns
+//! (reactions included), or an update `|alpha du|_inf <= utol (1 + |u|_inf)`.
+
+use super::assembly::{norm, Assembled, System};
+use super::boundary::Dirichlet;
+use super::linear_solver::{multiply, Factorisation, SparseLdlt};
+use crate::error::Error;
+use std::time::Duration;
+
+/// Tolerances and limits of Newton's method.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NewtonSettings {
+    /// Largest number of Newton steps.
+    pub max_iterations: usize,
+    /// `rtol`: residual relative to the internal-force norm (keep it above the residual's round-off).
+    pub residual_tolerance: f64,
+    /// `atol`: absolute residual floor, for nearly unloaded states.
+    pub absolute_tolerance: f64,
+    /// `utol`: update relative to `1 + |u|_inf` below which the iterate no longer changes.
+    pub update_tolerance: f64,
+    /// Largest number of step halvings in one line search.
+    pub max_backtracks: usize,
+    /// Armijo constant `c` of the sufficient decrease `|r(u + alpha du)| <= (1 - c alpha) |r(u)|`.
+    pub sufficient_decrease: f64,
+    /// Relative residual of a linear solve above which `L B L^T` replaces `L D L^T`.
+    pub solve_tolerance: f64,
+    /// Whether to factorise the tangent at the solution to report its inertia.
+    pub inertia_at_solution: bool,
+}
+
+impl Default for NewtonSettings {
+    /// `rtol = 1e-10`, `atol = 1e-12`, `utol = 1e-13`, 30 steps, 12 halvings.
+    fn default() -> Self {
+        NewtonSettings {
+            max_iterations: 30,
+            residual_tolerance: 1e-10,
+            absolute_tolerance: 1e-12,
+            update_tolerance: 1e-13,
+            max_backtracks: 12,
+            sufficient_decrease: 1e-4,
+            solve_tolerance: 1e-8,
+            inertia_at_solution: true,
+        }
+    }
+}
+
+/// Accumulated wall times of the phases of one solve, and how often each ran.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Timings {
+    /// Assemblies (residual and tangent).
+    pub assembly: Duration,
+    /// Symbolic analyses (once per sparsity pattern).
+    pub analysis: Duration,
+    /// Numeric factorisations.
+    pub factorisation: Duration,
+    /// Triangular solves.
+    pub solve: Duration,
+    /// Number of assemblies.
+    pub assemblies: usize,
+    /// Number of numeric factorisations.
+    pub factorisations: usize,
+    /// Number of solves.
+    pub solves: usize,
+}
+
+/// A converged solve.
+#[derive(Clone, Debug)]
+pub struct NewtonReport {
+    /// Newton steps taken.
+    pub iterations: usize,
+    /// `|r_f|` at the start and after every step (lifted while the prescribed values are reached).
+    pub residual_history: Vec<f64>,
+    /// Internal-force norm `|f|` at the solution (the scale of the relative residual).
+    pub force_norm: f64,
+    /// Strain energy at the solution.
+    pub energy: f64,
+    /// Smallest `J` at the solution.
+    pub min_jacobian: f64,
+    /// Reactions on the prescribed unknowns, in the order of `Dirichlet::dofs`.
+    pub reactions: Vec<f64>,
+    /// Negative eigenvalues of `K_ff` at the solution, if requested in the settings.
+    pub negative_pivots: Option<usize>,
+    /// Total number of step halvings.
+    pub backtracks: usize,
+    /// Wall times of the phases.
+    pub timings: Timings,
+}
+
+/// Why Newton's method failed; the displacement is then left as it was.
+#[derive(Debug, thiserror::Error)]
+pub enum NewtonError {
+    /// The state, or every step tried, inverts an element (`J <= 0`).
+    #[error("Newton iteration {iteration}: element inverted (J = {jacobian:.3e} <= 0)")]
+    Inverted { iteration: usize, jacobian: f64 },
+    /// No step length down to `2^-max_backtracks` decreases the residual.
+    #[error("Newton iteration {iteration}: line search found no decrease of the residual {residual:.3e}")]
+    LineSearch { iteration: usize, residual: f64 },
+    /// The iteration limit was reached.
+    #[error("Newton did not converge in {iterations} iterations (residual {residual:.3e}, tolerance {tolerance:.3e})")]
+    NotConverged {
+        iterations: usize,
+        residual: f64,
+        tolerance: f64,
+        residual_history: Vec<f64>,
+    },
+    /// Any other failure (bad input, singular tangent).
+    #[error(transparent)]
+    Model(#[from] Error),
+}
+
+/// Newton's method, keeping the symbolic factorisation between calls with the same pattern.
+pub struct Newton {
+    /// Tolerances and limits.
+    pub settings: NewtonSettings,
+    solver: Option<(usize, SparseLdlt)>,
+}
+
+impl Newton {
+    /// A solver with the given settings.
+    pub fn new(settings: NewtonSettings) -> Self {
+        Newton { settings, solver: None }
+    }
+
+    /// The linear solver of the last pattern (its last factorisation and timings).
+    pub fn linear_solver(&self) -> Option<&SparseLdlt> {
+        self.solver.as_ref().map(|(_, s)| s)
+    }
+
+    /// Solves equilibrium with `bc` prescribed, starting from `u` (full vector); on success `u`
+    /// holds the solution, on failure it is unchanged.
+    pub fn solve(&mut self, system: &mut System, u: &mut [f64], bc: &Dirichlet) -> Result<NewtonReport, NewtonError> {
+        let start = u.to_vec();
+        let result = self.iterate(system, u, bc);
+        if result.is_err() {
+            u.copy_from_slice(&start);
+        }
+        result
+    }
+
+    fn iterate(&mut self, system: &mut System, u: &mut [f64], bc: &Dirichlet) -> Result<NewtonReport, NewtonError> {
+        let s = self.settings;
+        let free = system.free_dofs(bc)?.to_vec();
+        let mut problem = Problem {
+            system,
+            bc,
+            free,
+            timings: Timings::default(),
+        };
+        let pending: Vec<f64> = bc.dofs().iter().zip(bc.values()).map(|(&d, &g)| g - u[d]).collect();
+        let lifting = pending.iter().any(|&p| p != 0.0);
+        let assembled = problem.assemble(u, &pending, lifting).map_err(|e| inverted(e, 0))?;
+        let mut state = Iterate {
+            assembled,
+            pending,
+            lifting,
+        };
+        let mut history = vec![state.assembled.residual_norm()];
+        let (mut last_update, mut backtracks) = (f64::INFINITY, 0);
+        for iteration in 0.. {
+            let residual = state.assembled.residual_norm();
+            let tolerance = s.residual_tolerance * state.assembled.force_norm() + s.absolute_tolerance;
+            let scale = 1.0 + max_abs(u);
+            if !state.lifting && (residual <= tolerance || last_update <= s.update_tolerance * scale) {
+                return self.report(problem, state.assembled, iteration, history, backtracks);
+            }
+            if iteration == s.max_iterations {
+                return Err(NewtonError::NotConverged {
+                    iterations: iteration,
+                    residual,
+                    tolerance,
+                    residual_history: history,
+                });
+            }
+            let du = self.newton_step(&state.assembled, &mut problem.timings)?;
+            let (next, next_u, alpha) = self.line_search(&mut problem, u, &state, &du, iteration)?;
+            backtracks += backtracks_in(alpha);
+            last_update = alpha * max_abs(&du);
+            u.copy_from_slice(&next_u);
+            state = next;
+            history.push(state.assembled.residual_norm());
+        }
+        unreachable!("the loop returns")
+    }
+
+    /// The converged state, with the inertia of its tangent if requested.
+    fn report(
+        &mut self,
+        mut problem: Problem,
+        assembled: Assembled,
+        iterations: usize,
+        residual_history: Vec<f64>,
+        backtracks: usize,
+    ) -> Result<NewtonReport, NewtonError> {
+        let negative_pivots = if self.settings.inertia_at_solution && !problem.free.is_empty() {
+            self.factorize(&assembled, &mut problem.timings).negative_pivots()
+        } else {
+            None
+        };
+        Ok(NewtonReport {
+            iterations,
+            residual_history,
+            force_norm: assembled.force_norm(),
+            energy: assembled.energy,
+            min_jacobian: assembled.min_jacobian,
+            reactions: assembled.reactions,
+            negative_pivots,
+            backtracks,
+            timings: problem.timings,
+        })
+    }
+
+    /// Halves `alpha` from 1 until `u + alpha du` is admissible (and, once the prescribed values
+    /// are reached, decreases `|r|`); returns the new iterate, its displacement and `alpha`.
+    fn line_search(
+        &self,
+        problem: &mut Problem,
+        u: &[f64],
+        state: &Iterate,
+        du: &[f64],
+        iteration: usize,
+    ) -> Result<(Iterate, Vec<f64>, f64), NewtonError> {
+        let s = self.settings;
+        let residual = state.assembled.residual_norm();
+        let mut alpha = 1.0;
+        loop {
+            let trial_u = problem.step(u, du, &state.pending, alpha);
+            let pending: Vec<f64> = state.pending.iter().map(|p| (1.0 - alpha) * p).collect();
+            let lifting = state.lifting && alpha < 1.0;
+            let failure = match problem.assemble(&trial_u, &pending, lifting) {
+                Ok(assembled)
+                    if state.lifting
+                        || assembled.residual_norm() <= (1.0 - s.sufficient_decrease * alpha) * residual =>
+                {
+                    let next = Iterate {
+                        assembled,
+                        pending,
+                        lifting,
+                    };
+                    return Ok((next, trial_u, alpha));
+                }
+                Ok(_) => NewtonError::LineSearch { iteration, residual },
+                Err(Error::NonPositiveJacobian { jacobian }) => NewtonError::Inverted { iteration, jacobian },
+                Err(e) => return Err(e.into()),
+            };
+            if backtracks_in(alpha) == s.max_backtracks {
+                return Err(failure);
+            }
+            alpha *= 0.5;
+        }
+    }
+
+    /// `du_f = -K_ff^-1 r_f`, retried with `L B L^T` if the `L D L^T` solve is inaccurate.
+    fn newton_step(&mut self, current: &Assembled, timings: &mut Timings) -> Result<Vec<f64>, NewtonError> {
+        let tolerance = self.settings.solve_tolerance;
+        let k = current.tangent.as_ref().expect("assembled with the tangent").as_ref();
+        let solver = self.factorize(current, timings);
+        loop {
+            let mut du: Vec<f64> = current.residual.iter().map(|r| -r).collect();
+            solver.solve_in_place(&mut du)?;
+            timings.solve += solver.solve_time();
+            timings.solves += 1;
+            let mismatch: Vec<f64> = multiply(k, &du)
+                .iter()
+                .zip(&current.residual)
+                .map(|(a, r)| a + r)
+                .collect();
+            if norm(&mismatch) <= tolerance * current.residual_norm()
+                || solver.factorisation() == Some(Factorisation::Lblt)
+            {
+                return Ok(du);
+            }
+            solver.factorize_pivoted(k);
+            timings.factorisation += solver.factorisation_time();
+            timings.factorisations += 1;
+        }
+    }
+
+    /// Factorises `current`'s tangent, redoing the symbolic analysis when the pattern changed.
+    fn factorize(&mut self, current: &Assembled, timings: &mut Timings) -> &mut SparseLdlt {
+        let k = current.tangent.as_ref().expect("assembled with the tangent");
+        if self.solver.as_ref().is_none_or(|(id, _)| *id != current.pattern) {
+            let solver = SparseLdlt::new(k.symbolic());
+            timings.analysis += solver.symbolic_time();
+            self.solver = Some((current.pattern, solver));
+        }
+        let (_, solver) = self.solver.as_mut().expect("set above");
+        solver.factorize(k.as_ref());
+        timings.factorisation += solver.factorisation_time();
+        timings.factorisations += 1;
+        solver
+    }
+}
+
+/// One Newton iterate: its assembly, and how far the prescribed unknowns still have to move.
+struct Iterate {
+    assembled: Assembled,
+    /// `g - u_c` for each prescribed unknown.
+    pending: Vec<f64>,
+    /// Whether `pending` is non-zero (the residual is then lifted by `K_fc pending`).
+    lifting: bool,
+}
+
+/// Largest absolute entry.
+fn max_abs(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+/// The system being solved, with the wall times a solve accumulates.
+struct Problem<'a> {
+    system: &'a mut System,
+    bc: &'a Dirichlet,
+    free: Vec<usize>,
+    timings: Timings,
+}
+
+impl Problem<'_> {
+    /// Residual and tangent at `u`, lifted by `K_fc pending` when `lifting`; timed.
+    fn assemble(&mut self, u: &[f64], pending: &[f64], lifting: bool) -> crate::Result<Assembled> {
+        let assembled = self.system.assemble(u, self.bc, lifting.then_some(pending), true)?;
+        self.timings.assembly += assembled.elapsed;
+        self.timings.assemblies += 1;
+        Ok(assembled)
+    }
+
+    /// `u + alpha (du_f, pending)`, landing exactly on the prescribed values when `alpha = 1`.
+    fn step(&self, u: &[f64], du: &[f64], pending: &[f64], alpha: f64) -> Vec<f64> {
+        let mut next = u.to_vec();
+        for (&dof, &d) in self.free.iter().zip(du) {
+            next[dof] += alpha * d;
+        }
+        for ((&dof, &g), &p) in self.bc.dofs().iter().zip(self.bc.values()).zip(pending) {
+            next[dof] = if alpha == 1.0 { g } else { next[dof] + alpha * p };
+        }
+        next
+    }
+}
+
+/// Number of halvings that led to step length `alpha`.
+fn backtracks_in(alpha: f64) -> usize {
+    (-alpha.log2()).round() as usize
+}
+
+/// The starting state's `J <= 0` as a Newton failure.
+fn inverted(e: Error, iteration: usize) -> NewtonError {
+    match e {
+        Error::NonPositiveJacobian { jacobian } => NewtonError::Inverted { iteration, jacobian },
+        other => NewtonError::Model(other),
+    }
+}

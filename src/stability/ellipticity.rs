@@ -1,0 +1,60 @@
+//! Strong ellipticity: `min over unit a, n of (a x n) : A : (a x n) > 0`. Beyond its loss the
+//! material itself is unstable and a wrinkling answer is meaningless.
+
+use super::IncrementalModuli;
+
+/// `min over unit a, n` of `(a x n) : A : (a x n)`: the smallest eigenvalue of the acoustic
+/// tensor `Q_ik(n) = A_iJkL n_J n_L`, minimised over the direction `n` (sampled, then refined).
+pub fn ellipticity_margin(m: &IncrementalModuli) -> f64 {
+    let smallest = |theta: f64| {
+        let (c, s) = (theta.cos(), theta.sin());
+        // Q_11 = A_1111 c^2 + A_1212 s^2, Q_22 = A_2121 c^2 + A_2222 s^2, Q_12 = (A_1122 + A_1221) c s.
+        let q11 = m.c11 * c * c + m.c66 * s * s;
+        let q22 = m.c99 * c * c + m.c22 * s * s;
+        let q12 = (m.c12 + m.c69) * c * s;
+        let mean = 0.5 * (q11 + q22);
+        mean - (0.25 * (q11 - q22).powi(2) + q12 * q12).sqrt()
+    };
+    const SAMPLES: usize = 180;
+    let step = std::f64::consts::PI / SAMPLES as f64;
+    let (mut best_theta, mut best) = (0.0, f64::INFINITY);
+    for i in 0..SAMPLES {
+        let value = smallest(i as f64 * step);
+        if value < best {
+            (best_theta, best) = (i as f64 * step, value);
+        }
+    }
+    // Golden-section refinement around the best sample.
+    let (mut lo, mut hi) = (best_theta - step, best_theta + step);
+    let ratio = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..40 {
+        let (x1, x2) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
+        if smallest(x1) < smallest(x2) {
+            hi = x2;
+        } else {
+            lo = x1;
+        }
+    }
+    best.min(smallest(0.5 * (lo + hi)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn isotropic_linear_elasticity_margin_is_the_shear_modulus() {
+        // Small-strain isotropic moduli: A_1111 = A_2222 = lambda + 2 mu, A_1122 = lambda,
+        // A_1212 = A_2121 = mu, A_1221 = mu; min eigenvalue of Q is mu.
+        let (lambda, mu) = (2.0, 0.7);
+        let m = IncrementalModuli {
+            c11: lambda + 2.0 * mu,
+            c12: lambda,
+            c22: lambda + 2.0 * mu,
+            c66: mu,
+            c69: mu,
+            c99: mu,
+        };
+        assert!((ellipticity_margin(&m) - mu).abs() < 1e-12);
+    }
+}

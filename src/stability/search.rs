@@ -1,0 +1,262 @@
+//! Critical compression `d_c(k)` (smallest root in `d`), onset `k0 = argmin d_c(k)`, and the
+//! compression at which strong ellipticity is lost.
+
+use super::discrete;
+use super::ellipticity::ellipticity_margin;
+use super::exact::{bifurcation_determinant, surface_impedance};
+use super::{IncrementalModuli, Method};
+use crate::error::{Error, Result};
+use crate::homogeneous::homogeneous_state;
+use crate::material::Bilayer;
+use crate::numerics::minimize::brent_minimize;
+use crate::numerics::roots::brent;
+use crate::parameters::Parameters;
+use serde::Serialize;
+
+/// Largest compression searched (`d` in `(0, D_END]`).
+pub const D_END: f64 = 0.95;
+/// Smallest compression evaluated (the reference side of every sign test).
+const D_START: f64 = 1e-6;
+/// Tolerance of `d_c` in `d`.
+const D_TOLERANCE: f64 = 1e-13;
+
+/// The onset of wrinkling: the minimum of `d_c(k)`.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct Onset {
+    /// Onset wavenumber (referential, units 1/H).
+    pub k0: f64,
+    /// Critical compression at `k0`.
+    pub d_c: f64,
+    /// `1 - d_c`.
+    pub lambda1_c: f64,
+    /// Compression at which either layer loses strong ellipticity (None if not before 0.95).
+    pub d_ellipticity_loss: Option<f64>,
+}
+
+/// The stability analysis of one parameter set.
+#[derive(Clone, Debug)]
+pub struct StabilityAnalysis {
+    materials: Bilayer,
+    method: Method,
+    /// Searches stop here: 0.95 or the loss of ellipticity, whichever comes first.
+    d_limit: f64,
+    d_ellipticity_loss: Option<f64>,
+    /// Wavenumber range of the onset search.
+    pub k_range: (f64, f64),
+}
+
+impl StabilityAnalysis {
+    /// Sets up the analysis (validates the parameters, finds the loss of ellipticity).
+    pub fn new(params: &Parameters, method: Method) -> Result<Self> {
+        params.validate()?;
+        let mut analysis = StabilityAnalysis {
+            materials: Bilayer::new(params),
+            method,
+            d_limit: D_END,
+            d_ellipticity_loss: None,
+            k_range: (0.02, 5.0),
+        };
+        analysis.d_ellipticity_loss = analysis.find_ellipticity_loss()?;
+        analysis.d_limit = analysis.d_ellipticity_loss.unwrap_or(D_END);
+        Ok(analysis)
+    }
+
+    /// Compression at which either layer first loses strong ellipticity (None below 0.95).
+    pub fn ellipticity_loss(&self) -> Option<f64> {
+        self.d_ellipticity_loss
+    }
+
+    /// Incremental moduli of layer and substrate at the homogeneous state of compression `d`.
+    pub fn moduli(&self, d: f64) -> Result<(IncrementalModuli, IncrementalModuli)> {
+        let state = homogeneous_state(&self.materials, d)?;
+        Ok((
+            IncrementalModuli::at(&self.materials.layer, &state.layer_gradient())?,
+            IncrementalModuli::at(&self.materials.substrate, &state.substrate_gradient())?,
+        ))
+    }
+
+    fn find_ellipticity_loss(&self) -> Result<Option<f64>> {
+        let margin = |d: f64| -> Result<f64> {
+            let (layer, substrate) = self.moduli(d)?;
+            Ok(ellipticity_margin(&layer).min(ellipticity_margin(&substrate)))
+        };
+        let mut lo = D_START;
+        if margin(lo)? <= 0.0 {
+            return Ok(Some(0.0));
+        }
+        for hi in scan_points(D_END) {
+            if margin(hi)? <= 0.0 {
+                return brent("loss of ellipticity", margin, lo, hi, D_TOLERANCE).map(Some);
+            }
+            lo = hi;
+        }
+        Ok(None)
+    }
+
+    /// A function of `d` whose sign changes where the bifurcation condition holds at `k`:
+    /// the exact determinant, or +-1 from the inertia of the discrete stiffness.
+    fn indicator(&self, d: f64, k: f64) -> Result<f64> {
+        let (layer, substrate) = self.moduli(d)?;
+        match &self.method {
+            Method::Exact => Ok(bifurcation_determinant(&layer, &surface_impedance(&substrate)?, k)),
+            Method::Discrete(options) => match discrete::negative_eigenvalues(&layer, &substrate, k, options) {
+                Some(0) => Ok(1.0),
+                _ => Ok(-1.0),
+            },
+        }
+    }
+
+    /// `d_c(k)`: the smallest compression with a bifurcation at wavenumber `k`, found by a scan
+    /// from `d = 0` and a bracketed refinement.
+    pub fn critical_compression(&self, k: f64) -> Result<f64> {
+        self.critical_compression_near(k, None)
+    }
+
+    /// `d_c(k)`, starting the bracket search at `hint` (continuation along a curve).
+    pub fn critical_compression_near(&self, k: f64, hint: Option<f64>) -> Result<f64> {
+        if !(k.is_finite() && k > 0.0) {
+            return Err(Error::invalid("k", k, "(0, inf)"));
+        }
+        let reference = self.indicator(D_START, k)?.signum();
+        let stable = |d: f64| -> Result<bool> { Ok(self.indicator(d, k)?.signum() == reference) };
+        let (lo, hi) = match hint.filter(|h| *h > D_START && *h < self.search_end()) {
+            Some(h) => self.bracket_near(h, &stable)?,
+            None => self.bracket_by_scan(&stable)?,
+        }
+        .ok_or_else(|| Error::NoRoot {
+            what: format!("the bifurcation condition at k = {k} before {}", self.limit_reason()),
+            lower: 0.0,
+            upper: self.d_limit,
+        })?;
+        match self.method {
+            Method::Exact => brent(
+                "the bifurcation determinant",
+                |d| self.indicator(d, k),
+                lo,
+                hi,
+                D_TOLERANCE,
+            ),
+            Method::Discrete(_) => bisect(&stable, lo, hi),
+        }
+    }
+
+    /// The largest `d` evaluated: just short of the loss of ellipticity, where a Stroh root
+    /// reaches the imaginary axis.
+    fn search_end(&self) -> f64 {
+        match self.d_ellipticity_loss {
+            Some(d) => d * (1.0 - 1e-7),
+            None => D_END,
+        }
+    }
+
+    fn limit_reason(&self) -> String {
+        match self.d_ellipticity_loss {
+            Some(d) => format!("the loss of ellipticity at d = {d:.6}"),
+            None => format!("d = {D_END}"),
+        }
+    }
+
+    fn bracket_by_scan(&self, stable: &dyn Fn(f64) -> Result<bool>) -> Result<Option<(f64, f64)>> {
+        let mut lo = D_START;
+        for hi in scan_points(self.search_end()) {
+            if !stable(hi)? {
+                return Ok(Some((lo, hi)));
+            }
+            lo = hi;
+        }
+        Ok(None)
+    }
+
+    fn bracket_near(&self, hint: f64, stable: &dyn Fn(f64) -> Result<bool>) -> Result<Option<(f64, f64)>> {
+        let end = self.search_end();
+        let (mut lo, mut hi) = (hint * 0.99, (hint * 1.01).min(end));
+        while !stable(lo)? {
+            hi = lo;
+            lo *= 0.8;
+            if lo < 1e-4 {
+                return self.bracket_by_scan(stable);
+            }
+        }
+        while stable(hi)? {
+            if hi >= end {
+                return Ok(None);
+            }
+            lo = hi;
+            hi = (hi * 1.1).min(end);
+        }
+        Ok(Some((lo, hi)))
+    }
+
+    /// The onset: `k0` minimising `d_c(k)` over `k_range`, found on a logarithmic grid and
+    /// refined by Brent's minimisation.
+    pub fn onset(&self) -> Result<Onset> {
+        let (k_lo, k_hi) = self.k_range;
+        const GRID: usize = 25;
+        let ks: Vec<f64> = (0..GRID)
+            .map(|i| k_lo * (k_hi / k_lo).powf(i as f64 / (GRID - 1) as f64))
+            .collect();
+        let mut curve = Vec::with_capacity(GRID);
+        let mut hint = None;
+        for &k in &ks {
+            // A wavenumber without bifurcation before the search limit counts as d_c = infinity.
+            let d = match self.critical_compression_near(k, hint) {
+                Err(Error::NoRoot { .. }) => f64::INFINITY,
+                other => other?,
+            };
+            curve.push(d);
+            hint = Some(d).filter(|d| d.is_finite());
+        }
+        let best = (0..GRID)
+            .min_by(|&a, &b| curve[a].total_cmp(&curve[b]))
+            .expect("non-empty grid");
+        if !curve[best].is_finite() {
+            return Err(Error::NoRoot {
+                what: format!("wrinkling for k in [{k_lo}, {k_hi}] before {}", self.limit_reason()),
+                lower: 0.0,
+                upper: self.d_limit,
+            });
+        }
+        let (a, b) = (ks[best.saturating_sub(1)], ks[(best + 1).min(GRID - 1)]);
+        let hint = std::cell::Cell::new(curve[best]);
+        let (k0, d_c) = brent_minimize(
+            |k| {
+                let d = self.critical_compression_near(k, Some(hint.get()))?;
+                hint.set(d);
+                Ok(d)
+            },
+            a,
+            b,
+            1e-9,
+        )?;
+        Ok(Onset {
+            k0,
+            d_c,
+            lambda1_c: 1.0 - d_c,
+            d_ellipticity_loss: self.d_ellipticity_loss,
+        })
+    }
+}
+
+/// Scan points from `D_START` to `end`: geometric at small `d`, steps of 0.01 beyond.
+fn scan_points(end: f64) -> impl Iterator<Item = f64> {
+    let mut d = D_START;
+    std::iter::from_fn(move || {
+        if d >= end {
+            return None;
+        }
+        d = (d * 1.25).max(1e-4).min(d + 0.01).min(end);
+        Some(d)
+    })
+}
+
+fn bisect(stable: &dyn Fn(f64) -> Result<bool>, mut lo: f64, mut hi: f64) -> Result<f64> {
+    while hi - lo > D_TOLERANCE.max(1e-15 * hi) {
+        let mid = 0.5 * (lo + hi);
+        if stable(mid)? {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok(0.5 * (lo + hi))
+}

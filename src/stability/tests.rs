@@ -1,0 +1,210 @@
+//! The stability analysis against independent facts: Biot's half-space, thin-film wrinkling
+//! asymptotics, the paper's fibre-free check, and agreement of the two solvers.
+
+use super::discrete::DiscreteOptions;
+use super::*;
+use crate::parameters::Parameters;
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
+
+/// A fibre-free bilayer with shear moduli `mu_l`, `mu_s` and bulk/shear ratio `bulk_ratio`.
+fn plain_bilayer(mu_l: f64, mu_s: f64, bulk_ratio: f64) -> Parameters {
+    Parameters {
+        mu_l,
+        K_l: bulk_ratio * mu_l,
+        mu_s,
+        K_s: bulk_ratio * mu_s,
+        phi_m: 1.0,
+        phi_f: 0.0,
+        mu_f: 0.0,
+        ..Parameters::default()
+    }
+}
+
+#[test]
+fn biot_half_space_is_independent_of_k_and_tends_to_0_5437() {
+    // Biot (1963): an incompressible neo-Hookean half-space wrinkles at lambda_1 = 0.5437.
+    let analysis = StabilityAnalysis::new(&plain_bilayer(1.0, 1.0, 1e4), Method::Exact).unwrap();
+    let values: Vec<f64> = [0.1, 0.5, 1.0, 3.0]
+        .iter()
+        .map(|&k| analysis.critical_compression(k).unwrap())
+        .collect();
+    for d in &values {
+        assert!((d - values[0]).abs() < 1e-8, "d_c depends on k: {values:?}");
+    }
+    assert!(
+        (1.0 - values[0] - 0.5437).abs() < 2e-3,
+        "lambda_c = {}",
+        1.0 - values[0]
+    );
+    // Compressible: still independent of k, and later than the incompressible value.
+    let compressible = StabilityAnalysis::new(&plain_bilayer(1.0, 1.0, 3.0), Method::Exact).unwrap();
+    let (a, b) = (
+        compressible.critical_compression(0.2).unwrap(),
+        compressible.critical_compression(2.0).unwrap(),
+    );
+    assert!((a - b).abs() < 1e-8 && a > values[0], "{a} {b}");
+}
+
+#[test]
+fn thin_stiff_film_follows_the_asymptotic_wrinkling_law() {
+    // Allen; Chen & Hutchinson: k0 H = (3 mu_s/mu_l)^(1/3), d_c = (1/4)(3 mu_s/mu_l)^(2/3).
+    let mut previous_error = f64::INFINITY;
+    for ratio in [1e3, 1e4] {
+        let mut analysis = StabilityAnalysis::new(&plain_bilayer(ratio, 1.0, 3.0), Method::Exact).unwrap();
+        analysis.k_range = (0.005, 2.0);
+        let onset = analysis.onset().unwrap();
+        let k_theory = (3.0 / ratio).cbrt();
+        let d_theory = 0.25 * (3.0 / ratio).powf(2.0 / 3.0);
+        let (k_err, d_err) = ((onset.k0 / k_theory - 1.0).abs(), (onset.d_c / d_theory - 1.0).abs());
+        assert!(k_err < 0.05, "ratio {ratio}: k0 = {} vs {k_theory}", onset.k0);
+        assert!(d_err < 0.10, "ratio {ratio}: d_c = {} vs {d_theory}", onset.d_c);
+        assert!(k_err + d_err < previous_error, "no improvement with ratio {ratio}");
+        previous_error = k_err + d_err;
+    }
+}
+
+#[test]
+fn unloaded_fibres_give_the_papers_onset_wavenumber() {
+    // Paper, section 3.1: mu_f = 0 with phi_m = 0.9 gives k0 = 0.5515.
+    let p = Parameters {
+        mu_f: 0.0,
+        ..Parameters::default()
+    };
+    let onset = StabilityAnalysis::new(&p, Method::Exact).unwrap().onset().unwrap();
+    assert!((onset.k0 - 0.5515).abs() < 5e-5, "k0 = {}", onset.k0);
+}
+
+#[test]
+fn stiff_fibres_across_compression_delay_wrinkling_by_about_half() {
+    // Paper, section 3.1: at mu_f = 10, d_c grows by about 50 % from beta = 0 to pi/2.
+    let onset = |beta: f64| {
+        let p = Parameters {
+            beta,
+            ..Parameters::default()
+        };
+        StabilityAnalysis::new(&p, Method::Exact).unwrap().onset().unwrap().d_c
+    };
+    let growth = onset(FRAC_PI_2) / onset(0.0) - 1.0;
+    assert!((0.35..0.65).contains(&growth), "growth {growth}");
+}
+
+fn fine_discrete() -> Method {
+    Method::Discrete(DiscreteOptions::default())
+}
+
+#[test]
+fn exact_and_discrete_solvers_agree() {
+    for beta in [0.0, 0.3846, FRAC_PI_4, 1.18, FRAC_PI_2] {
+        for mu_f in [10.0, 50.0] {
+            let p = Parameters {
+                beta,
+                mu_f,
+                ..Parameters::default()
+            };
+            let exact = StabilityAnalysis::new(&p, Method::Exact).unwrap();
+            let discrete = StabilityAnalysis::new(&p, fine_discrete()).unwrap();
+            for k in [0.3, 0.55, 1.2] {
+                match (exact.critical_compression(k), discrete.critical_compression(k)) {
+                    (Ok(a), Ok(b)) => assert!((a - b).abs() < 1e-6 * a, "beta {beta} mu_f {mu_f} k {k}: {a} vs {b}"),
+                    // Both find no wrinkling before the loss of ellipticity.
+                    (Err(crate::Error::NoRoot { .. }), Err(crate::Error::NoRoot { .. })) => {}
+                    (a, b) => panic!("beta {beta} mu_f {mu_f} k {k}: exact {a:?} discrete {b:?}"),
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn stroh_roots_solve_the_characteristic_quartic() {
+    let analysis = StabilityAnalysis::new(
+        &Parameters {
+            beta: 0.6,
+            ..Parameters::default()
+        },
+        Method::Exact,
+    )
+    .unwrap();
+    for d in [0.0, 0.1, 0.2] {
+        let (layer, substrate) = analysis.moduli(d).unwrap();
+        for m in [layer, substrate] {
+            let n = m.stroh_matrix().map(|x| nalgebra::Complex::new(x, 0.0));
+            for p in m.decaying_roots() {
+                assert!(p.re > 0.0);
+                let shifted = n - nalgebra::Matrix4::identity() * p;
+                assert!(
+                    shifted.determinant().norm() < 1e-9 * (1.0 + n.norm().powi(4)),
+                    "d {d}: p = {p}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn discrete_solver_converges_under_refinement() {
+    let p = Parameters {
+        beta: FRAC_PI_4,
+        ..Parameters::default()
+    };
+    let exact = StabilityAnalysis::new(&p, Method::Exact)
+        .unwrap()
+        .critical_compression(0.55)
+        .unwrap();
+    let errors: Vec<f64> = [(2, 20), (4, 40), (8, 80)]
+        .iter()
+        .map(|&(layer_elements, substrate_elements)| {
+            let options = DiscreteOptions {
+                layer_elements,
+                substrate_elements,
+                depth_decay_lengths: 30.0,
+            };
+            let analysis = StabilityAnalysis::new(&p, Method::Discrete(options)).unwrap();
+            (analysis.critical_compression(0.55).unwrap() - exact).abs()
+        })
+        .collect();
+    // Quadratic elements: the eigenvalue error falls like h^4; demand at least h^3.
+    for pair in errors.windows(2) {
+        assert!(pair[1] < pair[0] / 8.0, "errors {errors:?}");
+    }
+}
+
+#[test]
+fn dispersion_curve_is_smooth_at_its_minimum() {
+    let analysis = StabilityAnalysis::new(&Parameters::default(), Method::Exact).unwrap();
+    let onset = analysis.onset().unwrap();
+    let h = 1e-3;
+    let d = |k: f64| analysis.critical_compression(k).unwrap();
+    let (left, mid, right) = (d(onset.k0 - h), d(onset.k0), d(onset.k0 + h));
+    assert!((mid - onset.d_c).abs() < 1e-12);
+    assert!(left > mid && right > mid, "k0 is not a minimum");
+    // Smooth minimum: first difference vanishes to O(h^2), second difference is O(h^2).
+    assert!(
+        (right - left).abs() < 1e-3 * (left + right - 2.0 * mid).abs().max(1e-12) / h,
+        "kink at k0"
+    );
+    assert!((left + right - 2.0 * mid) / (h * h) < 10.0);
+}
+
+#[test]
+fn ellipticity_loss_is_reported_for_compressed_stiff_fibres() {
+    // Very stiff fibres along the compression: the substrate's fibre energy becomes concave.
+    let p = Parameters {
+        mu_f: 50.0,
+        beta: 0.0,
+        ..Parameters::default()
+    };
+    let analysis = StabilityAnalysis::new(&p, Method::Exact).unwrap();
+    if let Some(d) = analysis.ellipticity_loss() {
+        let (layer, substrate) = analysis.moduli(d * 0.999).unwrap();
+        assert!(ellipticity::ellipticity_margin(&layer).min(ellipticity::ellipticity_margin(&substrate)) > 0.0);
+        let (layer, substrate) = analysis.moduli((d * 1.001).min(0.949)).unwrap();
+        assert!(ellipticity::ellipticity_margin(&layer).min(ellipticity::ellipticity_margin(&substrate)) <= 0.0);
+    }
+    // Table 1 defaults stay elliptic up to the onset.
+    let onset = StabilityAnalysis::new(&Parameters::default(), Method::Exact)
+        .unwrap()
+        .onset()
+        .unwrap();
+    assert!(onset.d_ellipticity_loss.is_none_or(|d| d > onset.d_c));
+}
