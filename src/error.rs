@@ -42,6 +42,10 @@ pub enum Error {
         source: std::io::Error,
     },
 
+    /// A nonlinear solve or a load path that failed (not user input): names where and why.
+    #[error("{0}")]
+    Solver(String),
+
     /// Rendering a plot.
     #[error("plot {path}: {message}")]
     Plot { path: String, message: String },

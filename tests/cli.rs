@@ -164,3 +164,81 @@ fn help_documents_flags_with_defaults() {
         assert!(help.contains(flag), "`{flag}` missing from help:\n{help}");
     }
 }
+
+#[test]
+fn onset_reports_k0_d_c_and_ellipticity() {
+    let dir = scratch("onset");
+    let out = fiberfold(&["onset", "--set", "mu_f=0", "--out", dir.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("onset.json")).unwrap()).unwrap();
+    // The paper's fibre-free check (section 3.1): k0 = 0.5515.
+    assert!((json["k0"].as_f64().unwrap() - 0.5515).abs() < 5e-5);
+    let d_c = json["d_c"].as_f64().unwrap();
+    assert!((json["lambda1_c"].as_f64().unwrap() - (1.0 - d_c)).abs() < 1e-12);
+    assert!(json.get("d_ellipticity_loss").is_some() && json["parameters"]["mu_f"] == 0.0);
+}
+
+#[test]
+fn dispersion_writes_its_curve() {
+    let dir = scratch("dispersion");
+    let out = fiberfold(&[
+        "dispersion",
+        "--points",
+        "20",
+        "--set",
+        "beta=1.5707963",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let csv = std::fs::read_to_string(dir.join("dispersion.csv")).unwrap();
+    assert!(csv.starts_with("k,d_c,lambda1_c\n"));
+    assert_eq!(csv.lines().count(), 21);
+    for f in ["dispersion.png", "dispersion.svg", "dispersion.json"] {
+        assert!(dir.join(f).exists(), "{f}");
+    }
+    rejected(
+        &["dispersion", "--k-min", "-1", "--out", dir.to_str().unwrap()],
+        &["k-min"],
+    );
+    rejected(&["dispersion", "--k-min", "2", "--k-max", "1"], &["k-max"]);
+}
+
+#[test]
+fn sweep_over_a_parameter_with_series() {
+    let dir = scratch("sweep");
+    let out = fiberfold(&[
+        "sweep",
+        "--param",
+        "beta",
+        "--from",
+        "0",
+        "--to",
+        "1.5707963",
+        "--points",
+        "5",
+        "--series",
+        "mu_f=1,20",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let csv = std::fs::read_to_string(dir.join("sweep.csv")).unwrap();
+    assert!(csv.starts_with("series,value,k0,d_c\n"));
+    assert_eq!(csv.lines().filter(|l| l.starts_with("mu_f=20,")).count(), 5);
+    rejected(
+        &["sweep", "--param", "gamma", "--from", "0", "--to", "1"],
+        &["param", "gamma"],
+    );
+    rejected(
+        &["sweep", "--param", "phi_f", "--from", "0", "--to", "2", "--points", "3"],
+        &["phi_f", "[0, 1]"],
+    );
+    rejected(
+        &[
+            "sweep", "--param", "beta", "--from", "0", "--to", "1", "--series", "mu_f",
+        ],
+        &["series"],
+    );
+}

@@ -1,9 +1,13 @@
 //! Command-line interface: argument parsing, one module per command, error reporting.
 
+mod bench;
+mod bifurcation;
 mod common;
 mod homogeneous;
 mod params;
 mod reproduce;
+mod simulate;
+mod stability;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -26,6 +30,18 @@ enum Command {
     Params(params::ParamsArgs),
     /// Homogeneous compressed state of both layers (eq. 4) and Fig. 2.
     Homogeneous(homogeneous::HomogeneousArgs),
+    /// Critical compression d_c(k) of the linear theory over a range of wavenumbers (Fig. 5).
+    Dispersion(stability::DispersionArgs),
+    /// Onset of wrinkling: k0 minimising d_c(k), d_c(k0), and the loss of ellipticity.
+    Onset(stability::OnsetArgs),
+    /// Onset k0 and d_c against any numeric parameter, optionally for several series (Figs. 4b, 6).
+    Sweep(stability::SweepArgs),
+    /// Nonlinear finite-element simulation of the compressed bilayer: A(d), onset, VTU output.
+    Simulate(simulate::SimulateArgs),
+    /// Exact bifurcation of the discretised perfect system from the inertia of its tangent.
+    Bifurcation(bifurcation::BifurcationArgs),
+    /// Timings of the stability analysis or the finite-element solver.
+    Bench(bench::BenchArgs),
     /// Regenerate every figure available so far into one folder, with a report.
     Reproduce(reproduce::ReproduceArgs),
 }
@@ -36,6 +52,12 @@ pub fn run() -> ExitCode {
     let outcome = match cli.command {
         Command::Params(args) => params::run(&args),
         Command::Homogeneous(args) => homogeneous::run(&args),
+        Command::Dispersion(args) => stability::dispersion(&args),
+        Command::Onset(args) => stability::onset(&args),
+        Command::Sweep(args) => stability::sweep(&args),
+        Command::Simulate(args) => simulate::run(&args),
+        Command::Bifurcation(args) => bifurcation::run(&args),
+        Command::Bench(args) => bench::run(&args),
         Command::Reproduce(args) => reproduce::run(&args),
     };
     match outcome {

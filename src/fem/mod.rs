@@ -1,10 +1,12 @@
 //! Nonlinear plane-strain finite elements of the bilayer: Q2 elements ([`element`]), prescribed
 //! displacements ([`boundary`]), assembly on the free unknowns ([`assembly`]), a sparse
-//! `L D L^T` solver with inertia ([`linear_solver`]) and Newton's method ([`newton`]).
+//! `L D L^T` solver with inertia ([`linear_solver`]), Newton's method ([`newton`]) and
+//! element-centre output fields ([`fields`]).
 
 pub mod assembly;
 pub mod boundary;
 pub mod element;
+pub mod fields;
 pub mod linear_solver;
 pub mod newton;
 

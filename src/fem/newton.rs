@@ -114,6 +114,16 @@ pub enum NewtonError {
     Model(#[from] Error),
 }
 
+impl From<NewtonError> for Error {
+    /// Model errors pass through; convergence failures become [`Error::Solver`].
+    fn from(e: NewtonError) -> Self {
+        match e {
+            NewtonError::Model(inner) => inner,
+            other => Error::Solver(other.to_string()),
+        }
+    }
+}
+
 /// Newton's method, keeping the symbolic factorisation between calls with the same pattern.
 pub struct Newton {
     /// Tolerances and limits.

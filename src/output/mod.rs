@@ -2,12 +2,13 @@
 
 pub mod plot;
 pub mod table;
+pub mod vtu;
 
 use crate::error::{Error, Result};
 use serde::Serialize;
 use std::path::Path;
 
-pub use plot::{Figure, LineStyle, Series};
+pub use plot::{Figure, Legend, LineStyle, Series};
 pub use table::CsvWriter;
 
 /// Creates the output directory (and parents).

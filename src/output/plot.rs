@@ -61,6 +61,18 @@ pub struct Figure {
     /// Fixed axis ranges; `None` fits the data with a margin.
     pub x_range: Option<(f64, f64)>,
     pub y_range: Option<(f64, f64)>,
+    /// Where the legend goes (default: upper right).
+    pub legend: Legend,
+}
+
+/// Legend corner.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Legend {
+    #[default]
+    UpperRight,
+    UpperLeft,
+    LowerRight,
+    LowerLeft,
 }
 
 const PALETTE: [RGBColor; 6] = [
@@ -80,6 +92,11 @@ impl Figure {
             y_label: y_label.into(),
             ..Default::default()
         }
+    }
+
+    pub fn with_legend(mut self, legend: Legend) -> Self {
+        self.legend = legend;
+        self
     }
 
     pub fn with(mut self, series: Series) -> Self {
@@ -161,7 +178,12 @@ impl Figure {
                 .label_font((FONT, 14))
                 .background_style(WHITE.mix(0.85))
                 .border_style(BLACK)
-                .position(SeriesLabelPosition::UpperRight)
+                .position(match self.legend {
+                    Legend::UpperRight => SeriesLabelPosition::UpperRight,
+                    Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
+                    Legend::LowerRight => SeriesLabelPosition::LowerRight,
+                    Legend::LowerLeft => SeriesLabelPosition::LowerLeft,
+                })
                 .draw()
                 .map_err(|e| e.to_string())?;
         }

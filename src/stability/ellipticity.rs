@@ -15,7 +15,7 @@ pub fn ellipticity_margin(m: &IncrementalModuli) -> f64 {
         let mean = 0.5 * (q11 + q22);
         mean - (0.25 * (q11 - q22).powi(2) + q12 * q12).sqrt()
     };
-    const SAMPLES: usize = 180;
+    const SAMPLES: usize = 60;
     let step = std::f64::consts::PI / SAMPLES as f64;
     let (mut best_theta, mut best) = (0.0, f64::INFINITY);
     for i in 0..SAMPLES {

@@ -84,7 +84,7 @@ impl StabilityAnalysis {
         if margin(lo)? <= 0.0 {
             return Ok(Some(0.0));
         }
-        for hi in scan_points(D_END) {
+        for hi in scan_points(D_END, 0.025) {
             if margin(hi)? <= 0.0 {
                 return brent("loss of ellipticity", margin, lo, hi, D_TOLERANCE).map(Some);
             }
@@ -98,7 +98,16 @@ impl StabilityAnalysis {
     fn indicator(&self, d: f64, k: f64) -> Result<f64> {
         let (layer, substrate) = self.moduli(d)?;
         match &self.method {
-            Method::Exact => Ok(bifurcation_determinant(&layer, &surface_impedance(&substrate)?, k)),
+            Method::Exact => {
+                // Within a hair of the loss of ellipticity a Stroh root touches the imaginary
+                // axis: the search has reached its end without a bifurcation.
+                let impedance = surface_impedance(&substrate).map_err(|_| Error::NoRoot {
+                    what: format!("the bifurcation condition at k = {k} before d = {d} (ellipticity nearly lost)"),
+                    lower: 0.0,
+                    upper: d,
+                })?;
+                Ok(bifurcation_determinant(&layer, &impedance, k))
+            }
             Method::Discrete(options) => match discrete::negative_eigenvalues(&layer, &substrate, k, options) {
                 Some(0) => Ok(1.0),
                 _ => Ok(-1.0),
@@ -144,7 +153,7 @@ impl StabilityAnalysis {
     /// reaches the imaginary axis.
     fn search_end(&self) -> f64 {
         match self.d_ellipticity_loss {
-            Some(d) => d * (1.0 - 1e-7),
+            Some(d) => d * (1.0 - 1e-6),
             None => D_END,
         }
     }
@@ -158,7 +167,7 @@ impl StabilityAnalysis {
 
     fn bracket_by_scan(&self, stable: &dyn Fn(f64) -> Result<bool>) -> Result<Option<(f64, f64)>> {
         let mut lo = D_START;
-        for hi in scan_points(self.search_end()) {
+        for hi in scan_points(self.search_end(), 0.01) {
             if !stable(hi)? {
                 return Ok(Some((lo, hi)));
             }
@@ -191,7 +200,7 @@ impl StabilityAnalysis {
     /// refined by Brent's minimisation.
     pub fn onset(&self) -> Result<Onset> {
         let (k_lo, k_hi) = self.k_range;
-        const GRID: usize = 25;
+        const GRID: usize = 13;
         let ks: Vec<f64> = (0..GRID)
             .map(|i| k_lo * (k_hi / k_lo).powf(i as f64 / (GRID - 1) as f64))
             .collect();
@@ -226,7 +235,7 @@ impl StabilityAnalysis {
             },
             a,
             b,
-            1e-9,
+            1e-8,
         )?;
         Ok(Onset {
             k0,
@@ -237,14 +246,42 @@ impl StabilityAnalysis {
     }
 }
 
-/// Scan points from `D_START` to `end`: geometric at small `d`, steps of 0.01 beyond.
-fn scan_points(end: f64) -> impl Iterator<Item = f64> {
+impl StabilityAnalysis {
+    /// The onset, continued from a nearby parameter set's onset `previous`: Brent's minimisation
+    /// on `k0 (1 +- 15 %)`; falls back to [`Self::onset`] if the minimum is not inside.
+    pub fn onset_near(&self, previous: &Onset) -> Result<Onset> {
+        let (a, b) = (previous.k0 * 0.85, previous.k0 * 1.15);
+        let hint = std::cell::Cell::new(previous.d_c);
+        let minimum = brent_minimize(
+            |k| {
+                let d = self.critical_compression_near(k, Some(hint.get()))?;
+                hint.set(d);
+                Ok(d)
+            },
+            a,
+            b,
+            1e-8,
+        );
+        match minimum {
+            Ok((k0, d_c)) if k0 > a * 1.001 && k0 < b * 0.999 => Ok(Onset {
+                k0,
+                d_c,
+                lambda1_c: 1.0 - d_c,
+                d_ellipticity_loss: self.d_ellipticity_loss,
+            }),
+            _ => self.onset(),
+        }
+    }
+}
+
+/// Scan points from `D_START` to `end`: geometric at small `d`, steps of `max_step` beyond.
+fn scan_points(end: f64, max_step: f64) -> impl Iterator<Item = f64> {
     let mut d = D_START;
     std::iter::from_fn(move || {
         if d >= end {
             return None;
         }
-        d = (d * 1.25).max(1e-4).min(d + 0.01).min(end);
+        d = (d * 1.25).max(1e-4).min(d + max_step).min(end);
         Some(d)
     })
 }

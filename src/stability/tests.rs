@@ -208,3 +208,46 @@ fn ellipticity_loss_is_reported_for_compressed_stiff_fibres() {
         .unwrap();
     assert!(onset.d_ellipticity_loss.is_none_or(|d| d > onset.d_c));
 }
+
+#[test]
+fn continued_onset_matches_the_cold_search() {
+    let previous = StabilityAnalysis::new(
+        &Parameters {
+            beta: 0.5,
+            ..Parameters::default()
+        },
+        Method::Exact,
+    )
+    .unwrap()
+    .onset()
+    .unwrap();
+    let analysis = StabilityAnalysis::new(
+        &Parameters {
+            beta: 0.55,
+            ..Parameters::default()
+        },
+        Method::Exact,
+    )
+    .unwrap();
+    let (cold, warm) = (analysis.onset().unwrap(), analysis.onset_near(&previous).unwrap());
+    assert!(
+        (cold.k0 - warm.k0).abs() < 1e-5 && (cold.d_c - warm.d_c).abs() < 1e-12,
+        "{cold:?} {warm:?}"
+    );
+}
+
+#[test]
+fn wrinkling_beyond_the_loss_of_ellipticity_is_refused() {
+    // Stiff fibres along the compression lose ellipticity at d ~ 0.047: short waves find no
+    // bifurcation before it and say so instead of returning a number.
+    let p = Parameters {
+        mu_f: 50.0,
+        ..Parameters::default()
+    };
+    let analysis = StabilityAnalysis::new(&p, Method::Exact).unwrap();
+    let limit = analysis.ellipticity_loss().expect("ellipticity is lost");
+    match analysis.critical_compression(1.5) {
+        Err(crate::Error::NoRoot { what, .. }) => assert!(what.contains("ellipticity"), "{what}"),
+        other => panic!("expected no root before d = {limit}, got {other:?}"),
+    }
+}

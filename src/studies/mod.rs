@@ -1,8 +1,11 @@
 //! Studies: what each command computes and the files it writes (CSV, JSON, figures). The
 //! command line and `reproduce` call these; they take a progress callback and an output folder.
 
+pub mod bench_stability;
 pub mod homogeneous;
 pub mod reproduce;
+pub mod stability;
+pub mod stability_figures;
 
 /// Called once per finished unit of work (drives a progress bar in the CLI).
 pub type Tick<'a> = &'a (dyn Fn() + Sync);

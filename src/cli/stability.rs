@@ -1,0 +1,151 @@
+//! `fiberfold dispersion | onset | sweep`: the linear stability analysis (Appendix A).
+
+use super::common::{progress, report_files, ParamArgs};
+use clap::{Args, ValueEnum};
+use fiberfold::stability::{discrete::DiscreteOptions, Method};
+use fiberfold::studies::stability::{self, parse_series, DispersionStudy, SweepStudy};
+use fiberfold::Result;
+use std::path::PathBuf;
+
+/// Solver of the linear stability problem.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum MethodArg {
+    /// Stroh formalism: surface impedance of the half-space and transfer matrix of the layer.
+    Exact,
+    /// Quadratic finite elements in Y on a truncated graded depth (cross-check; slower).
+    Discrete,
+}
+
+impl MethodArg {
+    fn method(self) -> Method {
+        match self {
+            MethodArg::Exact => Method::Exact,
+            MethodArg::Discrete => Method::Discrete(DiscreteOptions::default()),
+        }
+    }
+}
+
+#[derive(Args)]
+pub struct DispersionArgs {
+    #[command(flatten)]
+    pub params: ParamArgs,
+    /// Smallest referential wavenumber k (units 1/H, > 0).
+    #[arg(long, default_value_t = 0.05, allow_negative_numbers = true)]
+    pub k_min: f64,
+    /// Largest wavenumber k (units 1/H, > k-min).
+    #[arg(long, default_value_t = 3.0, allow_negative_numbers = true)]
+    pub k_max: f64,
+    /// Number of equally spaced wavenumbers (at least 2).
+    #[arg(long, default_value_t = 300)]
+    pub points: usize,
+    /// Solver.
+    #[arg(long, value_enum, default_value_t = MethodArg::Exact)]
+    pub method: MethodArg,
+    /// Output folder.
+    #[arg(long, value_name = "DIR", default_value = "results/dispersion")]
+    pub out: PathBuf,
+}
+
+pub fn dispersion(args: &DispersionArgs) -> Result<()> {
+    let params = args.params.resolve()?;
+    let study = DispersionStudy {
+        k_min: args.k_min,
+        k_max: args.k_max,
+        points: args.points,
+        method: args.method.method(),
+    };
+    study.validate()?;
+    println!(
+        "critical compression d_c(k) for k in [{}, {}], {} points ({:?})",
+        study.k_min, study.k_max, study.points, args.method
+    );
+    let bar = progress(study.points, "dispersion");
+    let files = stability::dispersion(&params, &study, &args.out, &|| bar.inc(1))?;
+    bar.finish_and_clear();
+    report_files(&files);
+    Ok(())
+}
+
+#[derive(Args)]
+pub struct OnsetArgs {
+    #[command(flatten)]
+    pub params: ParamArgs,
+    /// Solver.
+    #[arg(long, value_enum, default_value_t = MethodArg::Exact)]
+    pub method: MethodArg,
+    /// Output folder.
+    #[arg(long, value_name = "DIR", default_value = "results/onset")]
+    pub out: PathBuf,
+}
+
+pub fn onset(args: &OnsetArgs) -> Result<()> {
+    let params = args.params.resolve()?;
+    println!(
+        "onset of wrinkling: minimum of d_c(k) over k in [0.02, 5] ({:?})",
+        args.method
+    );
+    let (onset, path) = stability::onset(&params, args.method.method(), &args.out)?;
+    println!(
+        "  k0 = {:.6}  (wavelength {:.4} H)",
+        onset.k0,
+        2.0 * std::f64::consts::PI / onset.k0
+    );
+    println!("  d_c = {:.6}  (lambda1_c = {:.6})", onset.d_c, onset.lambda1_c);
+    match onset.d_ellipticity_loss {
+        Some(d) => println!("  strong ellipticity is lost at d = {d:.6}; beyond it wrinkling results are meaningless"),
+        None => println!("  both layers stay strongly elliptic up to d = 0.95"),
+    }
+    report_files(&[path]);
+    Ok(())
+}
+
+#[derive(Args)]
+pub struct SweepArgs {
+    #[command(flatten)]
+    pub params: ParamArgs,
+    /// The numeric parameter to sweep (a key of `fiberfold params`, e.g. beta, mu_f, lambda_f).
+    #[arg(long)]
+    pub param: String,
+    /// First value of the swept parameter (its own units; beta in radians).
+    #[arg(long, allow_negative_numbers = true)]
+    pub from: f64,
+    /// Last value of the swept parameter.
+    #[arg(long, allow_negative_numbers = true)]
+    pub to: f64,
+    /// Number of equally spaced values (at least 1).
+    #[arg(long, default_value_t = 91)]
+    pub points: usize,
+    /// Repeat the sweep for several values of another parameter, e.g. `mu_f=1,10,20,50`.
+    #[arg(long, value_name = "KEY=V1,V2,...")]
+    pub series: Option<String>,
+    /// Solver.
+    #[arg(long, value_enum, default_value_t = MethodArg::Exact)]
+    pub method: MethodArg,
+    /// Output folder.
+    #[arg(long, value_name = "DIR", default_value = "results/sweep")]
+    pub out: PathBuf,
+}
+
+pub fn sweep(args: &SweepArgs) -> Result<()> {
+    let params = args.params.resolve()?;
+    let study = SweepStudy {
+        param: args.param.clone(),
+        from: args.from,
+        to: args.to,
+        points: args.points,
+        series: args.series.as_deref().map(parse_series).transpose()?,
+        method: args.method.method(),
+    };
+    println!(
+        "onset k0 and d_c against {} in [{}, {}], {} onsets in parallel",
+        study.param,
+        study.from,
+        study.to,
+        study.onsets()
+    );
+    let bar = progress(study.onsets(), "sweep");
+    let files = stability::sweep(&params, &study, &args.out, &|| bar.inc(1))?;
+    bar.finish_and_clear();
+    report_files(&files);
+    Ok(())
+}

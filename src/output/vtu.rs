@@ -1,0 +1,173 @@
+//! VTK XML unstructured grids (`.vtu`, ASCII) of 9-node quadrilateral meshes, and ParaView
+//! collections (`.pvd`) that list them against a "time" (here the end-shortening `d`).
+//!
+//! Cells are `VTK_BIQUADRATIC_QUAD` (type 28): four corners counter-clockwise, the four edge
+//! midpoints (edges 0-1, 1-2, 2-3, 3-0), then the centre. Points are written in 3D with `z = 0`.
+
+use crate::error::{Error, Result};
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+/// VTK's cell type number of the 9-node quadrilateral.
+pub const VTK_BIQUADRATIC_QUAD: u8 = 28;
+/// VTK position `i` holds our local node `TO_VTK[i]` (local node `a + 3 b` sits at `(a - 1, b - 1)`).
+const TO_VTK: [usize; 9] = [0, 2, 8, 6, 1, 5, 7, 3, 4];
+
+/// A named array of point or cell data: `values` holds `components` numbers per entity.
+#[derive(Clone, Debug)]
+pub struct DataArray {
+    pub name: String,
+    pub components: usize,
+    pub values: Vec<f64>,
+}
+
+impl DataArray {
+    /// One number per entity.
+    pub fn scalars(name: &str, values: Vec<f64>) -> Self {
+        DataArray {
+            name: name.into(),
+            components: 1,
+            values,
+        }
+    }
+
+    /// Plane vectors, padded to 3D with a zero third component (as ParaView expects).
+    pub fn plane_vectors(name: &str, vectors: impl Iterator<Item = [f64; 2]>) -> Self {
+        DataArray {
+            name: name.into(),
+            components: 3,
+            values: vectors.flat_map(|[x, y]| [x, y, 0.0]).collect(),
+        }
+    }
+
+    /// Symmetric tensors `[s11, s12, s22, s33]` in VTK's 6-component order XX, YY, ZZ, XY, YZ, XZ.
+    pub fn symmetric_tensors(name: &str, tensors: &[[f64; 4]]) -> Self {
+        DataArray {
+            name: name.into(),
+            components: 6,
+            values: tensors
+                .iter()
+                .flat_map(|&[s11, s12, s22, s33]| [s11, s22, s33, s12, 0.0, 0.0])
+                .collect(),
+        }
+    }
+}
+
+/// Writes `path` with the given points, Q2 cells (local node order of [`crate::mesh`]) and data.
+/// Arrays of the wrong length are a bug (panic); non-finite values are refused.
+pub fn write_vtu(
+    path: &Path,
+    points: &[[f64; 2]],
+    cells: &[[usize; 9]],
+    point_data: &[DataArray],
+    cell_data: &[DataArray],
+) -> Result<()> {
+    for (arrays, count) in [(point_data, points.len()), (cell_data, cells.len())] {
+        for array in arrays {
+            assert_eq!(array.values.len(), array.components * count, "length of `{}`", array.name);
+            if array.values.iter().any(|v| !v.is_finite()) {
+                return Err(Error::NonFinite(format!("`{}` written to {}", array.name, path.display())));
+            }
+        }
+    }
+    let io = |e| Error::io(path, e);
+    let mut out = BufWriter::new(File::create(path).map_err(io)?);
+    write_grid(&mut out, points, cells, point_data, cell_data).map_err(io)?;
+    out.flush().map_err(io)
+}
+
+fn write_grid(
+    out: &mut impl Write,
+    points: &[[f64; 2]],
+    cells: &[[usize; 9]],
+    point_data: &[DataArray],
+    cell_data: &[DataArray],
+) -> std::io::Result<()> {
+    writeln!(out, r#"<?xml version="1.0"?>"#)?;
+    writeln!(out, r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian">"#)?;
+    writeln!(out, "<UnstructuredGrid>")?;
+    writeln!(
+        out,
+        r#"<Piece NumberOfPoints="{}" NumberOfCells="{}">"#,
+        points.len(),
+        cells.len()
+    )?;
+    writeln!(out, "<Points>")?;
+    let coordinates: Vec<f64> = points.iter().flat_map(|&[x, y]| [x, y, 0.0]).collect();
+    write_floats(out, "Points", 3, &coordinates)?;
+    writeln!(out, "</Points>\n<Cells>")?;
+    writeln!(out, r#"<DataArray type="Int64" Name="connectivity" format="ascii">"#)?;
+    for cell in cells {
+        let line: Vec<String> = TO_VTK.iter().map(|&local| cell[local].to_string()).collect();
+        writeln!(out, "{}", line.join(" "))?;
+    }
+    writeln!(out, "</DataArray>")?;
+    writeln!(out, r#"<DataArray type="Int64" Name="offsets" format="ascii">"#)?;
+    for c in 1..=cells.len() {
+        writeln!(out, "{}", 9 * c)?;
+    }
+    writeln!(out, "</DataArray>")?;
+    writeln!(out, r#"<DataArray type="UInt8" Name="types" format="ascii">"#)?;
+    for _ in cells {
+        writeln!(out, "{VTK_BIQUADRATIC_QUAD}")?;
+    }
+    writeln!(out, "</DataArray>\n</Cells>")?;
+    for (tag, arrays) in [("PointData", point_data), ("CellData", cell_data)] {
+        writeln!(out, "<{tag}>")?;
+        for array in arrays {
+            write_floats(out, &array.name, array.components, &array.values)?;
+        }
+        writeln!(out, "</{tag}>")?;
+    }
+    writeln!(out, "</Piece>\n</UnstructuredGrid>\n</VTKFile>")
+}
+
+/// One `Float64` data array, one entity per line.
+fn write_floats(out: &mut impl Write, name: &str, components: usize, values: &[f64]) -> std::io::Result<()> {
+    writeln!(
+        out,
+        r#"<DataArray type="Float64" Name="{name}" NumberOfComponents="{components}" format="ascii">"#
+    )?;
+    for entity in values.chunks(components) {
+        let line: Vec<String> = entity.iter().map(|v| format!("{v:.10e}")).collect();
+        writeln!(out, "{}", line.join(" "))?;
+    }
+    writeln!(out, "</DataArray>")
+}
+
+/// A ParaView collection: `.vtu` files against `d`, rewritten after each addition so that an
+/// interrupted run leaves a valid collection of what it wrote.
+#[derive(Debug)]
+pub struct Collection {
+    path: PathBuf,
+    entries: Vec<(f64, String)>,
+}
+
+impl Collection {
+    /// An empty collection to be written at `path` (nothing is written until [`Collection::add`]).
+    pub fn new(path: &Path) -> Self {
+        Collection {
+            path: path.to_path_buf(),
+            entries: Vec::new(),
+        }
+    }
+
+    /// Adds `file` (a path in the collection's folder) at time `d` and rewrites the collection.
+    pub fn add(&mut self, d: f64, file: &Path) -> Result<()> {
+        let name = file.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
+        self.entries.push((d, name));
+        let mut text = String::from(r#"<?xml version="1.0"?>"#);
+        text.push_str("\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n<Collection>\n");
+        for (time, file) in &self.entries {
+            text.push_str(&format!("<DataSet timestep=\"{time}\" group=\"\" part=\"0\" file=\"{file}\"/>\n"));
+        }
+        text.push_str("</Collection>\n</VTKFile>\n");
+        std::fs::write(&self.path, text).map_err(|e| Error::io(&self.path, e))
+    }
+
+    /// Where the collection is written.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+}

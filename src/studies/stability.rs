@@ -1,0 +1,315 @@
+//! Linear-stability studies: the dispersion curve `d_c(k)`, the onset, and parameter sweeps.
+
+use super::{linspace, validate_points, Tick};
+use crate::error::{Error, Result};
+use crate::output::{ensure_dir, plot::save_panels, write_json, CsvWriter, Figure, LineStyle, Series};
+use crate::parameters::{Parameters, PARAMETER_NAMES};
+use crate::stability::{Method, Onset, StabilityAnalysis};
+use rayon::prelude::*;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+
+/// `d_c(k)` on equally spaced wavenumbers.
+#[derive(Clone, Copy, Debug)]
+pub struct DispersionStudy {
+    pub k_min: f64,
+    pub k_max: f64,
+    pub points: usize,
+    pub method: Method,
+}
+
+impl DispersionStudy {
+    pub fn validate(&self) -> Result<()> {
+        if !(self.k_min.is_finite() && self.k_min > 0.0) {
+            return Err(Error::invalid("k-min", self.k_min, "(0, k-max)"));
+        }
+        if !(self.k_max.is_finite() && self.k_max > self.k_min) {
+            return Err(Error::invalid(
+                "k-max",
+                self.k_max,
+                &format!("(k-min = {}, inf)", self.k_min),
+            ));
+        }
+        validate_points("points", self.points, 2)
+    }
+}
+
+/// One dispersion curve: the points with a root, and the wavenumbers without one.
+#[derive(Clone, Debug, Serialize)]
+pub struct DispersionCurve {
+    /// `(k, d_c)` where a bifurcation exists before the search limit.
+    pub points: Vec<(f64, f64)>,
+    /// Wavenumbers without a bifurcation before 0.95 or the loss of ellipticity.
+    pub no_root: Vec<f64>,
+}
+
+impl DispersionCurve {
+    /// Computes `d_c(k)` along the wavenumbers, continuing each root from the previous one.
+    pub fn compute(analysis: &StabilityAnalysis, ks: &[f64], tick: Tick) -> Result<Self> {
+        let mut curve = DispersionCurve {
+            points: Vec::new(),
+            no_root: Vec::new(),
+        };
+        let mut hint = None;
+        for &k in ks {
+            match analysis.critical_compression_near(k, hint) {
+                Ok(d) => {
+                    curve.points.push((k, d));
+                    hint = Some(d);
+                }
+                Err(Error::NoRoot { .. }) => {
+                    curve.no_root.push(k);
+                    hint = None;
+                }
+                Err(e) => return Err(e),
+            }
+            tick();
+        }
+        Ok(curve)
+    }
+}
+
+#[derive(Serialize)]
+struct DispersionSummary<'a> {
+    command: &'static str,
+    parameters: &'a Parameters,
+    method: String,
+    onset: &'a Onset,
+    k_without_root: &'a [f64],
+    files: Vec<String>,
+}
+
+/// Writes `dispersion.csv` (`k,d_c,lambda1_c`), `dispersion.json` and `dispersion.png/svg`.
+pub fn dispersion(params: &Parameters, study: &DispersionStudy, out: &Path, tick: Tick) -> Result<Vec<PathBuf>> {
+    study.validate()?;
+    let analysis = StabilityAnalysis::new(params, study.method)?;
+    ensure_dir(out)?;
+    let curve = DispersionCurve::compute(&analysis, &linspace(study.k_min, study.k_max, study.points), tick)?;
+    let onset = analysis.onset()?;
+    let csv = out.join("dispersion.csv");
+    let mut table = CsvWriter::create(&csv, &["k", "d_c", "lambda1_c"])?;
+    for &(k, d) in &curve.points {
+        table.append(&[k, d, 1.0 - d])?;
+    }
+    let figure = Figure::new(
+        format!("Critical compression, beta = {:.4}", params.beta),
+        "wavenumber k",
+        "d_c",
+    )
+    .with(Series::new("d_c(k)", curve.points.clone(), LineStyle::Solid, 0))
+    .with(Series::new(
+        format!("k0 = {:.4}, d_c = {:.4}", onset.k0, onset.d_c),
+        vec![(onset.k0, onset.d_c)],
+        LineStyle::Crosses,
+        1,
+    ));
+    let mut files = vec![csv];
+    files.extend(figure.save(out, "dispersion")?);
+    let json = out.join("dispersion.json");
+    let summary = DispersionSummary {
+        command: "dispersion",
+        parameters: params,
+        method: format!("{:?}", study.method),
+        onset: &onset,
+        k_without_root: &curve.no_root,
+        files: files.iter().map(|f| f.display().to_string()).collect(),
+    };
+    write_json(&json, &summary)?;
+    files.push(json);
+    Ok(files)
+}
+
+#[derive(Serialize)]
+struct OnsetSummary<'a> {
+    k0: f64,
+    d_c: f64,
+    lambda1_c: f64,
+    d_ellipticity_loss: Option<f64>,
+    wavelength: f64,
+    method: String,
+    parameters: &'a Parameters,
+}
+
+/// Writes `onset.json`: `k0`, `d_c`, `lambda1_c`, `d_ellipticity_loss` and the parameters.
+pub fn onset(params: &Parameters, method: Method, out: &Path) -> Result<(Onset, PathBuf)> {
+    let onset = StabilityAnalysis::new(params, method)?.onset()?;
+    ensure_dir(out)?;
+    let path = out.join("onset.json");
+    let summary = OnsetSummary {
+        k0: onset.k0,
+        d_c: onset.d_c,
+        lambda1_c: onset.lambda1_c,
+        d_ellipticity_loss: onset.d_ellipticity_loss,
+        wavelength: 2.0 * std::f64::consts::PI / onset.k0,
+        method: format!("{method:?}"),
+        parameters: params,
+    };
+    write_json(&path, &summary)?;
+    Ok((onset, path))
+}
+
+/// A sweep of one numeric parameter, optionally repeated for several values of another.
+#[derive(Clone, Debug)]
+pub struct SweepStudy {
+    pub param: String,
+    pub from: f64,
+    pub to: f64,
+    pub points: usize,
+    /// `(key, values)`: one curve per value.
+    pub series: Option<(String, Vec<f64>)>,
+    pub method: Method,
+}
+
+/// Parses `KEY=V1,V2,...` for `--series`.
+pub fn parse_series(text: &str) -> Result<(String, Vec<f64>)> {
+    let (key, values) = text
+        .split_once('=')
+        .ok_or_else(|| Error::invalid("series", text, "KEY=V1,V2,... with KEY a numeric parameter"))?;
+    let values = values
+        .split(',')
+        .map(|v| crate::parameters::parse_number("series", v.trim()))
+        .collect::<Result<Vec<_>>>()?;
+    Ok((key.trim().to_string(), values))
+}
+
+/// One swept point's onset (None: no wrinkling before 0.95 or the loss of ellipticity).
+#[derive(Clone, Debug, Serialize)]
+pub struct SweepPoint {
+    pub series: Option<f64>,
+    pub value: f64,
+    pub onset: Option<Onset>,
+}
+
+impl SweepStudy {
+    /// Parameter sets for every point, all validated before any work starts.
+    fn parameter_sets(&self, base: &Parameters) -> Result<Vec<(Option<f64>, f64, Parameters)>> {
+        validate_points("points", self.points, 1)?;
+        let numeric = |key: &str| {
+            if key == "tension_only" || !PARAMETER_NAMES.contains(&key) {
+                Err(Error::invalid(
+                    "param",
+                    key,
+                    &format!("a numeric parameter: {}", PARAMETER_NAMES[..9].join(", ")),
+                ))
+            } else {
+                Ok(())
+            }
+        };
+        numeric(&self.param)?;
+        for (name, v) in [("from", self.from), ("to", self.to)] {
+            if !v.is_finite() {
+                return Err(Error::invalid(name, v, "a finite number"));
+            }
+        }
+        let series: Vec<Option<f64>> = match &self.series {
+            Some((key, values)) => {
+                numeric(key)?;
+                values.iter().map(|v| Some(*v)).collect()
+            }
+            None => vec![None],
+        };
+        let mut sets = Vec::new();
+        for s in series {
+            for value in linspace(self.from, self.to, self.points) {
+                let mut p = base.clone();
+                if let (Some(v), Some((key, _))) = (s, &self.series) {
+                    *p.number_mut(key)? = v;
+                }
+                *p.number_mut(&self.param)? = value;
+                p.validate()?;
+                sets.push((s, value, p));
+            }
+        }
+        Ok(sets)
+    }
+
+    /// The onset at every point: series in parallel, each continued along the swept values.
+    pub fn compute(&self, base: &Parameters, tick: Tick) -> Result<Vec<SweepPoint>> {
+        let sets = self.parameter_sets(base)?;
+        let curves: Vec<Vec<(Option<f64>, f64, Parameters)>> =
+            sets.chunk_by(|a, b| a.0 == b.0).map(|chunk| chunk.to_vec()).collect();
+        let results: Vec<Vec<SweepPoint>> = curves
+            .into_par_iter()
+            .map(|curve| {
+                let mut previous: Option<Onset> = None;
+                let mut points = Vec::with_capacity(curve.len());
+                for (series, value, p) in curve {
+                    let analysis = StabilityAnalysis::new(&p, self.method)?;
+                    let onset = match previous.map_or_else(|| analysis.onset(), |o| analysis.onset_near(&o)) {
+                        Ok(o) => Some(o),
+                        Err(Error::NoRoot { .. }) => None,
+                        Err(e) => return Err(e),
+                    };
+                    previous = onset;
+                    tick();
+                    points.push(SweepPoint { series, value, onset });
+                }
+                Ok(points)
+            })
+            .collect::<Result<_>>()?;
+        Ok(results.into_iter().flatten().collect())
+    }
+
+    /// Number of onsets to compute (for progress bars).
+    pub fn onsets(&self) -> usize {
+        self.points * self.series.as_ref().map_or(1, |(_, v)| v.len())
+    }
+}
+
+#[derive(Serialize)]
+struct SweepSummary<'a> {
+    command: &'static str,
+    parameters: &'a Parameters,
+    param: &'a str,
+    series_param: Option<&'a str>,
+    points: &'a [SweepPoint],
+}
+
+/// Writes `sweep.csv` (`series,value,k0,d_c`), `sweep.json` and `sweep.png/svg`.
+pub fn sweep(params: &Parameters, study: &SweepStudy, out: &Path, tick: Tick) -> Result<Vec<PathBuf>> {
+    let points = study.compute(params, tick)?;
+    ensure_dir(out)?;
+    let csv = out.join("sweep.csv");
+    let mut table = CsvWriter::create(&csv, &["series", "value", "k0", "d_c"])?;
+    let label = |s: Option<f64>| match (&study.series, s) {
+        (Some((key, _)), Some(v)) => format!("{key}={v}"),
+        _ => "base".to_string(),
+    };
+    for p in &points {
+        if let Some(o) = &p.onset {
+            table.append_labelled(Some(&label(p.series)), &[p.value, o.k0, o.d_c])?;
+        }
+    }
+    let mut k_panel = Figure::new("Onset wavenumber", study.param.as_str(), "k0");
+    let mut d_panel = Figure::new("Critical compression", study.param.as_str(), "d_c");
+    let mut series_values: Vec<Option<f64>> = points.iter().map(|p| p.series).collect();
+    series_values.dedup();
+    for (i, s) in series_values.iter().enumerate() {
+        let of = |pick: fn(&Onset) -> f64| -> Vec<(f64, f64)> {
+            points
+                .iter()
+                .filter(|p| p.series == *s)
+                .filter_map(|p| p.onset.as_ref().map(|o| (p.value, pick(o))))
+                .collect()
+        };
+        k_panel
+            .series
+            .push(Series::new(label(*s), of(|o| o.k0), LineStyle::Solid, i));
+        d_panel
+            .series
+            .push(Series::new(label(*s), of(|o| o.d_c), LineStyle::Solid, i));
+    }
+    let mut files = vec![csv];
+    files.extend(save_panels(&[k_panel, d_panel], out, "sweep")?);
+    let json = out.join("sweep.json");
+    let summary = SweepSummary {
+        command: "sweep",
+        parameters: params,
+        param: &study.param,
+        series_param: study.series.as_ref().map(|(k, _)| k.as_str()),
+        points: &points,
+    };
+    write_json(&json, &summary)?;
+    files.push(json);
+    Ok(files)
+}
