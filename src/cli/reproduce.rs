@@ -1,10 +1,12 @@
-//! `fiberfold reproduce`: every figure available so far, resumable, with a report.
+//! `fiberfold reproduce`: every figure available so far, resumable, in parallel, with a report.
 
 use super::common::{progress, ParamArgs};
 use clap::Args;
 use fiberfold::studies::reproduce::{pieces, run_piece, write_report, ReproduceOptions};
-use fiberfold::Result;
+use fiberfold::{Error, Result};
+use rayon::prelude::*;
 use std::path::PathBuf;
+use std::time::Instant;
 
 #[derive(Args)]
 pub struct ReproduceArgs {
@@ -15,46 +17,50 @@ pub struct ReproduceArgs {
     #[arg(long)]
     pub quick: bool,
 
-    /// Output folder: figures and report.md at the top, one sub-folder per piece.
+    /// Output folder: figures and report.md/html at the top, one sub-folder per piece.
     #[arg(long, value_name = "DIR", default_value = "results")]
     pub out: PathBuf,
+
+    /// Pieces run at the same time (default: the number of cores).
+    #[arg(long, value_name = "N")]
+    pub jobs: Option<usize>,
 }
 
 pub fn run(args: &ReproduceArgs) -> Result<()> {
     let params = args.params.resolve()?;
+    let jobs = args.jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    if jobs == 0 || jobs > 256 {
+        return Err(Error::invalid("jobs", jobs, "[1, 256]"));
+    }
     let options = ReproduceOptions { quick: args.quick };
     let pieces = pieces();
-    println!(
-        "reproducing {} piece(s) into {}{}",
-        pieces.len(),
-        args.out.display(),
-        if args.quick { " (quick)" } else { "" }
-    );
+    let mode = if args.quick { "quick" } else { "full" };
+    println!("reproducing {} pieces into {} ({mode}, {jobs} at a time); finished pieces are reused", pieces.len(), args.out.display());
     fiberfold::output::ensure_dir(&args.out)?;
+    let start = Instant::now();
     let bar = progress(pieces.len(), "reproduce");
-    let mut outcomes = Vec::new();
-    for piece in &pieces {
-        let outcome = run_piece(piece, &params, &options, &args.out, &|| {})?;
-        bar.inc(1);
-        let status = if outcome.skipped {
-            "(already done, reused)"
-        } else {
-            "done"
-        };
-        bar.suspend(|| println!("  {:<14} {:>8.2} s  {status}", outcome.name, outcome.seconds));
-        outcomes.push(outcome);
-    }
-    bar.finish_and_clear();
-    let report = write_report(&args.out, &outcomes)?;
-    println!(
-        "wrote {} and figures {}",
-        report.display(),
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs)
+        .build()
+        .map_err(|e| Error::NonFinite(format!("thread pool: {e}")))?;
+    let outcomes = pool.install(|| {
         pieces
-            .iter()
-            .flat_map(|p| p.figures.iter())
-            .cloned()
-            .collect::<Vec<_>>()
-            .join(", ")
-    );
+            .par_iter()
+            .map(|piece| {
+                let outcome = run_piece(piece, &params, &options, &args.out, &|| {})?;
+                bar.inc(1);
+                let status = if outcome.skipped { "already done, reused" } else { "done" };
+                bar.suspend(|| println!("  {:<12} {:>8.2} s  {status}", outcome.name, outcome.seconds));
+                Ok(outcome)
+            })
+            .collect::<Result<Vec<_>>>()
+    })?;
+    bar.finish_and_clear();
+    let files = write_report(&args.out, &outcomes)?;
+    println!("wall time per piece:");
+    for o in &outcomes {
+        println!("  {:<12} {:>8.2} s{}", o.name, o.seconds, if o.skipped { " (earlier run)" } else { "" });
+    }
+    println!("total {:.1} s; report: {}", start.elapsed().as_secs_f64(), files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>().join(", "));
     Ok(())
 }

@@ -1,0 +1,257 @@
+//! Displacement control in `d` with adaptive steps and an extrapolating predictor.
+//!
+//! Each step tries `d + h`: the predictor extrapolates the displacement through the last (up to
+//! three) converged states (Lagrange polynomial in `d`; the prescribed unknowns are set exactly;
+//! from a single state, Newton's lifted first step is the tangent predictor), then Newton's
+//! method corrects it. A step that converges in at most `easy_iterations` grows
+//! `h` by `grow`; a failure (no convergence, line search, `J <= 0` anywhere) discards the trial
+//! and cuts `h` by `cut`. A failure at the minimum step stops the continuation.
+
+use super::surface::amplitude;
+use crate::error::{Error, Result};
+use crate::fem::{model_conditions, Newton, NewtonReport, NewtonSettings, System, Timings};
+use serde::Serialize;
+use std::collections::VecDeque;
+use std::time::Instant;
+
+/// Step-size control.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct StepControl {
+    /// First step.
+    pub initial: f64,
+    /// Largest step: also the largest gap in `d` between recorded states.
+    pub max: f64,
+    /// Smallest step; a failure at this step stops the continuation.
+    pub min: f64,
+    /// Factor applied after an easy step (> 1).
+    pub grow: f64,
+    /// Factor applied after a failure (in (0, 1)).
+    pub cut: f64,
+    /// A step converged in at most this many Newton iterations is easy.
+    pub easy_iterations: usize,
+}
+
+impl Default for StepControl {
+    /// Steps of 0.005 (the recording interval), cut by 4 down to 1e-5, grown by 1.5 after <= 3 iterations.
+    fn default() -> Self {
+        StepControl {
+            initial: 0.005,
+            max: 0.005,
+            min: 1e-5,
+            grow: 1.5,
+            cut: 0.25,
+            easy_iterations: 3,
+        }
+    }
+}
+
+impl StepControl {
+    /// Checks `0 < min <= initial, max` and the factors.
+    pub fn validate(&self) -> Result<()> {
+        let positive = |name: &str, v: f64| match v.is_finite() && v > 0.0 && v < 1.0 {
+            true => Ok(()),
+            false => Err(Error::invalid(name, v, "(0, 1)")),
+        };
+        positive("max-step", self.max)?;
+        positive("min-step", self.min)?;
+        positive("initial step", self.initial)?;
+        if self.min > self.max {
+            return Err(Error::invalid("min-step", self.min, &format!("(0, max-step = {}]", self.max)));
+        }
+        if !(self.grow >= 1.0 && self.grow.is_finite()) {
+            return Err(Error::invalid("step growth factor", self.grow, "[1, inf)"));
+        }
+        positive("step cut factor", self.cut)
+    }
+}
+
+/// An accepted step.
+#[derive(Clone, Debug, Serialize)]
+pub struct StepRecord {
+    /// End-shortening reached.
+    pub d: f64,
+    /// Step length that reached it.
+    pub step: f64,
+    /// Wrinkle amplitude `A` of the converged state.
+    pub amplitude: f64,
+    /// Newton iterations of the accepted attempt.
+    pub iterations: usize,
+    /// `|r_f|` before each iteration and at convergence.
+    pub residual_history: Vec<f64>,
+    /// Final residual divided by the internal-force norm.
+    pub relative_residual: f64,
+    /// Smallest `J` over all Gauss points.
+    pub min_jacobian: f64,
+    /// Wall time of the step, failed attempts included.
+    pub seconds: f64,
+    /// Wall times of the accepted attempt's phases.
+    #[serde(skip)]
+    pub timings: Timings,
+}
+
+impl StepRecord {
+    /// The record of a converged Newton solve.
+    pub(super) fn new(d: f64, step: f64, amplitude: f64, report: &NewtonReport, seconds: f64) -> Self {
+        let residual = *report.residual_history.last().expect("at least the initial residual");
+        StepRecord {
+            d,
+            step,
+            amplitude,
+            iterations: report.iterations,
+            residual_history: report.residual_history.clone(),
+            relative_residual: residual / report.force_norm.max(f64::MIN_POSITIVE),
+            min_jacobian: report.min_jacobian,
+            seconds,
+            timings: report.timings,
+        }
+    }
+}
+
+/// A failed attempt that was discarded.
+#[derive(Clone, Debug, Serialize)]
+pub struct Cut {
+    /// The `d` tried.
+    pub d: f64,
+    /// The step tried.
+    pub step: f64,
+    /// Why it failed.
+    pub reason: String,
+}
+
+/// What a loading protocol reports as it goes.
+pub enum Event<'a> {
+    /// The start of a stage, described.
+    Stage(&'a str),
+    /// A converged state, with its system and displacement.
+    Step {
+        record: &'a StepRecord,
+        system: &'a System,
+        u: &'a [f64],
+    },
+    /// A discarded attempt; the step is cut.
+    Cut(&'a Cut),
+}
+
+/// The solution path in `d`: the current converged state and the last few for the predictor.
+pub struct Continuation {
+    system: System,
+    newton: Newton,
+    control: StepControl,
+    step: f64,
+    /// Up to three converged `(d, u)`, newest last.
+    history: VecDeque<(f64, Vec<f64>)>,
+}
+
+/// How many converged states the predictor extrapolates through (quadratic).
+const PREDICTOR_POINTS: usize = 3;
+
+impl Continuation {
+    /// Starts at the converged state `u` at `d`.
+    pub fn new(system: System, settings: NewtonSettings, control: StepControl, d: f64, u: Vec<f64>) -> Result<Self> {
+        control.validate()?;
+        Ok(Continuation {
+            system,
+            newton: Newton::new(settings),
+            step: control.initial.min(control.max),
+            control,
+            history: VecDeque::from([(d, u)]),
+        })
+    }
+
+    /// The current end-shortening.
+    pub fn d(&self) -> f64 {
+        self.history.back().expect("never empty").0
+    }
+
+    /// The current converged displacement.
+    pub fn displacement(&self) -> &[f64] {
+        &self.history.back().expect("never empty").1
+    }
+
+    /// The system being solved.
+    pub fn system(&self) -> &System {
+        &self.system
+    }
+
+    /// Advances to `target`, reporting every accepted step and every cut; stops with
+    /// [`Error::Solver`] naming `d` and the reason when the minimum step fails.
+    pub fn advance_to(&mut self, target: f64, observer: &mut dyn FnMut(Event<'_>) -> Result<()>) -> Result<()> {
+        let c = self.control;
+        let mut started = Instant::now();
+        while target - self.d() > 1e-12 {
+            let remaining = target - self.d();
+            let step = if remaining <= self.step * (1.0 + 1e-9) {
+                remaining
+            } else {
+                self.step
+            };
+            let d = self.d() + step;
+            match self.attempt(d) {
+                Ok((report, u)) => {
+                    let a = amplitude(self.system.mesh(), &u);
+                    let record = StepRecord::new(d, step, a, &report, started.elapsed().as_secs_f64());
+                    observer(Event::Step {
+                        record: &record,
+                        system: &self.system,
+                        u: &u,
+                    })?;
+                    self.history.push_back((d, u));
+                    if self.history.len() > PREDICTOR_POINTS {
+                        self.history.pop_front();
+                    }
+                    if report.iterations <= c.easy_iterations {
+                        self.step = (self.step * c.grow).min(c.max);
+                    }
+                    started = Instant::now();
+                }
+                Err(reason) if step > c.min * (1.0 + 1e-9) => {
+                    observer(Event::Cut(&Cut {
+                        d,
+                        step,
+                        reason: reason.to_string(),
+                    }))?;
+                    self.step = (step * c.cut).max(c.min);
+                }
+                Err(reason) => {
+                    return Err(Error::Solver(format!(
+                        "continuation stopped at d = {d:.6} (last converged d = {:.6}) with the minimum step {step:.3e}: {reason}",
+                        self.d()
+                    )))
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Predictor and Newton corrector at `d`; the converged displacement, or why it failed.
+    /// From a single state, Newton's first (lifted) step is the predictor: the tangent one.
+    fn attempt(&mut self, d: f64) -> Result<(NewtonReport, Vec<f64>)> {
+        let bc = model_conditions(self.system.mesh(), d)?;
+        let mut u = self.predict(d);
+        if self.history.len() > 1 {
+            for (&dof, &value) in bc.dofs().iter().zip(bc.values()) {
+                u[dof] = value;
+            }
+        }
+        let report = self.newton.solve(&mut self.system, &mut u, &bc)?;
+        Ok((report, u))
+    }
+
+    /// Lagrange extrapolation through the stored states, evaluated at `d`.
+    fn predict(&self, d: f64) -> Vec<f64> {
+        let nodes: Vec<f64> = self.history.iter().map(|(di, _)| *di).collect();
+        let mut u = vec![0.0; self.displacement().len()];
+        for (i, (_, ui)) in self.history.iter().enumerate() {
+            let weight: f64 = nodes
+                .iter()
+                .enumerate()
+                .filter(|&(j, _)| j != i)
+                .map(|(_, &dj)| (d - dj) / (nodes[i] - dj))
+                .product();
+            for (x, y) in u.iter_mut().zip(ui) {
+                *x += weight * y;
+            }
+        }
+        u
+    }
+}

@@ -1,0 +1,132 @@
+//! The three loading stages of section 2.1: (1) homogeneous compression of the perfect bilayer
+//! to `d = 0.005`; (2) the imperfection [`Imperfection`] is put into the reference geometry, the
+//! nodal displacements of stage 1 are kept, and equilibrium is restored at the same `d`;
+//! (3) displacement control to `d_max` ([`Continuation`]). `A_init = 0` runs the perfect system.
+
+use super::continuation::{Continuation, Event, StepControl, StepRecord};
+use super::imperfection::{mode_number, Imperfection};
+use super::surface::amplitude;
+use crate::error::{Error, Result};
+use crate::fem::{model_conditions, Newton, NewtonSettings, System};
+use crate::material::Bilayer;
+use crate::mesh::{Mesh, MeshSpec};
+use crate::parameters::validate_compression;
+use std::time::Instant;
+
+/// End-shortening of stage 1.
+pub const STAGE_ONE_COMPRESSION: f64 = 0.005;
+
+/// A loading protocol: the seeded mode, its amplitude, the final compression and the solver.
+#[derive(Clone, Copy, Debug)]
+pub struct Protocol {
+    /// Referential wavenumber of the seeded mode (`m pi / L`).
+    pub k: f64,
+    /// `A_init`, the amplitude of the imperfection of the top surface.
+    pub imperfection: f64,
+    /// Final end-shortening.
+    pub d_max: f64,
+    /// Adaptive steps of stage 3.
+    pub control: StepControl,
+    /// Newton's method in every stage.
+    pub newton: NewtonSettings,
+}
+
+impl Protocol {
+    /// The paper's protocol to `d_max` with default steps and [`simulation_newton`].
+    pub fn new(k: f64, imperfection: f64, d_max: f64) -> Self {
+        Protocol {
+            k,
+            imperfection,
+            d_max,
+            control: StepControl::default(),
+            newton: simulation_newton(),
+        }
+    }
+
+    /// Checks `k` against the domain of `spec`, `A_init` in `[0, 1)` and `d_max` in `(0.005, 1)`.
+    pub fn validate(&self, spec: &MeshSpec) -> Result<()> {
+        mode_number(self.k, spec.length)?;
+        if !(self.imperfection.is_finite() && (0.0..1.0).contains(&self.imperfection)) {
+            return Err(Error::invalid("imperfection", self.imperfection, "[0, 1)"));
+        }
+        validate_compression("d-max", self.d_max)?;
+        if self.d_max <= STAGE_ONE_COMPRESSION {
+            return Err(Error::invalid("d-max", self.d_max, "(0.005, 1): beyond stage 1's d = 0.005"));
+        }
+        self.control.validate()
+    }
+}
+
+/// Newton's settings for load steps: at most 12 iterations (a step that needs more is cut
+/// rather than ground through) and no inertia at the solution (one factorisation less per step).
+pub fn simulation_newton() -> NewtonSettings {
+    NewtonSettings {
+        max_iterations: 12,
+        inertia_at_solution: false,
+        ..NewtonSettings::default()
+    }
+}
+
+/// The end of a protocol: the path so far, and why it stopped early, if it did.
+pub struct Outcome {
+    pub continuation: Continuation,
+    pub stopped: Option<Error>,
+}
+
+/// Runs the three stages, reporting each converged state (from the end of stage 2 on) and each
+/// cut to `observer`. A failure in stages 1-2 is an error; one in stage 3 ends up in
+/// [`Outcome::stopped`] with the path so far.
+pub fn run(
+    materials: &Bilayer,
+    spec: MeshSpec,
+    protocol: &Protocol,
+    observer: &mut dyn FnMut(Event<'_>) -> Result<()>,
+) -> Result<Outcome> {
+    protocol.validate(&spec)?;
+    let d0 = STAGE_ONE_COMPRESSION;
+    let mut newton = Newton::new(protocol.newton);
+    let start = Instant::now();
+    observer(Event::Stage(&format!("stage 1: homogeneous compression of the perfect bilayer to d = {d0}")))?;
+    let perfect = Mesh::new(spec)?;
+    let mut system = System::new(perfect.clone(), materials)?;
+    let mut u = vec![0.0; perfect.num_dofs()];
+    let bc = model_conditions(&perfect, d0)?;
+    let mut report = newton
+        .solve(&mut system, &mut u, &bc)
+        .map_err(|e| stage_failure(1, e.into()))?;
+    if protocol.imperfection > 0.0 {
+        observer(Event::Stage(&format!(
+            "stage 2: imperfection {} cos({:.6} X) of the reference geometry, equilibrium at d = {d0}",
+            protocol.imperfection, protocol.k
+        )))?;
+        let imperfection = Imperfection {
+            amplitude: protocol.imperfection,
+            k: protocol.k,
+            depth: spec.depth,
+        };
+        let mesh = perfect.perturbed(|x| imperfection.displacement(x));
+        system = System::new(mesh, materials)?;
+        report = newton
+            .solve(&mut system, &mut u, &bc)
+            .map_err(|e| stage_failure(2, e.into()))?;
+    }
+    let a = amplitude(system.mesh(), &u);
+    let record = StepRecord::new(d0, d0, a, &report, start.elapsed().as_secs_f64());
+    observer(Event::Step {
+        record: &record,
+        system: &system,
+        u: &u,
+    })?;
+    observer(Event::Stage(&format!(
+        "stage 3: displacement control to d = {}",
+        protocol.d_max
+    )))?;
+    let mut continuation = Continuation::new(system, protocol.newton, protocol.control, d0, u)?;
+    let stopped = continuation.advance_to(protocol.d_max, observer).err();
+    Ok(Outcome { continuation, stopped })
+}
+
+/// A failure of stage 1 or 2, named.
+fn stage_failure(stage: usize, e: Error) -> Error {
+    Error::Solver(format!("stage {stage} at d = {STAGE_ONE_COMPRESSION} failed: {e}"))
+}

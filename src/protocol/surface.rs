@@ -1,0 +1,23 @@
+//! The deformed top surface: its profile and the wrinkle amplitude `A = (max y - min y) / 2`.
+
+use crate::fem::boundary::{dof, X, Y};
+use crate::mesh::Mesh;
+
+/// Deformed positions `(x, y)` of the top-surface nodes, sorted by reference `X`.
+pub fn surface_profile(mesh: &Mesh, u: &[f64]) -> Vec<(f64, f64)> {
+    mesh.top()
+        .into_iter()
+        .map(|n| {
+            let [x, y] = mesh.coordinates()[n];
+            (x + u[dof(n, X)], y + u[dof(n, Y)])
+        })
+        .collect()
+}
+
+/// `A = (max y - min y) / 2` over the deformed top-surface nodes.
+pub fn amplitude(mesh: &Mesh, u: &[f64]) -> f64 {
+    let (low, high) = surface_profile(mesh, u)
+        .into_iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (_, y)| (lo.min(y), hi.max(y)));
+    0.5 * (high - low)
+}
