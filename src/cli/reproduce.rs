@@ -24,18 +24,39 @@ pub struct ReproduceArgs {
     /// Pieces run at the same time (default: the number of cores).
     #[arg(long, value_name = "N")]
     pub jobs: Option<usize>,
+
+    /// Run only these pieces (comma separated names, e.g. `fig4b,fig5`); default: all.
+    #[arg(long, value_name = "NAMES", value_delimiter = ',')]
+    pub only: Vec<String>,
 }
 
 pub fn run(args: &ReproduceArgs) -> Result<()> {
     let params = args.params.resolve()?;
-    let jobs = args.jobs.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    let jobs = args
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     if jobs == 0 || jobs > 256 {
         return Err(Error::invalid("jobs", jobs, "[1, 256]"));
     }
     let options = ReproduceOptions { quick: args.quick };
-    let pieces = pieces();
+    let mut pieces = pieces();
+    if !args.only.is_empty() {
+        let known: Vec<&str> = pieces.iter().map(|p| p.name).collect();
+        if let Some(bad) = args.only.iter().find(|n| !known.contains(&n.as_str())) {
+            return Err(Error::invalid(
+                "only",
+                bad,
+                &format!("piece names: {}", known.join(", ")),
+            ));
+        }
+        pieces.retain(|p| args.only.iter().any(|n| n == p.name));
+    }
     let mode = if args.quick { "quick" } else { "full" };
-    println!("reproducing {} pieces into {} ({mode}, {jobs} at a time); finished pieces are reused", pieces.len(), args.out.display());
+    println!(
+        "reproducing {} pieces into {} ({mode}, {jobs} at a time); finished pieces are reused",
+        pieces.len(),
+        args.out.display()
+    );
     fiberfold::output::ensure_dir(&args.out)?;
     let start = Instant::now();
     let bar = progress(pieces.len(), "reproduce");
@@ -49,7 +70,11 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
             .map(|piece| {
                 let outcome = run_piece(piece, &params, &options, &args.out, &|| {})?;
                 bar.inc(1);
-                let status = if outcome.skipped { "already done, reused" } else { "done" };
+                let status = if outcome.skipped {
+                    "already done, reused"
+                } else {
+                    "done"
+                };
                 bar.suspend(|| println!("  {:<12} {:>8.2} s  {status}", outcome.name, outcome.seconds));
                 Ok(outcome)
             })
@@ -59,8 +84,21 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
     let files = write_report(&args.out, &outcomes)?;
     println!("wall time per piece:");
     for o in &outcomes {
-        println!("  {:<12} {:>8.2} s{}", o.name, o.seconds, if o.skipped { " (earlier run)" } else { "" });
+        println!(
+            "  {:<12} {:>8.2} s{}",
+            o.name,
+            o.seconds,
+            if o.skipped { " (earlier run)" } else { "" }
+        );
     }
-    println!("total {:.1} s; report: {}", start.elapsed().as_secs_f64(), files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>().join(", "));
+    println!(
+        "total {:.1} s; report: {}",
+        start.elapsed().as_secs_f64(),
+        files
+            .iter()
+            .map(|f| f.display().to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
     Ok(())
 }

@@ -108,4 +108,3 @@ pub fn run_piece(
 fn read_done(path: &Path) -> Option<Done> {
     serde_json::from_str(&std::fs::read_to_string(path).ok()?).ok()
 }
-

@@ -117,4 +117,3 @@ fn run_homogeneous(params: &Parameters, _: &ReproduceOptions, dir: &Path, tick: 
     crate::studies::homogeneous::run(&p, &crate::studies::homogeneous::HomogeneousStudy::default(), dir, tick)?;
     Ok(vec![])
 }
-

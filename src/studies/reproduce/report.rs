@@ -13,12 +13,19 @@ reported, not tuned away.";
 /// Writes `report.md` and `report.html` (figures embedded as base64 PNG) into `out`.
 pub fn write_report(out: &Path, outcomes: &[PieceOutcome]) -> Result<Vec<PathBuf>> {
     let claims: Vec<_> = outcomes.iter().flat_map(|o| &o.claims).collect();
-    let figures: Vec<&str> = pieces().iter().flat_map(|p| p.figures.iter().copied()).collect();
+    let figures: Vec<&str> = pieces()
+        .iter()
+        .filter(|p| outcomes.iter().any(|o| o.name == p.name))
+        .flat_map(|p| p.figures.iter().copied())
+        .collect();
 
     let mut md = format!("# fiberfold reproduction report\n\n{HEADER}\n\n## Claims of the paper beside ours\n\n");
     md.push_str("| claim | paper | fiberfold | note | command |\n|---|---|---|---|---|\n");
     for c in &claims {
-        md.push_str(&format!("| {} | {} | {} | {} | `{}` |\n", c.what, c.paper, c.ours, c.note, c.command));
+        md.push_str(&format!(
+            "| {} | {} | {} | {} | `{}` |\n",
+            c.what, c.paper, c.ours, c.note, c.command
+        ));
     }
     md.push_str("\n## Figures\n\n");
     for stem in &figures {
@@ -26,7 +33,12 @@ pub fn write_report(out: &Path, outcomes: &[PieceOutcome]) -> Result<Vec<PathBuf
     }
     md.push_str("## Wall time\n\n| piece | seconds | |\n|---|---|---|\n");
     for o in outcomes {
-        md.push_str(&format!("| {} | {:.2} | {} |\n", o.name, o.seconds, if o.skipped { "reused" } else { "computed" }));
+        md.push_str(&format!(
+            "| {} | {:.2} | {} |\n",
+            o.name,
+            o.seconds,
+            if o.skipped { "reused" } else { "computed" }
+        ));
     }
 
     let mut html = String::from(
@@ -34,7 +46,10 @@ pub fn write_report(out: &Path, outcomes: &[PieceOutcome]) -> Result<Vec<PathBuf
          <style>body{font-family:sans-serif;max-width:1300px;margin:auto}table{border-collapse:collapse}\
          td,th{border:1px solid #aaa;padding:4px 8px}img{max-width:100%}code{background:#eee}</style></head><body>",
     );
-    html.push_str(&format!("<h1>fiberfold reproduction report</h1><p>{}</p>", escape(HEADER)));
+    html.push_str(&format!(
+        "<h1>fiberfold reproduction report</h1><p>{}</p>",
+        escape(HEADER)
+    ));
     html.push_str("<h2>Claims of the paper beside ours</h2><table><tr><th>claim</th><th>paper</th><th>fiberfold</th><th>note</th><th>command</th></tr>");
     for c in &claims {
         html.push_str(&format!(
@@ -51,12 +66,17 @@ pub fn write_report(out: &Path, outcomes: &[PieceOutcome]) -> Result<Vec<PathBuf
         let path = out.join(format!("{stem}.png"));
         let bytes = std::fs::read(&path).map_err(|e| Error::io(&path, e))?;
         let data = base64::engine::general_purpose::STANDARD.encode(bytes);
-        html.push_str(&format!("<h3>{stem}</h3><img alt=\"{stem}\" src=\"data:image/png;base64,{data}\">"));
+        html.push_str(&format!(
+            "<h3>{stem}</h3><img alt=\"{stem}\" src=\"data:image/png;base64,{data}\">"
+        ));
     }
     html.push_str("<h2>Wall time</h2><table><tr><th>piece</th><th>seconds</th><th></th></tr>");
     for o in outcomes {
         let status = if o.skipped { "reused" } else { "computed" };
-        html.push_str(&format!("<tr><td>{}</td><td>{:.2}</td><td>{status}</td></tr>", o.name, o.seconds));
+        html.push_str(&format!(
+            "<tr><td>{}</td><td>{:.2}</td><td>{status}</td></tr>",
+            o.name, o.seconds
+        ));
     }
     html.push_str("</table></body></html>\n");
 
@@ -67,5 +87,8 @@ pub fn write_report(out: &Path, outcomes: &[PieceOutcome]) -> Result<Vec<PathBuf
 }
 
 fn escape(text: &str) -> String {
-    text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('`', "")
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('`', "")
 }

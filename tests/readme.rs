@@ -1,0 +1,124 @@
+//! Every example command of README.md is run here (at a small size where it is long) and checked
+//! against one number from an independent source, so the documentation cannot rot.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+/// The `fiberfold ...` lines of README's shell blocks.
+fn readme_commands() -> Vec<String> {
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let mut in_shell = false;
+    let mut commands = Vec::new();
+    for line in readme.lines() {
+        if line.starts_with("```") {
+            in_shell = line == "```sh";
+            continue;
+        }
+        let command = line.split('#').next().unwrap().trim();
+        if in_shell && command.starts_with("fiberfold ") {
+            commands.push(command.to_string());
+        }
+    }
+    commands
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("fiberfold-readme-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+/// Runs a README command with its `--out` redirected to a scratch folder and the `(flag, value)`
+/// pairs of `extra` replacing or extending its own (to shrink long runs); returns the output
+/// folder and stdout.
+fn run(command: &str, extra: &[(&str, &str)]) -> (PathBuf, String) {
+    let dir = scratch(&command.replace([' ', '/', '=', ','], "_"));
+    let mut args: Vec<String> = command.split_whitespace().skip(1).map(String::from).collect();
+    let out = dir.display().to_string();
+    for (flag, value) in [("--out", out.as_str())].iter().chain(extra) {
+        match args.iter().position(|a| a == flag) {
+            Some(i) => args[i + 1] = value.to_string(),
+            None if *flag == "--out" => {}
+            None => args.extend([flag.to_string(), value.to_string()]),
+        }
+    }
+    let out = Command::new(env!("CARGO_BIN_EXE_fiberfold"))
+        .args(&args)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{command}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    (dir, String::from_utf8(out.stdout).unwrap())
+}
+
+fn json(path: PathBuf) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+fn csv_column(path: PathBuf, column: &str) -> Vec<f64> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let index = lines.next().unwrap().split(',').position(|c| c == column).unwrap();
+    lines
+        .map(|l| l.split(',').nth(index).unwrap().parse().unwrap())
+        .collect()
+}
+
+#[test]
+fn every_readme_example_runs_and_gives_an_independently_known_number() {
+    let commands = readme_commands();
+    assert!(commands.len() >= 7, "README lost its examples: {commands:?}");
+    for command in &commands {
+        let verb = command.split_whitespace().nth(1).unwrap();
+        match verb {
+            "params" => {
+                let (dir, stdout) = run(command, &[]);
+                assert!(stdout.contains("mu_f = 20.0"));
+                assert!(dir.join("params.toml").exists());
+            }
+            "homogeneous" => {
+                // At d = 0 the reference state is unloaded: lambda_2 = 1 in both layers.
+                let (dir, _) = run(command, &[("--points", "11")]);
+                let l2 = csv_column(dir.join("homogeneous.csv"), "lambda2_layer");
+                assert_eq!(l2[0], 1.0);
+            }
+            "onset" => {
+                // Paper, section 3.1: unloaded fibres (mu_f = 0) give k0 = 0.5515.
+                let (dir, _) = run(command, &[]);
+                assert!((json(dir.join("onset.json"))["k0"].as_f64().unwrap() - 0.5515).abs() < 5e-5);
+            }
+            "dispersion" => {
+                // Default parameters: the minimum of the curve is the onset; d_c > 0 everywhere.
+                let (dir, _) = run(command, &[("--points", "30")]);
+                let d_c = csv_column(dir.join("dispersion.csv"), "d_c");
+                let k0 = json(dir.join("dispersion.json"))["onset"]["k0"].as_f64().unwrap();
+                assert!(d_c.iter().all(|d| *d > 0.0) && (0.3..0.8).contains(&k0));
+            }
+            "sweep" => {
+                // Fibres at beta = 0 are compressed: stiffer fibres destabilise (paper, Fig. 5a).
+                let (dir, _) = run(command, &[("--points", "3")]);
+                let text = std::fs::read_to_string(dir.join("sweep.csv")).unwrap();
+                let d_at_zero = |series: &str| -> f64 {
+                    let line = text.lines().find(|l| l.starts_with(&format!("{series},0,"))).unwrap();
+                    line.split(',').nth(3).unwrap().parse().unwrap()
+                };
+                assert!(d_at_zero("mu_f=50") < d_at_zero("mu_f=1"));
+            }
+            "bench" => {
+                let (_, stdout) = run(command, &[]);
+                assert!(stdout.contains("Fig. 4b sweep"));
+            }
+            "reproduce" => {
+                // The report carries the paper's fibre-free check k0 = 0.5515 beside ours.
+                let (dir, _) = run(command, &[("--only", "fig4b")]);
+                let report = std::fs::read_to_string(dir.join("report.md")).unwrap();
+                assert!(report.contains("| 0.5515 | 0.5515 |"), "{report}");
+                assert!(dir.join("report.html").exists() && dir.join("fig4b.png").exists());
+            }
+            other => panic!("README shows `{command}` but no test runs `{other}`"),
+        }
+    }
+}
