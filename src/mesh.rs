@@ -9,6 +9,7 @@
 //! `(xi, eta) = (a - 1, b - 1)`. Displacement unknown `c` (0: x, 1: y) of node `n` is `2 n + c`.
 
 use crate::error::{Error, Result};
+use crate::numerics::grading::geometric_ratio;
 
 /// Thickness of the stiff layer: the unit of length.
 pub const LAYER_THICKNESS: f64 = 1.0;
@@ -120,26 +121,7 @@ impl MeshSpec {
 
     /// Growth ratio `r` of the substrate elements, from `h0 (r^n - 1) / (r - 1) = D` (bisection).
     pub fn grading_ratio(&self) -> f64 {
-        let (n, h0, depth) = (self.substrate_elements, self.top_substrate_thickness, self.depth);
-        let total = |r: f64| h0 * (0..n).map(|k| r.powi(k as i32)).sum::<f64>();
-        if n == 1 || (n as f64 * h0 - depth).abs() <= 1e-14 * depth {
-            return 1.0;
-        }
-        // total(r) grows with r; the root lies in (0, 1) when n h0 > D, else in (1, (D/h0)^(1/(n-1))].
-        let (mut lower, mut upper) = if n as f64 * h0 > depth {
-            (0.0, 1.0)
-        } else {
-            (1.0, (depth / h0).powf(1.0 / (n - 1) as f64))
-        };
-        while upper - lower > 4.0 * f64::EPSILON * upper {
-            let middle = 0.5 * (lower + upper);
-            if total(middle) < depth {
-                lower = middle;
-            } else {
-                upper = middle;
-            }
-        }
-        0.5 * (lower + upper)
+        geometric_ratio(self.top_substrate_thickness, self.depth, self.substrate_elements)
     }
 
     /// Substrate element thicknesses from the interface down; they sum to `D` exactly.

@@ -1,5 +1,6 @@
 //! Small numerical utilities that no dependency provides in the form needed here.
 
 pub mod banded;
+pub mod grading;
 pub mod minimize;
 pub mod roots;

@@ -8,6 +8,7 @@
 
 use super::IncrementalModuli;
 use crate::numerics::banded::SymmetricBanded;
+use crate::numerics::grading::geometric_ratio;
 
 /// Discretisation of the `Y` axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -38,7 +39,7 @@ impl DiscreteOptions {
         let depth = self.depth_decay_lengths / (k * slowest_decay);
         let h_layer = 1.0 / self.layer_elements as f64;
         let h0 = h_layer.min(0.05 * 2.0 * std::f64::consts::PI / k);
-        let ratio = grading_ratio(depth, h0, self.substrate_elements);
+        let ratio = geometric_ratio(h0, depth, self.substrate_elements);
         let mut y = vec![0.0];
         let mut h = h0;
         for _ in 0..self.substrate_elements {
@@ -51,33 +52,6 @@ impl DiscreteOptions {
         y.extend((1..=self.layer_elements).map(|i| i as f64 * h_layer));
         y
     }
-}
-
-/// Ratio `r` with `h0 (1 + r + ... + r^(n-1)) = depth`, by bisection.
-fn grading_ratio(depth: f64, h0: f64, n: usize) -> f64 {
-    let total = |r: f64| {
-        if (r - 1.0).abs() < 1e-12 {
-            h0 * n as f64
-        } else {
-            h0 * (r.powi(n as i32) - 1.0) / (r - 1.0)
-        }
-    };
-    if total(1.0) >= depth {
-        return 1.0;
-    }
-    let (mut lo, mut hi) = (1.0, 2.0);
-    while total(hi) < depth {
-        hi *= 2.0;
-    }
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if total(mid) < depth {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
 }
 
 /// The smallest positive real part of the substrate's Stroh roots (decay rate per unit `k Y`).
