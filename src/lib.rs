@@ -12,6 +12,7 @@ pub mod mesh;
 pub mod numerics;
 pub mod output;
 pub mod parameters;
+pub mod protocol;
 pub mod stability;
 pub mod studies;
 

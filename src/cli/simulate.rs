@@ -1,11 +1,257 @@
-//! `fiberfold simulate` (being built).
+//! `fiberfold simulate`: the paper's finite-element protocol, A(d), onset estimates, VTU, Fig. 3.
 
-use clap::Args;
-use fiberfold::Result;
+use super::common::{report_files, ParamArgs};
+use clap::{Args, ValueEnum};
+use fiberfold::mesh::MeshSpec;
+use fiberfold::protocol::{mode_number, wavenumber_of_waves, Protocol, StabilisationSettings, StepControl};
+use fiberfold::studies::simulate::{self, Progress, SimulateStudy};
+use fiberfold::{Error, Result};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::path::PathBuf;
+
+/// The mesh presets of the issue.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum MeshPreset {
+    /// 100 x (2 + 25) elements, h0 = 0.5: 22,110 unknowns.
+    Coarse,
+    /// 200 x (4 + 45) elements, h0 = 0.25: 79,398 unknowns.
+    Fine,
+    /// 400 x (8 + 90) elements, h0 = 0.125: 315,594 unknowns.
+    Extra,
+}
+
+/// Mesh of the half domain 0 <= X <= 50, -50 <= Y <= 1: a preset, optionally modified.
+#[derive(Args, Clone, Debug)]
+pub struct MeshArgs {
+    /// Mesh preset.
+    #[arg(long, value_enum, default_value_t = MeshPreset::Coarse)]
+    pub mesh: MeshPreset,
+    /// Elements along X (overrides the preset).
+    #[arg(long)]
+    pub nx: Option<usize>,
+    /// Elements through the layer 0 <= Y <= 1 (overrides the preset).
+    #[arg(long)]
+    pub layer_elements: Option<usize>,
+    /// Geometrically graded elements through the substrate (overrides the preset).
+    #[arg(long)]
+    pub substrate_elements: Option<usize>,
+    /// Thickness of the top substrate element at Y = 0, in (0, 50) (overrides the preset).
+    #[arg(long, conflicts_with = "grading", allow_negative_numbers = true)]
+    pub h0: Option<f64>,
+    /// Growth ratio of consecutive substrate elements in [1, 2], instead of --h0.
+    #[arg(long, allow_negative_numbers = true)]
+    pub grading: Option<f64>,
+}
+
+impl MeshArgs {
+    /// The validated mesh specification.
+    pub fn resolve(&self) -> Result<MeshSpec> {
+        let mut spec = match self.mesh {
+            MeshPreset::Coarse => MeshSpec::coarse(),
+            MeshPreset::Fine => MeshSpec::fine(),
+            MeshPreset::Extra => MeshSpec::extra(),
+        };
+        spec.nx = self.nx.unwrap_or(spec.nx);
+        spec.layer_elements = self.layer_elements.unwrap_or(spec.layer_elements);
+        spec.substrate_elements = self.substrate_elements.unwrap_or(spec.substrate_elements);
+        spec.top_substrate_thickness = self.h0.unwrap_or(spec.top_substrate_thickness);
+        if let Some(r) = self.grading {
+            if !(1.0..=2.0).contains(&r) {
+                return Err(Error::invalid("grading", r, "[1, 2]"));
+            }
+            // h0 (r^n - 1) / (r - 1) = D.
+            let n = spec.substrate_elements as i32;
+            spec.top_substrate_thickness = if r == 1.0 {
+                spec.depth / n as f64
+            } else {
+                spec.depth * (r - 1.0) / (r.powi(n) - 1.0)
+            };
+        }
+        spec.validate()?;
+        Ok(spec)
+    }
+}
 
 #[derive(Args)]
-pub struct SimulateArgs {}
+pub struct SimulateArgs {
+    #[command(flatten)]
+    pub params: ParamArgs,
 
-pub fn run(_args: &SimulateArgs) -> Result<()> {
-    Err(fiberfold::Error::NonFinite("`simulate` is not implemented yet".into()))
+    #[command(flatten)]
+    pub mesh: MeshArgs,
+
+    /// Waves N of the seeded mode across the half domain, 2N a positive integer: k = 2 pi N / 50.
+    #[arg(
+        long,
+        conflicts_with = "k",
+        required_unless_present = "k",
+        allow_negative_numbers = true
+    )]
+    pub waves: Option<f64>,
+
+    /// Referential wavenumber of the seeded mode, k = m pi / 50 with m a positive integer.
+    #[arg(long, allow_negative_numbers = true)]
+    pub k: Option<f64>,
+
+    /// Final end-shortening d, in (0.005, 1).
+    #[arg(long, default_value_t = 0.3, allow_negative_numbers = true)]
+    pub d_max: f64,
+
+    /// Amplitude A_init of the seeded imperfection, in [0, 1) (0: the perfect system). The
+    /// reference geometry is perturbed by Delta Y = A_init cos(k X) s(Y), s = 1 in the layer and
+    /// sinh(k (Y + 50)) / sinh(50 k) in the substrate, after stage 1 (homogeneous to d = 0.005).
+    #[arg(long, default_value_t = 0.05, allow_negative_numbers = true)]
+    pub imperfection: f64,
+
+    /// Largest step in d, also the largest gap between recorded states.
+    #[arg(long, default_value_t = 0.005, allow_negative_numbers = true)]
+    pub max_step: f64,
+
+    /// Smallest step in d; a failure at this step stops the run.
+    #[arg(long, default_value_t = 1e-5, allow_negative_numbers = true)]
+    pub min_step: f64,
+
+    /// Newton iterations allowed per step before the step is cut, in [1, 100].
+    #[arg(long, default_value_t = 12)]
+    pub max_newton_iterations: usize,
+
+    /// Amplitude A2 of the long-wave imperfection -A2 cos(pi X / 50), in [0, 1): it deepens
+    /// the troughs near X = 0 and lets the pattern leave an unstable periodic branch.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub imperfection2: f64,
+
+    /// Turn off contact of the top surface with the symmetry planes and with itself.
+    #[arg(long)]
+    pub no_contact: bool,
+
+    /// Viscous stabilisation coefficient eta (units of mu_s H^-2 d); 0 turns it off.
+    #[arg(long, default_value_t = 1e-5, allow_negative_numbers = true)]
+    pub eta: f64,
+
+    /// Report the number of negative eigenvalues of the tangent at every converged state (one
+    /// more factorisation per step).
+    #[arg(long)]
+    pub inertia: bool,
+
+    /// Spacing in d of the VTU snapshots.
+    #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
+    pub vtu_every: f64,
+
+    /// Output folder.
+    #[arg(long, value_name = "DIR", default_value = "results/simulate")]
+    pub out: PathBuf,
+}
+
+impl SimulateArgs {
+    /// The validated study.
+    fn study(&self) -> Result<SimulateStudy> {
+        let mesh = self.mesh.resolve()?;
+        let k = match (self.waves, self.k) {
+            (Some(waves), _) => wavenumber_of_waves(waves, mesh.length)?,
+            (None, Some(k)) => mode_number(k, mesh.length)? as f64 * std::f64::consts::PI / mesh.length,
+            (None, None) => return Err(Error::invalid("waves", "none", "--waves N or --k K")),
+        };
+        if !(1..=100).contains(&self.max_newton_iterations) {
+            return Err(Error::invalid(
+                "max-newton-iterations",
+                self.max_newton_iterations,
+                "[1, 100]",
+            ));
+        }
+        let mut protocol = Protocol::new(k, self.imperfection, self.d_max);
+        protocol.control = StepControl {
+            initial: self.max_step,
+            max: self.max_step,
+            min: self.min_step,
+            ..StepControl::default()
+        };
+        protocol.newton.max_iterations = self.max_newton_iterations;
+        protocol.newton.inertia_at_solution = self.inertia;
+        protocol.imperfection2 = self.imperfection2;
+        protocol.contact = !self.no_contact;
+        if !(self.eta.is_finite() && self.eta >= 0.0) {
+            return Err(Error::invalid("eta", self.eta, "[0, inf)"));
+        }
+        protocol.stabilisation = (self.eta > 0.0).then(|| StabilisationSettings {
+            eta: self.eta,
+            ..StabilisationSettings::default()
+        });
+        let study = SimulateStudy {
+            mesh,
+            protocol,
+            vtu_every: self.vtu_every,
+        };
+        study.validate()?;
+        Ok(study)
+    }
+}
+
+pub fn run(args: &SimulateArgs) -> Result<()> {
+    let params = args.params.resolve()?;
+    let study = args.study()?;
+    let p = &study.protocol;
+    println!(
+        "simulate: k = {:.6} ({} waves), A_init = {}, d to {}, {} unknowns",
+        p.k,
+        p.k * study.mesh.length / (2.0 * std::f64::consts::PI),
+        p.imperfection,
+        p.d_max,
+        study.mesh.num_dofs()
+    );
+    let bar = ProgressBar::new(1000);
+    bar.set_style(
+        ProgressStyle::with_template("{msg} [{bar:40}] ({elapsed})")
+            .expect("static template")
+            .progress_chars("=> "),
+    );
+    let monitor = |progress: Progress<'_>| match progress {
+        Progress::Stage(text) => bar.suspend(|| println!("{text}")),
+        Progress::Step(r) => {
+            let residuals: Vec<String> = r.residual_history.iter().map(|x| format!("{x:.1e}")).collect();
+            let inertia = r.negative_pivots.map_or(String::new(), |n| format!("  {n} negative"));
+            let augmented = r.augmented.as_ref().map_or(String::new(), |a| {
+                let contact = if a.in_contact {
+                    format!("  contact {:.3} pen {:.1e}", a.contact_length, a.penetration)
+                } else {
+                    String::new()
+                };
+                format!("{contact}  dissipated {:.1e}", a.stabilisation_energy_fraction)
+            });
+            bar.suspend(|| {
+                println!(
+                    "d = {:.6}  step {:.1e}  A = {:.6}  {} it  |r| {}  min J {:.4}{inertia}{augmented}  {:.2} s",
+                    r.d,
+                    r.step,
+                    r.amplitude,
+                    r.iterations,
+                    residuals.join(" "),
+                    r.min_jacobian,
+                    r.seconds
+                )
+            });
+            bar.set_position((1000.0 * r.d / p.d_max) as u64);
+            bar.set_message(format!("d = {:.4} of {}", r.d, p.d_max));
+        }
+        Progress::Cut(c) => {
+            bar.suspend(|| println!("  cut: d = {:.6} (step {:.1e}) failed: {}", c.d, c.step, c.reason))
+        }
+    };
+    let result = simulate::run(&params, &study, &args.out, &monitor);
+    bar.finish_and_clear();
+    let summary = result?;
+    let o = &summary.onset;
+    let show = |x: Option<f64>| x.map_or("n/a".to_string(), |v| format!("{v:.5}"));
+    println!(
+        "reached d = {} in {:.1} s ({} steps, {} Newton iterations, {} cuts)",
+        summary.d_reached, summary.wall_seconds, summary.accepted_steps, summary.totals.newton_iterations, summary.cuts
+    );
+    println!(
+        "onset: max curvature {}, steepest {}, A^2 fit {}; linear theory d_c(k) = {:.5}",
+        show(o.estimates.d_max_curvature),
+        show(o.estimates.d_steepest),
+        show(o.estimates.d_a2_fit),
+        o.d_linear_theory
+    );
+    report_files(&summary.files.iter().map(PathBuf::from).collect::<Vec<_>>());
+    Ok(())
 }

@@ -3,16 +3,20 @@
 //! Prescribed unknowns are eliminated: the residual `r_f = f_int,f(u)` and the tangent
 //! `K_ff = d r_f / d u_f` live on the free unknowns only, which keeps `K_ff` symmetric (and
 //! positive definite wherever the equilibrium is stable). The CSC pattern of `K_ff` (both
-//! triangles) and its `Argsort` are built once per set of prescribed unknowns; each assembly
-//! computes the element matrices in parallel (rayon) straight into their own slices of the
-//! value array, which `SparseColMat::new_from_argsort` then sums into the matrix.
+//! triangles) and, for every stored entry, the list of element-matrix entries that sum into it
+//! are built once per set of prescribed unknowns; each assembly computes the element matrices
+//! in parallel (rayon) straight into their own slices of a reused buffer, and then sums each
+//! stored entry from that list, in parallel too (no scatter, so no races and no sorting).
+//! Groups of an [`AddedEnergy`] (contact pairs, damping) are assembled like extra elements; the
+//! pattern is keyed by the prescribed set and the list of groups.
 
+use super::added::{AddedEnergy, Block, NoAddedEnergy};
 use super::boundary::Dirichlet;
 use super::element::{self, ElementGeometry, ElementState, ElementVector, DOFS};
 use crate::error::{Error, Result};
 use crate::material::{Bilayer, Tissue};
 use crate::mesh::{Mesh, Region};
-use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat};
+use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
@@ -33,12 +37,18 @@ enum Slot {
 struct Pattern {
     id: usize,
     constrained: Vec<usize>,
+    /// The added energy's groups the pattern includes (after the elements).
+    groups: Vec<Vec<usize>>,
     slots: Vec<Slot>,
     free: Vec<usize>,
-    /// Element `e` owns `values[offsets[e]..offsets[e + 1]]`: its free-free block, row-major.
+    /// Element `e` owns `values[offsets[e]..offsets[e + 1]]`: its free-free block, row-major;
+    /// group `g` of the added energy follows as block `elements + g`.
     offsets: Vec<usize>,
     symbolic: SymbolicSparseColMat<usize>,
-    argsort: Argsort<usize>,
+    /// Stored entry `p` of `K_ff` (CSC order) is the sum of the element-matrix entries
+    /// `sources[starts[p]..starts[p + 1]]` (indices into the element value buffer).
+    starts: Vec<usize>,
+    sources: Vec<u32>,
 }
 
 /// The assembled nonlinear system at one displacement.
@@ -52,6 +62,8 @@ pub struct Assembled {
     pub reactions: Vec<f64>,
     /// Total strain energy.
     pub energy: f64,
+    /// Energy of the added terms (zero without them).
+    pub added_energy: f64,
     /// Smallest `J = det F` over all Gauss points.
     pub min_jacobian: f64,
     /// Identifies the sparsity pattern (changes when the prescribed set does).
@@ -83,6 +95,8 @@ pub struct System {
     materials: Vec<Tissue>,
     geometry: Vec<ElementGeometry>,
     pattern: Option<Pattern>,
+    /// Element-matrix entries of the last assembly (reused to avoid reallocating).
+    entries: Vec<f64>,
 }
 
 impl System {
@@ -107,6 +121,7 @@ impl System {
             materials: tissues,
             geometry,
             pattern: None,
+            entries: Vec::new(),
         })
     }
 
@@ -138,7 +153,8 @@ impl System {
 
     /// The free unknowns when `bc` is prescribed, increasing; position = index in the reduced system.
     pub fn free_dofs(&mut self, bc: &Dirichlet) -> Result<&[usize]> {
-        Ok(&self.pattern_for(bc)?.free)
+        let groups = self.pattern.as_ref().map_or_else(Vec::new, |p| p.groups.clone());
+        Ok(&self.pattern_for(bc, &groups)?.free)
     }
 
     /// Residual (and tangent if `with_tangent`) on the free unknowns at the full displacement `u`.
@@ -153,27 +169,48 @@ impl System {
         lift: Option<&[f64]>,
         with_tangent: bool,
     ) -> Result<Assembled> {
+        self.assemble_with(u, bc, lift, with_tangent, &NoAddedEnergy)
+    }
+
+    /// [`System::assemble`] of the strain energy plus `added` (whose groups join the pattern).
+    pub fn assemble_with(
+        &mut self,
+        u: &[f64],
+        bc: &Dirichlet,
+        lift: Option<&[f64]>,
+        with_tangent: bool,
+        added: &dyn AddedEnergy,
+    ) -> Result<Assembled> {
         assert_eq!(u.len(), self.num_dofs(), "displacement vector length");
         assert!(
             lift.is_none_or(|l| l.len() == bc.len()),
             "one lift value per prescribed unknown"
         );
         let start = Instant::now();
-        self.pattern_for(bc)?;
+        self.pattern_for(bc, added.groups())?;
         let pattern = self.pattern.as_ref().expect("built above");
         let total = if with_tangent {
             *pattern.offsets.last().unwrap_or(&0)
         } else {
             0
         };
-        let mut values = vec![0.0; total];
-        let chunks = split(&mut values, &pattern.offsets, with_tangent);
+        // Every element writes all of its slice, so stale values need no zeroing.
+        let mut entries = std::mem::take(&mut self.entries);
+        entries.resize(total, 0.0);
+        let mut chunks = split(&mut entries, &pattern.offsets, with_tangent);
+        let group_chunks = chunks.split_off(self.mesh.elements().len());
         let results = chunks
             .into_par_iter()
             .enumerate()
             .with_min_len(32)
             .map(|(e, chunk)| self.element_contribution(pattern, e, u, lift, chunk))
             .collect::<Result<Vec<_>>>()?;
+        let added_results: Vec<(Block, Vec<f64>)> = group_chunks
+            .into_par_iter()
+            .enumerate()
+            .with_min_len(64)
+            .map(|(g, chunk)| group_contribution(pattern, added, g, u, lift, chunk))
+            .collect();
 
         let mut residual = vec![0.0; pattern.free.len()];
         let mut reactions = vec![0.0; bc.len()];
@@ -188,15 +225,31 @@ impl System {
             energy += state.energy;
             min_jacobian = min_jacobian.min(state.min_jacobian);
         }
+        let mut added_energy = 0.0;
+        for (dofs, (block, lifted)) in pattern.groups.iter().zip(&added_results) {
+            for (i, &dof) in dofs.iter().enumerate() {
+                match pattern.slots[dof] {
+                    Slot::Free(f) => residual[f] += block.gradient[i] + lifted[i],
+                    Slot::Fixed(c) => reactions[c] += block.gradient[i],
+                }
+            }
+            added_energy += block.energy;
+        }
         let tangent = with_tangent.then(|| {
-            SparseColMat::new_from_argsort(pattern.symbolic.clone(), &pattern.argsort, &values)
-                .expect("allocating the tangent's values")
+            let mut values = vec![0.0; pattern.starts.len() - 1];
+            values.par_iter_mut().with_min_len(4096).enumerate().for_each(|(p, v)| {
+                let sources = &pattern.sources[pattern.starts[p]..pattern.starts[p + 1]];
+                *v = sources.iter().map(|&s| entries[s as usize]).sum();
+            });
+            SparseColMat::new(pattern.symbolic.clone(), values)
         });
+        self.entries = entries;
         Ok(Assembled {
             residual,
             tangent,
             reactions,
             energy,
+            added_energy,
             min_jacobian,
             pattern: pattern.id,
             elapsed: start.elapsed(),
@@ -244,22 +297,61 @@ impl System {
         Ok((state, lifted))
     }
 
-    /// The cached pattern for `bc`'s prescribed unknowns, rebuilt when they change.
-    fn pattern_for(&mut self, bc: &Dirichlet) -> Result<&Pattern> {
+    /// The cached pattern for `bc`'s prescribed unknowns and the added `groups`, rebuilt when
+    /// either changes.
+    fn pattern_for(&mut self, bc: &Dirichlet, groups: &[Vec<usize>]) -> Result<&Pattern> {
         let n = self.num_dofs();
-        if let Some(&bad) = bc.dofs().iter().find(|&&d| d >= n) {
-            return Err(Error::invalid("prescribed unknown", bad, &format!("[0, {n})")));
+        if let Some(&bad) = bc.dofs().iter().chain(groups.iter().flatten()).find(|&&d| d >= n) {
+            return Err(Error::invalid("prescribed or coupled unknown", bad, &format!("[0, {n})")));
         }
-        if self.pattern.as_ref().is_none_or(|p| p.constrained != bc.dofs()) {
+        if self
+            .pattern
+            .as_ref()
+            .is_none_or(|p| p.constrained != bc.dofs() || p.groups != groups)
+        {
             let id = NEXT_PATTERN.fetch_add(1, Ordering::Relaxed);
-            self.pattern = Some(build_pattern(&self.mesh, bc.dofs(), id));
+            self.pattern = Some(build_pattern(&self.mesh, bc.dofs(), groups, id));
         }
         Ok(self.pattern.as_ref().expect("just built"))
     }
 }
 
-/// Slots, free list, per-element offsets and the CSC pattern of `K_ff`.
-fn build_pattern(mesh: &Mesh, constrained: &[usize], id: usize) -> Pattern {
+/// Group `g`'s block, its lifting force `K_g lift_g`, and its free-free block into `chunk`.
+fn group_contribution(
+    pattern: &Pattern,
+    added: &dyn AddedEnergy,
+    g: usize,
+    u: &[f64],
+    lift: Option<&[f64]>,
+    chunk: &mut [f64],
+) -> (Block, Vec<f64>) {
+    let dofs = &pattern.groups[g];
+    let n = dofs.len();
+    let block = added.block(g, u, !chunk.is_empty() || lift.is_some());
+    let mut lifted = vec![0.0; n];
+    if let Some(lift) = lift {
+        for (b, &dof) in dofs.iter().enumerate() {
+            if let Slot::Fixed(c) = pattern.slots[dof] {
+                for (a, l) in lifted.iter_mut().enumerate() {
+                    *l += block.hessian[a * n + b] * lift[c];
+                }
+            }
+        }
+    }
+    if !chunk.is_empty() {
+        let free: Vec<usize> = (0..n).filter(|&i| matches!(pattern.slots[dofs[i]], Slot::Free(_))).collect();
+        let mut entries = chunk.iter_mut();
+        for &a in &free {
+            for &b in &free {
+                *entries.next().expect("chunk sized by the pattern") = block.hessian[a * n + b];
+            }
+        }
+    }
+    (block, lifted)
+}
+
+/// Slots, free list, per-block offsets and the CSC pattern of `K_ff` (elements, then groups).
+fn build_pattern(mesh: &Mesh, constrained: &[usize], groups: &[Vec<usize>], id: usize) -> Pattern {
     let mut slots = vec![Slot::Free(0); mesh.num_dofs()];
     for (c, &dof) in constrained.iter().enumerate() {
         slots[dof] = Slot::Fixed(c);
@@ -273,9 +365,14 @@ fn build_pattern(mesh: &Mesh, constrained: &[usize], id: usize) -> Pattern {
     }
     let mut offsets = vec![0];
     let mut pairs = Vec::new();
-    for nodes in mesh.elements() {
-        let local: Vec<usize> = (0..DOFS)
-            .filter_map(|i| match slots[2 * nodes[i / 2] + i % 2] {
+    let element_dofs = mesh
+        .elements()
+        .iter()
+        .map(|nodes| (0..DOFS).map(|i| 2 * nodes[i / 2] + i % 2).collect::<Vec<_>>());
+    for dofs in element_dofs.chain(groups.iter().cloned()) {
+        let local: Vec<usize> = dofs
+            .iter()
+            .filter_map(|&dof| match slots[dof] {
                 Slot::Free(f) => Some(f),
                 Slot::Fixed(_) => None,
             })
@@ -285,24 +382,52 @@ fn build_pattern(mesh: &Mesh, constrained: &[usize], id: usize) -> Pattern {
         }
         offsets.push(pairs.len());
     }
-    let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(free.len(), free.len(), &pairs)
+    let (symbolic, _) = SymbolicSparseColMat::try_new_from_indices(free.len(), free.len(), &pairs)
         .expect("pattern indices are in range by construction");
+    let (starts, sources) = gather_lists(&symbolic, &pairs);
     Pattern {
         id,
         constrained: constrained.to_vec(),
+        groups: groups.to_vec(),
         slots,
         free,
         offsets,
         symbolic,
-        argsort,
+        starts,
+        sources,
     }
 }
 
-/// One mutable slice of `values` per element (empty ones when no tangent is assembled).
+/// For every stored entry of `symbolic`, the indices of the `pairs` that land on it (increasing):
+/// a counting sort of the pairs by their position in the CSC arrays.
+fn gather_lists(symbolic: &SymbolicSparseColMat<usize>, pairs: &[Pair<usize, usize>]) -> (Vec<usize>, Vec<u32>) {
+    let (col_ptr, row_idx) = (symbolic.col_ptr(), symbolic.row_idx());
+    let position = |p: &Pair<usize, usize>| {
+        let column = &row_idx[col_ptr[p.col]..col_ptr[p.col + 1]];
+        col_ptr[p.col] + column.binary_search(&p.row).expect("every pair is in the pattern")
+    };
+    let positions: Vec<usize> = pairs.iter().map(position).collect();
+    let mut starts = vec![0; row_idx.len() + 1];
+    for &p in &positions {
+        starts[p + 1] += 1;
+    }
+    for p in 0..row_idx.len() {
+        starts[p + 1] += starts[p];
+    }
+    let mut next = starts.clone();
+    let mut sources = vec![0; pairs.len()];
+    for (source, &p) in positions.iter().enumerate() {
+        sources[next[p]] = u32::try_from(source).expect("fewer than 2^32 element-matrix entries");
+        next[p] += 1;
+    }
+    (starts, sources)
+}
+
+/// One mutable slice of `values` per block (empty ones when no tangent is assembled).
 fn split<'a>(values: &'a mut [f64], offsets: &[usize], with_tangent: bool) -> Vec<&'a mut [f64]> {
-    let elements = offsets.len() - 1;
+    let blocks = offsets.len() - 1;
     if !with_tangent {
-        return (0..elements).map(|_| <&mut [f64]>::default()).collect();
+        return (0..blocks).map(|_| <&mut [f64]>::default()).collect();
     }
     let mut rest = values;
     offsets

@@ -134,7 +134,8 @@ pub struct ElementState {
 }
 
 /// Force and energy of one element at nodal displacements `u`, and its tangent into
-/// `stiffness` when given (overwritten, symmetric). `J <= 0` at a Gauss point is an error.
+/// `stiffness` when given (overwritten, symmetric). Without `stiffness` only `W` and `P` are
+/// differentiated (first-order AD, several times cheaper). `J <= 0` at a Gauss point is an error.
 pub fn evaluate<M: Hyperelastic>(
     geometry: &ElementGeometry,
     material: &M,
@@ -152,16 +153,22 @@ pub fn evaluate<M: Hyperelastic>(
     for g in 0..GAUSS_POINTS {
         let f = geometry.deformation_gradient(g, u);
         state.min_jacobian = state.min_jacobian.min(f[0] * f[3] - f[1] * f[2]);
-        let response = material.response(&f)?;
         let (grads, w) = (&geometry.gradients[g], geometry.weights[g]);
-        state.energy += w * response.energy;
-        let p = response.stress;
+        let p = match stiffness.as_deref_mut() {
+            Some(k) => {
+                let response = material.response(&f)?;
+                add_tangent(k, grads, &response.tangent, w);
+                state.energy += w * response.energy;
+                response.stress
+            }
+            None => {
+                state.energy += w * material.energy(&f)?;
+                material.first_piola(&f)?
+            }
+        };
         for (a, grad) in grads.iter().enumerate() {
             state.force[2 * a] += w * (p[0] * grad[0] + p[1] * grad[1]);
             state.force[2 * a + 1] += w * (p[2] * grad[0] + p[3] * grad[1]);
-        }
-        if let Some(k) = stiffness.as_deref_mut() {
-            add_tangent(k, grads, &response.tangent, w);
         }
     }
     if let Some(k) = stiffness {

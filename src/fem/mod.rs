@@ -1,10 +1,13 @@
 //! Nonlinear plane-strain finite elements of the bilayer: Q2 elements ([`element`]), prescribed
-//! displacements ([`boundary`]), assembly on the free unknowns ([`assembly`]), a sparse
+//! displacements ([`boundary`]), assembly on the free unknowns ([`assembly`]) with energies
+//! added to the elastic one ([`added`]) such as surface contact ([`contact`]), a sparse
 //! `L D L^T` solver with inertia ([`linear_solver`]), Newton's method ([`newton`]) and
 //! element-centre output fields ([`fields`]).
 
+pub mod added;
 pub mod assembly;
 pub mod boundary;
+pub mod contact;
 pub mod element;
 pub mod fields;
 pub mod linear_solver;

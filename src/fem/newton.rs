@@ -5,8 +5,11 @@
 //! `u_f` and `u_c`, halving the step only while it inverts an element; once `u_c` has reached its
 //! values, steps must decrease `|r_f|` by the factor `1 - c alpha` (Armijo on the residual norm).
 //! Convergence: `|r_f| <= rtol |f| + atol`, where `|f|` is the internal force on all unknowns
-//! (reactions included), or an update `|alpha du|_inf <= utol (1 + |u|_inf)`.
+//! (reactions included), or an update `|alpha du|_inf <= utol (1 + |u|_inf)`. Trial points are
+//! assembled without the tangent (first-order AD only); the tangent is assembled at an accepted
+//! point only when another step follows (or its inertia is asked for).
 
+use super::added::{AddedEnergy, NoAddedEnergy};
 use super::assembly::{norm, Assembled, System};
 use super::boundary::Dirichlet;
 use super::linear_solver::{multiply, Factorisation, SparseLdlt};
@@ -145,26 +148,67 @@ impl Newton {
     /// Solves equilibrium with `bc` prescribed, starting from `u` (full vector); on success `u`
     /// holds the solution, on failure it is unchanged.
     pub fn solve(&mut self, system: &mut System, u: &mut [f64], bc: &Dirichlet) -> Result<NewtonReport, NewtonError> {
+        self.solve_with(system, u, bc, &NoAddedEnergy)
+    }
+
+    /// [`Newton::solve`] for the strain energy plus `added` (contact, damping).
+    pub fn solve_with(
+        &mut self,
+        system: &mut System,
+        u: &mut [f64],
+        bc: &Dirichlet,
+        added: &dyn AddedEnergy,
+    ) -> Result<NewtonReport, NewtonError> {
         let start = u.to_vec();
-        let result = self.iterate(system, u, bc);
+        let result = self.iterate(system, u, bc, added);
         if result.is_err() {
             u.copy_from_slice(&start);
         }
         result
     }
 
-    fn iterate(&mut self, system: &mut System, u: &mut [f64], bc: &Dirichlet) -> Result<NewtonReport, NewtonError> {
+    /// Negative eigenvalues of the tangent of the strain energy plus `added` at `u` (with `bc`
+    /// prescribed), factorised with the cached analysis when the pattern is the same.
+    pub fn inertia(
+        &mut self,
+        system: &mut System,
+        u: &[f64],
+        bc: &Dirichlet,
+        added: &dyn AddedEnergy,
+    ) -> Result<Option<usize>, NewtonError> {
+        let free = system.free_dofs(bc)?.to_vec();
+        let mut problem = Problem {
+            system,
+            bc,
+            added,
+            free,
+            timings: Timings::default(),
+        };
+        let assembled = problem.assemble(u, &[], false, true)?;
+        Ok(self.factorize(&assembled, &mut problem.timings).negative_pivots())
+    }
+
+    fn iterate(
+        &mut self,
+        system: &mut System,
+        u: &mut [f64],
+        bc: &Dirichlet,
+        added: &dyn AddedEnergy,
+    ) -> Result<NewtonReport, NewtonError> {
         let s = self.settings;
         let free = system.free_dofs(bc)?.to_vec();
         let mut problem = Problem {
             system,
             bc,
+            added,
             free,
             timings: Timings::default(),
         };
         let pending: Vec<f64> = bc.dofs().iter().zip(bc.values()).map(|(&d, &g)| g - u[d]).collect();
         let lifting = pending.iter().any(|&p| p != 0.0);
-        let assembled = problem.assemble(u, &pending, lifting).map_err(|e| inverted(e, 0))?;
+        let assembled = problem
+            .assemble(u, &pending, lifting, true)
+            .map_err(|e| inverted(e, 0))?;
         let mut state = Iterate {
             assembled,
             pending,
@@ -177,7 +221,7 @@ impl Newton {
             let tolerance = s.residual_tolerance * state.assembled.force_norm() + s.absolute_tolerance;
             let scale = 1.0 + max_abs(u);
             if !state.lifting && (residual <= tolerance || last_update <= s.update_tolerance * scale) {
-                return self.report(problem, state.assembled, iteration, history, backtracks);
+                return self.report(problem, u, state.assembled, iteration, history, backtracks);
             }
             if iteration == s.max_iterations {
                 return Err(NewtonError::NotConverged {
@@ -186,6 +230,9 @@ impl Newton {
                     tolerance,
                     residual_history: history,
                 });
+            }
+            if state.assembled.tangent.is_none() {
+                state.assembled = problem.assemble(u, &state.pending, state.lifting, true)?;
             }
             let du = self.newton_step(&state.assembled, &mut problem.timings)?;
             let (next, next_u, alpha) = self.line_search(&mut problem, u, &state, &du, iteration)?;
@@ -198,16 +245,20 @@ impl Newton {
         unreachable!("the loop returns")
     }
 
-    /// The converged state, with the inertia of its tangent if requested.
+    /// The converged state `u`, with the inertia of its tangent if requested.
     fn report(
         &mut self,
         mut problem: Problem,
-        assembled: Assembled,
+        u: &[f64],
+        mut assembled: Assembled,
         iterations: usize,
         residual_history: Vec<f64>,
         backtracks: usize,
     ) -> Result<NewtonReport, NewtonError> {
         let negative_pivots = if self.settings.inertia_at_solution && !problem.free.is_empty() {
+            if assembled.tangent.is_none() {
+                assembled = problem.assemble(u, &[], false, true)?;
+            }
             self.factorize(&assembled, &mut problem.timings).negative_pivots()
         } else {
             None
@@ -242,7 +293,7 @@ impl Newton {
             let trial_u = problem.step(u, du, &state.pending, alpha);
             let pending: Vec<f64> = state.pending.iter().map(|p| (1.0 - alpha) * p).collect();
             let lifting = state.lifting && alpha < 1.0;
-            let failure = match problem.assemble(&trial_u, &pending, lifting) {
+            let failure = match problem.assemble(&trial_u, &pending, lifting, false) {
                 Ok(assembled)
                     if state.lifting
                         || assembled.residual_norm() <= (1.0 - s.sufficient_decrease * alpha) * residual =>
@@ -295,6 +346,7 @@ impl Newton {
     fn factorize(&mut self, current: &Assembled, timings: &mut Timings) -> &mut SparseLdlt {
         let k = current.tangent.as_ref().expect("assembled with the tangent");
         if self.solver.as_ref().is_none_or(|(id, _)| *id != current.pattern) {
+            self.solver = None; // free the old factor before analysing the new pattern
             let solver = SparseLdlt::new(k.symbolic());
             timings.analysis += solver.symbolic_time();
             self.solver = Some((current.pattern, solver));
@@ -325,14 +377,18 @@ fn max_abs(v: &[f64]) -> f64 {
 struct Problem<'a> {
     system: &'a mut System,
     bc: &'a Dirichlet,
+    added: &'a dyn AddedEnergy,
     free: Vec<usize>,
     timings: Timings,
 }
 
 impl Problem<'_> {
-    /// Residual and tangent at `u`, lifted by `K_fc pending` when `lifting`; timed.
-    fn assemble(&mut self, u: &[f64], pending: &[f64], lifting: bool) -> crate::Result<Assembled> {
-        let assembled = self.system.assemble(u, self.bc, lifting.then_some(pending), true)?;
+    /// Residual (and tangent when `with_tangent`) at `u`, lifted by `K_fc pending` when
+    /// `lifting`; timed.
+    fn assemble(&mut self, u: &[f64], pending: &[f64], lifting: bool, with_tangent: bool) -> crate::Result<Assembled> {
+        let assembled = self
+            .system
+            .assemble_with(u, self.bc, lifting.then_some(pending), with_tangent, self.added)?;
         self.timings.assembly += assembled.elapsed;
         self.timings.assemblies += 1;
         Ok(assembled)

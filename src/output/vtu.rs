@@ -65,9 +65,18 @@ pub fn write_vtu(
 ) -> Result<()> {
     for (arrays, count) in [(point_data, points.len()), (cell_data, cells.len())] {
         for array in arrays {
-            assert_eq!(array.values.len(), array.components * count, "length of `{}`", array.name);
+            assert_eq!(
+                array.values.len(),
+                array.components * count,
+                "length of `{}`",
+                array.name
+            );
             if array.values.iter().any(|v| !v.is_finite()) {
-                return Err(Error::NonFinite(format!("`{}` written to {}", array.name, path.display())));
+                return Err(Error::NonFinite(format!(
+                    "`{}` written to {}",
+                    array.name,
+                    path.display()
+                )));
             }
         }
     }
@@ -85,7 +94,10 @@ fn write_grid(
     cell_data: &[DataArray],
 ) -> std::io::Result<()> {
     writeln!(out, r#"<?xml version="1.0"?>"#)?;
-    writeln!(out, r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian">"#)?;
+    writeln!(
+        out,
+        r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian">"#
+    )?;
     writeln!(out, "<UnstructuredGrid>")?;
     writeln!(
         out,
@@ -155,15 +167,30 @@ impl Collection {
 
     /// Adds `file` (a path in the collection's folder) at time `d` and rewrites the collection.
     pub fn add(&mut self, d: f64, file: &Path) -> Result<()> {
-        let name = file.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
+        let name = file
+            .file_name()
+            .map(|n| n.to_string_lossy().to_string())
+            .unwrap_or_default();
         self.entries.push((d, name));
         let mut text = String::from(r#"<?xml version="1.0"?>"#);
         text.push_str("\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n<Collection>\n");
         for (time, file) in &self.entries {
-            text.push_str(&format!("<DataSet timestep=\"{time}\" group=\"\" part=\"0\" file=\"{file}\"/>\n"));
+            text.push_str(&format!(
+                "<DataSet timestep=\"{time}\" group=\"\" part=\"0\" file=\"{file}\"/>\n"
+            ));
         }
         text.push_str("</Collection>\n</VTKFile>\n");
         std::fs::write(&self.path, text).map_err(|e| Error::io(&self.path, e))
+    }
+
+    /// Number of files listed.
+    pub fn len(&self) -> usize {
+        self.entries.len()
+    }
+
+    /// Whether no file is listed yet.
+    pub fn is_empty(&self) -> bool {
+        self.entries.is_empty()
     }
 
     /// Where the collection is written.

@@ -1,15 +1,16 @@
 //! Displacement control in `d` with adaptive steps and an extrapolating predictor.
 //!
-//! Each step tries `d + h`: the predictor extrapolates the displacement through the last (up to
-//! three) converged states (Lagrange polynomial in `d`; the prescribed unknowns are set exactly;
-//! from a single state, Newton's lifted first step is the tangent predictor), then Newton's
-//! method corrects it. A step that converges in at most `easy_iterations` grows
+//! Each step tries `d + h`: the predictor extrapolates the displacement through the last (up
+//! to four) converged states (cubic Lagrange polynomial in `d`; the prescribed unknowns are set
+//! exactly; from a single state, Newton's lifted first step is the tangent predictor), then
+//! Newton's method corrects it. A step that converges in at most `easy_iterations` grows
 //! `h` by `grow`; a failure (no convergence, line search, `J <= 0` anywhere) discards the trial
 //! and cuts `h` by `cut`. A failure at the minimum step stops the continuation.
 
+use super::augmentation::{Augmentation, AugmentedRecord};
 use super::surface::amplitude;
 use crate::error::{Error, Result};
-use crate::fem::{model_conditions, Newton, NewtonReport, NewtonSettings, System, Timings};
+use crate::fem::{model_conditions, Newton, NewtonReport, System, Timings};
 use serde::Serialize;
 use std::collections::VecDeque;
 use std::time::Instant;
@@ -46,22 +47,30 @@ impl Default for StepControl {
 }
 
 impl StepControl {
-    /// Checks `0 < min <= initial, max` and the factors.
+    /// Checks that the steps lie in `(0, 1)` with `min <= max`, `grow >= 1` and `cut` in `(0, 1)`.
     pub fn validate(&self) -> Result<()> {
-        let positive = |name: &str, v: f64| match v.is_finite() && v > 0.0 && v < 1.0 {
-            true => Ok(()),
-            false => Err(Error::invalid(name, v, "(0, 1)")),
+        let in_unit_interval = |name: &str, v: f64| {
+            if v.is_finite() && v > 0.0 && v < 1.0 {
+                Ok(())
+            } else {
+                Err(Error::invalid(name, v, "(0, 1)"))
+            }
         };
-        positive("max-step", self.max)?;
-        positive("min-step", self.min)?;
-        positive("initial step", self.initial)?;
+        in_unit_interval("max-step", self.max)?;
+        in_unit_interval("min-step", self.min)?;
+        in_unit_interval("initial step", self.initial)?;
+        in_unit_interval("step cut factor", self.cut)?;
         if self.min > self.max {
-            return Err(Error::invalid("min-step", self.min, &format!("(0, max-step = {}]", self.max)));
+            return Err(Error::invalid(
+                "min-step",
+                self.min,
+                &format!("(0, max-step = {}]", self.max),
+            ));
         }
-        if !(self.grow >= 1.0 && self.grow.is_finite()) {
+        if !(self.grow.is_finite() && self.grow >= 1.0) {
             return Err(Error::invalid("step growth factor", self.grow, "[1, inf)"));
         }
-        positive("step cut factor", self.cut)
+        Ok(())
     }
 }
 
@@ -82,11 +91,15 @@ pub struct StepRecord {
     pub relative_residual: f64,
     /// Smallest `J` over all Gauss points.
     pub min_jacobian: f64,
+    /// Negative eigenvalues of the tangent (unstable directions), when Newton reports its inertia.
+    pub negative_pivots: Option<usize>,
     /// Wall time of the step, failed attempts included.
     pub seconds: f64,
     /// Wall times of the accepted attempt's phases.
     #[serde(skip)]
     pub timings: Timings,
+    /// Contact and stabilisation of the step, when the continuation has them.
+    pub augmented: Option<AugmentedRecord>,
 }
 
 impl StepRecord {
@@ -101,8 +114,10 @@ impl StepRecord {
             residual_history: report.residual_history.clone(),
             relative_residual: residual / report.force_norm.max(f64::MIN_POSITIVE),
             min_jacobian: report.min_jacobian,
+            negative_pivots: report.negative_pivots,
             seconds,
             timings: report.timings,
+            augmented: None,
         }
     }
 }
@@ -138,24 +153,38 @@ pub struct Continuation {
     newton: Newton,
     control: StepControl,
     step: f64,
-    /// Up to three converged `(d, u)`, newest last.
+    /// Up to four converged `(d, u)`, newest last.
     history: VecDeque<(f64, Vec<f64>)>,
+    /// Contact and stabilisation, if any.
+    augmentation: Option<Augmentation>,
 }
 
-/// How many converged states the predictor extrapolates through (quadratic).
-const PREDICTOR_POINTS: usize = 3;
+/// How many converged states the predictor extrapolates through (cubic).
+const PREDICTOR_POINTS: usize = 4;
 
 impl Continuation {
-    /// Starts at the converged state `u` at `d`.
-    pub fn new(system: System, settings: NewtonSettings, control: StepControl, d: f64, u: Vec<f64>) -> Result<Self> {
+    /// Starts at the converged state `u` at `d`, solving with `newton` (and its cached factor).
+    pub fn new(system: System, newton: Newton, control: StepControl, d: f64, u: Vec<f64>) -> Result<Self> {
         control.validate()?;
         Ok(Continuation {
             system,
-            newton: Newton::new(settings),
+            newton,
             step: control.initial.min(control.max),
             control,
             history: VecDeque::from([(d, u)]),
+            augmentation: None,
         })
+    }
+
+    /// The same continuation with contact and stabilisation.
+    pub fn with_augmentation(mut self, augmentation: Augmentation) -> Self {
+        self.augmentation = Some(augmentation);
+        self
+    }
+
+    /// Contact and stabilisation, if any.
+    pub fn augmentation(&self) -> Option<&Augmentation> {
+        self.augmentation.as_ref()
     }
 
     /// The current end-shortening.
@@ -179,17 +208,13 @@ impl Continuation {
         let c = self.control;
         let mut started = Instant::now();
         while target - self.d() > 1e-12 {
-            let remaining = target - self.d();
-            let step = if remaining <= self.step * (1.0 + 1e-9) {
-                remaining
-            } else {
-                self.step
-            };
+            let step = self.step.min(target - self.d());
             let d = self.d() + step;
             match self.attempt(d) {
-                Ok((report, u)) => {
+                Ok((report, u, augmented)) => {
                     let a = amplitude(self.system.mesh(), &u);
-                    let record = StepRecord::new(d, step, a, &report, started.elapsed().as_secs_f64());
+                    let mut record = StepRecord::new(d, step, a, &report, started.elapsed().as_secs_f64());
+                    record.augmented = augmented;
                     observer(Event::Step {
                         record: &record,
                         system: &self.system,
@@ -225,7 +250,7 @@ impl Continuation {
 
     /// Predictor and Newton corrector at `d`; the converged displacement, or why it failed.
     /// From a single state, Newton's first (lifted) step is the predictor: the tangent one.
-    fn attempt(&mut self, d: f64) -> Result<(NewtonReport, Vec<f64>)> {
+    fn attempt(&mut self, d: f64) -> Result<(NewtonReport, Vec<f64>, Option<AugmentedRecord>)> {
         let bc = model_conditions(self.system.mesh(), d)?;
         let mut u = self.predict(d);
         if self.history.len() > 1 {
@@ -233,8 +258,14 @@ impl Continuation {
                 u[dof] = value;
             }
         }
+        if let Some(augmentation) = &mut self.augmentation {
+            let (d0, u0) = self.history.back().expect("never empty");
+            let (report, record) =
+                augmentation.solve(&mut self.newton, &mut self.system, &mut u, &bc, (*d0, u0), d)?;
+            return Ok((report, u, Some(record)));
+        }
         let report = self.newton.solve(&mut self.system, &mut u, &bc)?;
-        Ok((report, u))
+        Ok((report, u, None))
     }
 
     /// Lagrange extrapolation through the stored states, evaluated at `d`.

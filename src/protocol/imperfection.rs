@@ -86,7 +86,10 @@ mod tests {
         assert_eq!(mode_number(9.0 * PI / 50.0, 50.0).unwrap(), 9);
         assert_eq!(mode_number(0.5655, 50.0).unwrap(), 9);
         let message = mode_number(0.6, 50.0).unwrap_err().to_string();
-        assert!(message.contains("half wavelengths") && message.contains("m = 9"), "{message}");
+        assert!(
+            message.contains("half wavelengths") && message.contains("m = 9"),
+            "{message}"
+        );
         assert!(mode_number(0.01, 50.0).is_err());
         assert_eq!(wavenumber_of_waves(4.5, 50.0).unwrap(), 9.0 * PI / 50.0);
         assert!(wavenumber_of_waves(4.3, 50.0).is_err());

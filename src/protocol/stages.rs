@@ -3,8 +3,10 @@
 //! nodal displacements of stage 1 are kept, and equilibrium is restored at the same `d`;
 //! (3) displacement control to `d_max` ([`Continuation`]). `A_init = 0` runs the perfect system.
 
+use super::augmentation::Augmentation;
 use super::continuation::{Continuation, Event, StepControl, StepRecord};
 use super::imperfection::{mode_number, Imperfection};
+use super::stabilisation::StabilisationSettings;
 use super::surface::amplitude;
 use crate::error::{Error, Result};
 use crate::fem::{model_conditions, Newton, NewtonSettings, System};
@@ -29,6 +31,13 @@ pub struct Protocol {
     pub control: StepControl,
     /// Newton's method in every stage.
     pub newton: NewtonSettings,
+    /// Contact of the top surface with the symmetry planes and with itself in stage 3.
+    pub contact: bool,
+    /// Viscous stabilisation of stage 3, if any.
+    pub stabilisation: Option<StabilisationSettings>,
+    /// `A_2` of the long-wave imperfection `-A_2 cos(pi X / L)` added in stage 2 (it lowers
+    /// the surface near `X = 0`, deepening the troughs there: a seed for localisation).
+    pub imperfection2: f64,
 }
 
 impl Protocol {
@@ -40,18 +49,34 @@ impl Protocol {
             d_max,
             control: StepControl::default(),
             newton: simulation_newton(),
+            contact: false,
+            stabilisation: None,
+            imperfection2: 0.0,
         }
+    }
+
+    /// The same protocol carried on to a crease: contact and default stabilisation in stage 3.
+    pub fn with_crease_path(mut self) -> Self {
+        self.contact = true;
+        self.stabilisation = Some(StabilisationSettings::default());
+        self
     }
 
     /// Checks `k` against the domain of `spec`, `A_init` in `[0, 1)` and `d_max` in `(0.005, 1)`.
     pub fn validate(&self, spec: &MeshSpec) -> Result<()> {
         mode_number(self.k, spec.length)?;
-        if !(self.imperfection.is_finite() && (0.0..1.0).contains(&self.imperfection)) {
-            return Err(Error::invalid("imperfection", self.imperfection, "[0, 1)"));
+        for (name, value) in [("imperfection", self.imperfection), ("imperfection2", self.imperfection2)] {
+            if !(value.is_finite() && (0.0..1.0).contains(&value)) {
+                return Err(Error::invalid(name, value, "[0, 1)"));
+            }
         }
         validate_compression("d-max", self.d_max)?;
         if self.d_max <= STAGE_ONE_COMPRESSION {
-            return Err(Error::invalid("d-max", self.d_max, "(0.005, 1): beyond stage 1's d = 0.005"));
+            return Err(Error::invalid(
+                "d-max",
+                self.d_max,
+                "(0.005, 1): beyond stage 1's d = 0.005",
+            ));
         }
         self.control.validate()
     }
@@ -86,7 +111,9 @@ pub fn run(
     let d0 = STAGE_ONE_COMPRESSION;
     let mut newton = Newton::new(protocol.newton);
     let start = Instant::now();
-    observer(Event::Stage(&format!("stage 1: homogeneous compression of the perfect bilayer to d = {d0}")))?;
+    observer(Event::Stage(&format!(
+        "stage 1: homogeneous compression of the perfect bilayer to d = {d0}"
+    )))?;
     let perfect = Mesh::new(spec)?;
     let mut system = System::new(perfect.clone(), materials)?;
     let mut u = vec![0.0; perfect.num_dofs()];
@@ -94,17 +121,25 @@ pub fn run(
     let mut report = newton
         .solve(&mut system, &mut u, &bc)
         .map_err(|e| stage_failure(1, e.into()))?;
-    if protocol.imperfection > 0.0 {
+    if protocol.imperfection > 0.0 || protocol.imperfection2 > 0.0 {
         observer(Event::Stage(&format!(
-            "stage 2: imperfection {} cos({:.6} X) of the reference geometry, equilibrium at d = {d0}",
-            protocol.imperfection, protocol.k
+            "stage 2: imperfection {} cos({:.6} X) - {} cos(pi X / L) of the reference geometry, equilibrium at d = {d0}",
+            protocol.imperfection, protocol.k, protocol.imperfection2
         )))?;
         let imperfection = Imperfection {
             amplitude: protocol.imperfection,
             k: protocol.k,
             depth: spec.depth,
         };
-        let mesh = perfect.perturbed(|x| imperfection.displacement(x));
+        let long_wave = Imperfection {
+            amplitude: -protocol.imperfection2,
+            k: std::f64::consts::PI / spec.length,
+            depth: spec.depth,
+        };
+        let mesh = perfect.perturbed(|x| {
+            let ([_, a], [_, b]) = (imperfection.displacement(x), long_wave.displacement(x));
+            [0.0, a + b]
+        });
         system = System::new(mesh, materials)?;
         report = newton
             .solve(&mut system, &mut u, &bc)
@@ -121,7 +156,12 @@ pub fn run(
         "stage 3: displacement control to d = {}",
         protocol.d_max
     )))?;
-    let mut continuation = Continuation::new(system, protocol.newton, protocol.control, d0, u)?;
+    let augmentation = (protocol.contact || protocol.stabilisation.is_some())
+        .then(|| Augmentation::new(&system, materials, protocol.contact, protocol.stabilisation));
+    let mut continuation = Continuation::new(system, newton, protocol.control, d0, u)?;
+    if let Some(augmentation) = augmentation {
+        continuation = continuation.with_augmentation(augmentation);
+    }
     let stopped = continuation.advance_to(protocol.d_max, observer).err();
     Ok(Outcome { continuation, stopped })
 }

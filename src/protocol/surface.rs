@@ -18,6 +18,8 @@ pub fn surface_profile(mesh: &Mesh, u: &[f64]) -> Vec<(f64, f64)> {
 pub fn amplitude(mesh: &Mesh, u: &[f64]) -> f64 {
     let (low, high) = surface_profile(mesh, u)
         .into_iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (_, y)| (lo.min(y), hi.max(y)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (_, y)| {
+            (lo.min(y), hi.max(y))
+        });
     0.5 * (high - low)
 }

@@ -1,9 +1,12 @@
 //! Studies: what each command computes and the files it writes (CSV, JSON, figures). The
 //! command line and `reproduce` call these; they take a progress callback and an output folder.
 
+pub mod bench_fe;
 pub mod bench_stability;
+pub mod bifurcation;
 pub mod homogeneous;
 pub mod reproduce;
+pub mod simulate;
 pub mod stability;
 pub mod stability_figures;
 

@@ -1,0 +1,69 @@
+//! Energies added to the elastic one, each a sum of terms that couple a few unknowns: contact
+//! penalties ([`super::contact`]) and viscous stabilisation ([`crate::protocol::stabilisation`]).
+//!
+//! A term is a *group* of global unknowns with its energy, gradient and (dense) Hessian. The
+//! assembly treats a group like an element: its block enters the sparsity pattern of `K_ff`,
+//! and the pattern is rebuilt (and the factorisation re-analysed) only when the list of groups
+//! changes, e.g. when the contact search finds a new pair.
+
+/// One group's contribution at a displacement: `E`, `dE/du` and `d2E/du2` (row-major, empty
+/// when the tangent is not requested), over the group's unknowns in their listed order.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Block {
+    pub energy: f64,
+    pub gradient: Vec<f64>,
+    pub hessian: Vec<f64>,
+}
+
+/// An energy added to the strain energy.
+pub trait AddedEnergy: Sync {
+    /// The global unknowns of every group (fixed until the owner changes them).
+    fn groups(&self) -> &[Vec<usize>];
+
+    /// Group `g`'s contribution at the full displacement `u` (Hessian only if `with_tangent`).
+    fn block(&self, g: usize, u: &[f64], with_tangent: bool) -> Block;
+}
+
+/// Nothing added: the plain elastic problem.
+pub struct NoAddedEnergy;
+
+impl AddedEnergy for NoAddedEnergy {
+    fn groups(&self) -> &[Vec<usize>] {
+        &[]
+    }
+
+    fn block(&self, g: usize, _: &[f64], _: bool) -> Block {
+        unreachable!("NoAddedEnergy has no group {g}")
+    }
+}
+
+/// The sum of several added energies; its groups are theirs, concatenated in order.
+pub struct Sum<'a> {
+    parts: Vec<&'a dyn AddedEnergy>,
+    groups: Vec<Vec<usize>>,
+    /// Group `g` is group `owner[g].1` of part `owner[g].0`.
+    owner: Vec<(usize, usize)>,
+}
+
+impl<'a> Sum<'a> {
+    pub fn new(parts: Vec<&'a dyn AddedEnergy>) -> Self {
+        let mut groups = Vec::new();
+        let mut owner = Vec::new();
+        for (p, part) in parts.iter().enumerate() {
+            groups.extend(part.groups().iter().cloned());
+            owner.extend((0..part.groups().len()).map(|g| (p, g)));
+        }
+        Sum { parts, groups, owner }
+    }
+}
+
+impl AddedEnergy for Sum<'_> {
+    fn groups(&self) -> &[Vec<usize>] {
+        &self.groups
+    }
+
+    fn block(&self, g: usize, u: &[f64], with_tangent: bool) -> Block {
+        let (part, local) = self.owner[g];
+        self.parts[part].block(local, u, with_tangent)
+    }
+}

@@ -1,0 +1,103 @@
+//! Gap functions and the augmented-Lagrangian contact energy of one pair, written once,
+//! generic over dual numbers, and differentiated by `num_dual::hessian`.
+//!
+//! A pair's normal gap `g` is positive when open and negative when penetrating. With the
+//! multiplier estimate `lambda >= 0` (a nominal pressure: force per reference length), the
+//! penalty `eps` and the slave node's reference tributary length `w`, the pair's energy is
+//! `psi = w / (2 eps) <lambda - eps g>_+^2` (Simo & Laursen 1992, up to a constant); its
+//! contact pressure is `p = <lambda - eps g>_+`, and Uzawa's update is `lambda <- p`.
+
+use super::super::added::Block;
+use nalgebra::SVector;
+use num_dual::{hessian, Dual2SVec64, DualNum};
+
+/// Gap of point `x` to the plane `{n . x = c}` (`n` a unit normal towards the open side).
+pub fn plane_gap<D: DualNum<Primitive = f64> + Copy>(x: [D; 2], normal: [f64; 2], offset: f64) -> D {
+    x[0] * normal[0] + x[1] * normal[1] - offset
+}
+
+/// Signed distance of the slave `s` to the line through the master segment `a -> b`, measured
+/// along the segment's outward normal `perp(b - a) / |b - a|`, `perp(t) = (-t_y, t_x)` (the
+/// surface runs left to right with the body below it, so the normal points out of the body).
+pub fn segment_gap<D: DualNum<Primitive = f64> + Copy>(s: [D; 2], a: [D; 2], b: [D; 2]) -> D {
+    let t = [b[0] - a[0], b[1] - a[1]];
+    let length = (t[0] * t[0] + t[1] * t[1]).sqrt();
+    ((s[1] - a[1]) * t[0] - (s[0] - a[0]) * t[1]) / length
+}
+
+/// Where the slave projects on the master segment: `xi = (s - a).(b - a) / |b - a|^2`.
+pub fn projection(s: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let t = [b[0] - a[0], b[1] - a[1]];
+    ((s[0] - a[0]) * t[0] + (s[1] - a[1]) * t[1]) / (t[0] * t[0] + t[1] * t[1])
+}
+
+/// The pair energy `psi(g) = w / (2 eps) <lambda - eps g>_+^2`.
+pub fn pair_energy<D: DualNum<Primitive = f64> + Copy>(gap: D, multiplier: f64, penalty: f64, weight: f64) -> D {
+    let pressure = -gap * penalty + multiplier;
+    if pressure.re() > 0.0 {
+        pressure * pressure * (0.5 * weight / penalty)
+    } else {
+        D::zero()
+    }
+}
+
+/// Contact pressure `<lambda - eps g>_+`.
+pub fn pressure(gap: f64, multiplier: f64, penalty: f64) -> f64 {
+    (multiplier - penalty * gap).max(0.0)
+}
+
+/// Energy, gradient and Hessian of `energy` of `N` coordinates at `x`, as a [`Block`].
+pub fn differentiate<const N: usize>(
+    energy: impl Fn(&[Dual2SVec64<N>; N]) -> Dual2SVec64<N>,
+    x: [f64; N],
+    with_tangent: bool,
+) -> Block {
+    let (e, g, h) = hessian(
+        |v: SVector<Dual2SVec64<N>, N>| energy(&std::array::from_fn(|i| v[i])),
+        &SVector::from(x),
+    );
+    Block {
+        energy: e,
+        gradient: g.iter().copied().collect(),
+        hessian: if with_tangent {
+            (0..N * N).map(|k| h[(k / N, k % N)]).collect()
+        } else {
+            Vec::new()
+        },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn segment_gap_is_the_signed_distance_to_the_line() {
+        let (a, b) = ([0.0, 0.0], [2.0, 0.0]);
+        assert_eq!(segment_gap([0.5, 0.3], a, b), 0.3);
+        assert_eq!(segment_gap([1.5, -0.2], a, b), -0.2);
+        // A segment running down-right: its outward normal points up-right.
+        let g = segment_gap([1.0, 1.0], [0.0, 0.0], [1.0, -1.0]);
+        assert!((g - 2.0f64.sqrt()).abs() < 1e-15);
+        assert_eq!(projection([0.5, 0.3], a, b), 0.25);
+    }
+
+    #[test]
+    fn pair_energy_gives_the_penalty_force_and_stiffness() {
+        // Slave at gap g = -0.01 against the plane x = 0: force w eps |g| outwards, stiffness w eps.
+        let (eps, w, g) = (100.0, 0.3, -0.01);
+        let block = differentiate(
+            |x| pair_energy(plane_gap([x[0], x[1]], [1.0, 0.0], 0.0), 0.0, eps, w),
+            [g, 0.5],
+            true,
+        );
+        assert!((block.gradient[0] + w * eps * 0.01).abs() < 1e-14);
+        assert_eq!(block.gradient[1], 0.0);
+        assert!((block.hessian[0] - w * eps).abs() < 1e-12);
+        assert!((block.energy - 0.5 * w * eps * g * g).abs() < 1e-15);
+        // Open and without multiplier: nothing.
+        let open = differentiate(|x| pair_energy(x[0], 0.0, eps, w), [0.01], true);
+        assert_eq!((open.energy, open.gradient[0], open.hessian[0]), (0.0, 0.0, 0.0));
+        assert_eq!(pressure(g, 0.5, eps), 1.5);
+    }
+}

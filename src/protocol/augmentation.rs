@@ -1,0 +1,149 @@
+//! What the path to a crease adds to plain equilibrium at every step of displacement control:
+//! contact of the top surface with the symmetry planes and with itself
+//! ([`crate::fem::contact`]), and viscous stabilisation ([`super::stabilisation`]); with what
+//! each accepted step reports about them.
+
+use super::stabilisation::{Stabilisation, StabilisationSettings};
+use crate::error::Result;
+use crate::fem::added::{AddedEnergy, NoAddedEnergy, Sum};
+use crate::fem::contact::{solve_with_contact, Contact, ContactSettings, Plane};
+use crate::fem::{Dirichlet, Newton, NewtonReport, System};
+use crate::material::Bilayer;
+use serde::Serialize;
+
+/// Contact and stabilisation of one continuation (either may be absent).
+#[derive(Clone, Debug)]
+pub struct Augmentation {
+    pub contact: Option<Contact>,
+    pub stabilisation: Option<Stabilisation>,
+}
+
+/// Index of the right symmetry plane among the contact planes.
+const RIGHT_PLANE: usize = 1;
+
+/// What an accepted step reports about contact and stabilisation.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct AugmentedRecord {
+    pub in_contact: bool,
+    /// Deformed length of the closed surface (see [`crate::fem::contact::ContactState`]).
+    pub contact_length: f64,
+    pub contact_zones: usize,
+    /// Largest penetration of the accepted state.
+    pub penetration: f64,
+    /// Newton solves (multiplier updates) of the accepted state.
+    pub augmentations: usize,
+    /// Dissipated over strain energy, accumulated along the path.
+    pub stabilisation_energy_fraction: f64,
+    pub dissipated_energy: f64,
+    pub eta: f64,
+    /// Nominal contact pressure `(node, p)` at every top-surface node.
+    #[serde(skip)]
+    pub pressure: Vec<(usize, f64)>,
+}
+
+impl Augmentation {
+    /// Contact with both symmetry planes and self-contact if `contact` (settings for the mesh
+    /// and the stiffer tissue), and stabilisation if `stabilisation` is given.
+    pub fn new(
+        system: &System,
+        materials: &Bilayer,
+        contact: bool,
+        stabilisation: Option<StabilisationSettings>,
+    ) -> Self {
+        let mesh = system.mesh();
+        let mu = materials.layer.mu.max(materials.substrate.matrix.mu);
+        let planes = vec![Plane::left(0.0), Plane::right(mesh.spec().length)];
+        Augmentation {
+            contact: contact.then(|| Contact::new(mesh, planes, ContactSettings::for_mesh(mesh, mu))),
+            stabilisation: stabilisation.map(|s| Stabilisation::new(system, materials, s)),
+        }
+    }
+
+    /// Equilibrium at `d` (prescribed by `bc`) from the predictor `u`, stepping from the
+    /// converged `(d0, u0)`; redone with a smaller `eta` while the step would exceed the
+    /// dissipation budget. On failure `u` is the predictor again and nothing is booked. The
+    /// inertia, when Newton's settings ask for it, is that of the undamped tangent.
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve(
+        &mut self,
+        newton: &mut Newton,
+        system: &mut System,
+        u: &mut [f64],
+        bc: &Dirichlet,
+        (d0, u0): (f64, &[f64]),
+        d: f64,
+    ) -> Result<(NewtonReport, AugmentedRecord)> {
+        let wants_inertia = newton.settings.inertia_at_solution;
+        newton.settings.inertia_at_solution = false;
+        let result = self.solve_within_budget(newton, system, u, bc, (d0, u0), d, wants_inertia);
+        newton.settings.inertia_at_solution = wants_inertia;
+        result
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn solve_within_budget(
+        &mut self,
+        newton: &mut Newton,
+        system: &mut System,
+        u: &mut [f64],
+        bc: &Dirichlet,
+        (d0, u0): (f64, &[f64]),
+        d: f64,
+        wants_inertia: bool,
+    ) -> Result<(NewtonReport, AugmentedRecord)> {
+        let predictor = u.to_vec();
+        let saved_contact = self.contact.clone();
+        let length = system.mesh().spec().length;
+        loop {
+            let damper = match &self.stabilisation {
+                Some(s) => Some(s.damper(system, d0, u0, d)?),
+                None => None,
+            };
+            let other: &dyn AddedEnergy = match &damper {
+                Some(damper) => damper,
+                None => &NoAddedEnergy,
+            };
+            let (mut report, augmentations) = match &mut self.contact {
+                Some(contact) => {
+                    contact.set_plane(RIGHT_PLANE, Plane::right(length * (1.0 - d)));
+                    let solved = solve_with_contact(newton, system, u, bc, contact, other)?;
+                    let mut report = solved.report;
+                    report.iterations = solved.iterations;
+                    (report, solved.augmentations)
+                }
+                None => (newton.solve_with(system, u, bc, other)?, 1),
+            };
+            let dissipation = damper.as_ref().map_or(0.0, |damper| damper.dissipation(u));
+            let mut record = AugmentedRecord {
+                augmentations,
+                ..AugmentedRecord::default()
+            };
+            if wants_inertia {
+                // The damper's groups with zero damping keep the pattern (and its analysis).
+                let undamped = damper.map(|damper| damper.undamped());
+                let contact: &dyn AddedEnergy = self.contact.as_ref().map_or(&NoAddedEnergy, |c| c);
+                let damping: &dyn AddedEnergy = undamped.as_ref().map_or(&NoAddedEnergy, |d| d);
+                report.negative_pivots = newton.inertia(system, u, bc, &Sum::new(vec![contact, damping]))?;
+            }
+            if let Some(s) = &mut self.stabilisation {
+                let Some(fraction) = s.book(dissipation, report.energy)? else {
+                    u.copy_from_slice(&predictor);
+                    self.contact.clone_from(&saved_contact);
+                    continue;
+                };
+                record.stabilisation_energy_fraction = fraction;
+                record.dissipated_energy = s.dissipated();
+                record.eta = s.eta();
+            }
+            if let Some(contact) = &self.contact {
+                let state = contact.state(u);
+                record.in_contact = state.in_contact;
+                record.contact_length = state.contact_length;
+                record.contact_zones = state.zones;
+                record.penetration = state.penetration;
+                record.pressure = contact.surface().nodes.iter().copied().zip(state.pressure).collect();
+            }
+            return Ok((report, record));
+        }
+    }
+}

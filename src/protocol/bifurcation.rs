@@ -1,0 +1,243 @@
+//! The exact first bifurcation of the discretised perfect system.
+//!
+//! Along the homogeneous path (eq. 4; the Q2 elements represent it exactly, so the displacement
+//! is set analytically and only checked to be in equilibrium) the tangent `K_ff(d)` is positive
+//! definite until its smallest eigenvalue crosses zero. Sylvester's law of inertia makes the
+//! number of negative pivots of `K_ff = L D L^T` the number of negative eigenvalues; a scan in
+//! `d` and a bisection on "any negative pivot" bracket the first crossing. The mode is the
+//! eigenvector of the smallest eigenvalue at the stable end of the bracket, by inverse iteration
+//! with the same factor; its wavenumber is the dominant cosine of its top-surface `u_y`.
+
+use crate::error::{Error, Result};
+use crate::fem::boundary::{dof, X, Y};
+use crate::fem::linear_solver::multiply;
+use crate::fem::{model_conditions, SparseLdlt, System};
+use crate::homogeneous::{homogeneous_state, HomogeneousState};
+use crate::material::Bilayer;
+use crate::mesh::{Mesh, MeshSpec};
+use faer::sparse::SparseColMat;
+use std::f64::consts::PI;
+
+/// Scan, bisection and inverse-iteration limits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BifurcationSettings {
+    /// Spacing of the scan in `d` from 0.
+    pub scan_step: f64,
+    /// Largest `d` scanned.
+    pub d_end: f64,
+    /// Width of the final bracket in `d`.
+    pub tolerance: f64,
+    /// Largest number of inverse iterations.
+    pub inverse_iterations: usize,
+}
+
+impl Default for BifurcationSettings {
+    /// Scan every 0.01 up to 0.9, bracket to 1e-6, at most 50 inverse iterations.
+    fn default() -> Self {
+        BifurcationSettings {
+            scan_step: 0.01,
+            d_end: 0.9,
+            tolerance: 1e-6,
+            inverse_iterations: 50,
+        }
+    }
+}
+
+/// The first singular point of the homogeneous path and its mode.
+#[derive(Clone, Debug)]
+pub struct Bifurcation {
+    /// Midpoint of the final bracket.
+    pub d: f64,
+    /// `(d_stable, d_unstable)`: no negative pivot at the first, some at the second.
+    pub bracket: (f64, f64),
+    /// Negative pivots at `d_unstable`.
+    pub negative_pivots: usize,
+    /// The mode, all unknowns (zero where prescribed), scaled so that the largest top-surface
+    /// `|u_y|` is 1 and `u_y > 0` at the top of `X = 0`.
+    pub mode: Vec<f64>,
+    /// Half wavelengths of the mode across the domain.
+    pub mode_number: usize,
+    /// `m pi / L`.
+    pub k_mode: f64,
+    /// Rayleigh quotient of the mode at `d_stable` (the smallest eigenvalue there).
+    pub eigenvalue: f64,
+    /// Every `(d, negative pivots)` evaluated, in order.
+    pub path: Vec<(f64, usize)>,
+}
+
+/// The homogeneous displacement of `state` on `mesh`: `u_x = -d X`, `u_y = (lambda_2s - 1)(Y + D)`
+/// in the substrate and `(lambda_2s - 1) D + (lambda_2l - 1) Y` in the layer.
+pub fn homogeneous_displacement(mesh: &Mesh, state: &HomogeneousState) -> Vec<f64> {
+    let depth = mesh.spec().depth;
+    let mut u = vec![0.0; mesh.num_dofs()];
+    for (n, &[x, y]) in mesh.coordinates().iter().enumerate() {
+        u[dof(n, X)] = -state.d * x;
+        u[dof(n, Y)] =
+            (state.lambda2_substrate - 1.0) * (y.min(0.0) + depth) + (state.lambda2_layer - 1.0) * y.max(0.0);
+    }
+    u
+}
+
+/// The homogeneous path of one mesh with its (reused) sparse factorisation.
+struct HomogeneousPath<'a> {
+    materials: &'a Bilayer,
+    system: System,
+    solver: Option<SparseLdlt>,
+    path: Vec<(f64, usize)>,
+}
+
+impl HomogeneousPath<'_> {
+    /// Number of negative pivots of `K_ff` at the homogeneous state `d` (its factor is kept).
+    fn negative_pivots(&mut self, d: f64) -> Result<usize> {
+        let (negative, _) = self.factorise(d)?;
+        self.path.push((d, negative));
+        Ok(negative)
+    }
+
+    /// Assembles and factorises `K_ff` at the homogeneous state `d`: negative pivots and `K_ff`.
+    fn factorise(&mut self, d: f64) -> Result<(usize, SparseColMat<usize, f64>)> {
+        let bc = model_conditions(self.system.mesh(), d)?;
+        let u = homogeneous_displacement(self.system.mesh(), &homogeneous_state(self.materials, d)?);
+        let assembled = self.system.assemble(&u, &bc, None, true)?;
+        let relative = assembled.residual_norm() / assembled.force_norm().max(f64::MIN_POSITIVE);
+        if relative > 1e-8 {
+            return Err(Error::Solver(format!(
+                "the homogeneous state at d = {d} is not a discrete equilibrium (relative residual {relative:.2e})"
+            )));
+        }
+        let k = assembled.tangent.expect("assembled with the tangent");
+        let solver = self.solver.get_or_insert_with(|| SparseLdlt::new(k.symbolic()));
+        solver.factorize(k.as_ref());
+        Ok((solver.negative_pivots().expect("just factorised"), k))
+    }
+
+    /// The eigenvector of the smallest eigenvalue of the current factor, by inverse iteration,
+    /// on the free unknowns, with its Rayleigh quotient.
+    fn smallest_mode(&mut self, iterations: usize, k: &SparseColMat<usize, f64>) -> Result<(Vec<f64>, f64)> {
+        let solver = self.solver.as_mut().expect("factorised before");
+        let n = solver.dimension();
+        // A start with a component along every eigenvector (deterministic, no symmetry).
+        let mut x: Vec<f64> = (0..n)
+            .map(|i| ((i as f64 + 1.0) * 0.754_877_666).fract() - 0.5)
+            .collect();
+        let mut rayleigh = f64::INFINITY;
+        for _ in 0..iterations {
+            normalise(&mut x);
+            let mut y = x.clone();
+            solver.solve_in_place(&mut y)?;
+            // y = K^-1 x, so y.K y / y.y = y.x / y.y.
+            let next = dot(&y, &x) / dot(&y, &y);
+            x = y;
+            let converged = (next - rayleigh).abs() <= 1e-12 * next.abs();
+            rayleigh = next;
+            if converged {
+                break;
+            }
+        }
+        normalise(&mut x);
+        let eigenvalue = dot(&x, &multiply(k.as_ref(), &x));
+        Ok((x, eigenvalue))
+    }
+}
+
+/// Finds the first bifurcation of the perfect system of `spec` (module docs).
+pub fn find_bifurcation(materials: &Bilayer, spec: MeshSpec, settings: &BifurcationSettings) -> Result<Bifurcation> {
+    let mut path = HomogeneousPath {
+        materials,
+        system: System::new(Mesh::new(spec)?, materials)?,
+        solver: None,
+        path: Vec::new(),
+    };
+    let mut stable = 0.0;
+    let mut first_unstable = None;
+    let mut d = settings.scan_step;
+    while d <= settings.d_end + 1e-12 {
+        match path.negative_pivots(d)? {
+            0 => stable = d,
+            negative => {
+                first_unstable = Some((d, negative));
+                break;
+            }
+        }
+        d += settings.scan_step;
+    }
+    let (mut unstable, mut negative_pivots) = first_unstable.ok_or_else(|| Error::NoRoot {
+        what: "a negative pivot of the tangent on the homogeneous path".into(),
+        lower: 0.0,
+        upper: settings.d_end,
+    })?;
+    while unstable - stable > settings.tolerance {
+        let middle = 0.5 * (stable + unstable);
+        match path.negative_pivots(middle)? {
+            0 => stable = middle,
+            negative => (unstable, negative_pivots) = (middle, negative),
+        }
+    }
+    let (_, k) = path.factorise(stable)?;
+    let (free_mode, eigenvalue) = path.smallest_mode(settings.inverse_iterations, &k)?;
+    let free = path
+        .system
+        .free_dofs(&model_conditions(path.system.mesh(), stable)?)?
+        .to_vec();
+    let mut mode = vec![0.0; path.system.num_dofs()];
+    for (&dof, &v) in free.iter().zip(&free_mode) {
+        mode[dof] = v;
+    }
+    let mesh = path.system.mesh();
+    scale_to_surface(mesh, &mut mode);
+    let m = dominant_cosine(&top_uy(mesh, &mode), spec.length, mesh);
+    Ok(Bifurcation {
+        d: 0.5 * (stable + unstable),
+        bracket: (stable, unstable),
+        negative_pivots,
+        mode,
+        mode_number: m,
+        k_mode: m as f64 * PI / spec.length,
+        eigenvalue,
+        path: path.path,
+    })
+}
+
+/// `u_y` of the top-surface nodes, sorted by `X`.
+fn top_uy(mesh: &Mesh, u: &[f64]) -> Vec<f64> {
+    mesh.top().into_iter().map(|n| u[dof(n, Y)]).collect()
+}
+
+/// Scales `u` so that the largest top-surface `|u_y|` is 1 with `u_y > 0` at `X = 0`.
+fn scale_to_surface(mesh: &Mesh, u: &mut [f64]) {
+    let top = top_uy(mesh, u);
+    let largest = top.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let sign = if top[0] < 0.0 { -1.0 } else { 1.0 };
+    if largest > 0.0 {
+        u.iter_mut().for_each(|v| *v *= sign / largest);
+    }
+}
+
+/// The `m >= 1` maximising `|sum_i w_i v_i cos(m pi X_i / L)|` (trapezoidal weights) over the
+/// top-surface nodes.
+fn dominant_cosine(values: &[f64], length: f64, mesh: &Mesh) -> usize {
+    let xs: Vec<f64> = mesh.top().into_iter().map(|n| mesh.coordinates()[n][0]).collect();
+    let last = xs.len() - 1;
+    let coefficient = |m: usize| -> f64 {
+        let k = m as f64 * PI / length;
+        (0..=last)
+            .map(|i| {
+                let weight = if i == 0 || i == last { 0.5 } else { 1.0 };
+                weight * values[i] * (k * xs[i]).cos()
+            })
+            .sum::<f64>()
+            .abs()
+    };
+    (1..=last)
+        .max_by(|&a, &b| coefficient(a).total_cmp(&coefficient(b)))
+        .unwrap_or(1)
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+fn normalise(x: &mut [f64]) {
+    let norm = dot(x, x).sqrt();
+    x.iter_mut().for_each(|v| *v /= norm);
+}

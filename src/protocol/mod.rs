@@ -1,0 +1,23 @@
+//! Loading protocols of the finite-element model and what is read off them: the paper's three
+//! stages ([`stages`]) with adaptive displacement control ([`continuation`]), the seeded
+//! imperfection and admissible wavenumbers ([`imperfection`]), the top surface and its
+//! amplitude ([`surface`]), onset estimates from `A(d)` ([`onset`]), and the exact bifurcation
+//! of the discretised perfect system from the inertia of its tangent ([`bifurcation`]).
+
+pub mod augmentation;
+pub mod bifurcation;
+pub mod continuation;
+pub mod imperfection;
+pub mod onset;
+pub mod stabilisation;
+pub mod stages;
+pub mod surface;
+
+pub use augmentation::{Augmentation, AugmentedRecord};
+pub use bifurcation::{find_bifurcation, Bifurcation, BifurcationSettings};
+pub use continuation::{Continuation, Cut, Event, StepControl, StepRecord};
+pub use imperfection::{mode_number, wavenumber_of_waves, Imperfection};
+pub use onset::OnsetEstimates;
+pub use stabilisation::{Stabilisation, StabilisationSettings};
+pub use stages::{Outcome, Protocol, STAGE_ONE_COMPRESSION};
+pub use surface::{amplitude, surface_profile};

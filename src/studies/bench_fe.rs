@@ -1,0 +1,170 @@
+//! Benchmark of the finite-element solver: the whole `beta = pi/4`, `N = 4.5` curve to
+//! `d = 0.25` (the paper's protocol, a state at least every 0.005 in `d`, no files written) on
+//! each mesh, with the per-iteration split of assembly / factorisation / solve, Newton
+//! iterations per step and the peak resident memory.
+
+use super::simulate::{curve, Monitor, PhaseTotals};
+use crate::error::{Error, Result};
+use crate::mesh::MeshSpec;
+use crate::parameters::Parameters;
+use crate::protocol::{wavenumber_of_waves, Protocol};
+use serde::Serialize;
+use std::f64::consts::FRAC_PI_4;
+use std::fmt;
+
+/// The benchmark curve: parameters, seeded waves and final compression.
+#[derive(Clone, Debug)]
+pub struct FeBenchSetup {
+    pub params: Parameters,
+    pub waves: f64,
+    pub d_max: f64,
+}
+
+impl Default for FeBenchSetup {
+    /// Table 1 with `beta = pi/4`, `N = 4.5`, `d_max = 0.25`.
+    fn default() -> Self {
+        FeBenchSetup {
+            params: Parameters {
+                beta: FRAC_PI_4,
+                ..Parameters::default()
+            },
+            waves: 4.5,
+            d_max: 0.25,
+        }
+    }
+}
+
+/// The meshes benchmarked: coarse and fine, and extra when asked for.
+pub fn default_meshes(with_extra: bool) -> Vec<(&'static str, MeshSpec)> {
+    let mut meshes = vec![("coarse", MeshSpec::coarse()), ("fine", MeshSpec::fine())];
+    if with_extra {
+        meshes.push(("extra", MeshSpec::extra()));
+    }
+    meshes
+}
+
+/// One mesh's measurements.
+#[derive(Clone, Debug, Serialize)]
+pub struct FeBenchRow {
+    pub mesh: String,
+    pub unknowns: usize,
+    pub d_reached: f64,
+    pub completed: bool,
+    pub steps: usize,
+    pub cuts: usize,
+    pub newton_iterations: usize,
+    pub max_iterations_per_step: usize,
+    /// Largest gap in `d` between consecutive converged states.
+    pub largest_gap: f64,
+    /// Wall time per Newton iteration of each phase (ms).
+    pub assembly_ms: f64,
+    pub factorisation_ms: f64,
+    pub solve_ms: f64,
+    pub symbolic_analysis_seconds: f64,
+    pub curve_seconds: f64,
+    /// `VmHWM` after the run: the process's peak so far, so meshes run in increasing size.
+    pub peak_memory_mb: Option<f64>,
+}
+
+/// The benchmark table.
+#[derive(Clone, Debug, Serialize)]
+pub struct FeBench {
+    pub rows: Vec<FeBenchRow>,
+}
+
+/// Runs the benchmark curve on each mesh in turn (smallest first for the memory column).
+/// `monitor` sees every step of every run.
+pub fn run(setup: &FeBenchSetup, meshes: &[(&str, MeshSpec)], monitor: Monitor) -> Result<FeBench> {
+    let mut rows = Vec::new();
+    for &(name, spec) in meshes {
+        let k = wavenumber_of_waves(setup.waves, spec.length)?;
+        let protocol = Protocol::new(k, 0.05, setup.d_max);
+        let result = curve(&setup.params, spec, &protocol, monitor)?;
+        let totals = PhaseTotals::of(&result.records);
+        // Per Newton iteration: each phase's total (predictor assemblies and trial points
+        // included) divided by the number of iterations.
+        let per = |seconds: f64| 1e3 * seconds / totals.newton_iterations.max(1) as f64;
+        let d: Vec<f64> = result.records.iter().map(|r| r.d).collect();
+        rows.push(FeBenchRow {
+            mesh: name.to_string(),
+            unknowns: spec.num_dofs(),
+            d_reached: d.last().copied().unwrap_or(0.0),
+            completed: result.stopped.is_none(),
+            steps: result.records.len(),
+            cuts: result.cuts.len(),
+            newton_iterations: totals.newton_iterations,
+            max_iterations_per_step: result.records.iter().map(|r| r.iterations).max().unwrap_or(0),
+            largest_gap: d.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max),
+            assembly_ms: per(totals.assembly_seconds),
+            factorisation_ms: per(totals.factorisation_seconds),
+            solve_ms: per(totals.solve_seconds),
+            symbolic_analysis_seconds: totals.analysis_seconds,
+            curve_seconds: result.seconds,
+            peak_memory_mb: peak_memory_mb(),
+        });
+    }
+    Ok(FeBench { rows })
+}
+
+/// `VmHWM` of `/proc/self/status` in MB (None where unavailable).
+pub fn peak_memory_mb() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb / 1024.0)
+}
+
+impl fmt::Display for FeBench {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "{:<8} {:>8} {:>7} {:>6} {:>5} {:>6} {:>7} {:>7} {:>9} {:>9} {:>8} {:>9} {:>8}",
+            "mesh",
+            "unknowns",
+            "d",
+            "steps",
+            "cuts",
+            "iters",
+            "it/step",
+            "gap",
+            "asm ms",
+            "ldlt ms",
+            "solve ms",
+            "curve s",
+            "peak MB"
+        )?;
+        for r in &self.rows {
+            writeln!(
+                f,
+                "{:<8} {:>8} {:>7.4} {:>6} {:>5} {:>6} {:>7.2} {:>7.4} {:>9.1} {:>9.1} {:>8.1} {:>9.2} {:>8}",
+                r.mesh,
+                r.unknowns,
+                r.d_reached,
+                r.steps,
+                r.cuts,
+                r.newton_iterations,
+                r.newton_iterations as f64 / r.steps.max(1) as f64,
+                r.largest_gap,
+                r.assembly_ms,
+                r.factorisation_ms,
+                r.solve_ms,
+                r.curve_seconds,
+                r.peak_memory_mb.map_or("n/a".into(), |m| format!("{m:.0}")),
+            )?;
+        }
+        Ok(())
+    }
+}
+
+impl FeBench {
+    /// An error naming the first mesh whose curve stopped before `d_max`.
+    pub fn check_completed(&self) -> Result<()> {
+        match self.rows.iter().find(|r| !r.completed) {
+            Some(r) => Err(Error::Solver(format!(
+                "benchmark curve on the {} mesh stopped at d = {}",
+                r.mesh, r.d_reached
+            ))),
+            None => Ok(()),
+        }
+    }
+}

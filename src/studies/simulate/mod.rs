@@ -1,0 +1,360 @@
+//! `simulate`: the paper's loading protocol (section 2.1) on one mesh. Writes, into the output
+//! folder, `amplitude.csv` (a row per converged state, flushed at once), VTU snapshots with
+//! `simulate.pvd`, `surface.csv` (final top surface), `onset.json`, Fig. 3 and `simulate.json`.
+//! A run that stops early keeps all of this for the path so far and then returns the error.
+
+mod fig3;
+mod fig4a;
+mod state_vtu;
+
+pub use fig3::fig3;
+pub use fig4a::{fig4a, Fig4aOptions, Fig4aRow};
+pub use state_vtu::write_state;
+
+use crate::error::{Error, Result};
+use crate::fem::System;
+use crate::material::Bilayer;
+use crate::mesh::MeshSpec;
+use crate::output::vtu::Collection;
+use crate::output::{write_json, CsvWriter};
+use crate::parameters::Parameters;
+use crate::protocol::onset::A2_FIT_WINDOW;
+use crate::protocol::{stages, surface_profile, Cut, Event, OnsetEstimates, Protocol, StepRecord};
+use crate::stability::{Method, StabilityAnalysis};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Columns of `amplitude.csv`.
+pub const AMPLITUDE_HEADER: [&str; 6] = ["d", "A", "newton_iterations", "residual", "min_J", "step_seconds"];
+
+/// What the study reports while it runs.
+pub enum Progress<'a> {
+    /// A stage starts.
+    Stage(&'a str),
+    /// A converged state.
+    Step(&'a StepRecord),
+    /// A failed attempt; the step is cut.
+    Cut(&'a Cut),
+}
+
+/// Receives [`Progress`] (prints, drives a progress bar, or ignores it).
+pub type Monitor<'a> = &'a (dyn Fn(Progress<'_>) + Sync);
+
+/// One simulation: mesh, protocol and how often to write a VTU snapshot.
+#[derive(Clone, Copy, Debug)]
+pub struct SimulateStudy {
+    pub mesh: MeshSpec,
+    pub protocol: Protocol,
+    /// Spacing in `d` of the VTU snapshots (the first and the last state are always written).
+    pub vtu_every: f64,
+}
+
+impl SimulateStudy {
+    /// `protocol` on `mesh`, a VTU snapshot every 0.01 in `d`.
+    pub fn new(mesh: MeshSpec, protocol: Protocol) -> Self {
+        SimulateStudy {
+            mesh,
+            protocol,
+            vtu_every: 0.01,
+        }
+    }
+
+    pub fn validate(&self) -> Result<()> {
+        self.mesh.validate()?;
+        self.protocol.validate(&self.mesh)?;
+        if !(self.vtu_every.is_finite() && self.vtu_every > 0.0) {
+            return Err(Error::invalid("vtu-every", self.vtu_every, "(0, inf)"));
+        }
+        Ok(())
+    }
+}
+
+/// The converged states of a protocol run, with what stopped it (if anything).
+pub struct Curve {
+    pub records: Vec<StepRecord>,
+    pub cuts: Vec<Cut>,
+    pub stopped: Option<Error>,
+    pub seconds: f64,
+}
+
+impl Curve {
+    /// `(d_i, A_i)` of the converged states.
+    pub fn points(&self) -> (Vec<f64>, Vec<f64>) {
+        self.records.iter().map(|r| (r.d, r.amplitude)).unzip()
+    }
+}
+
+/// Keeps the converged states and cuts of a run and passes every event on to a monitor.
+struct Recorder<'m> {
+    monitor: Monitor<'m>,
+    records: Vec<StepRecord>,
+    cuts: Vec<Cut>,
+    start: Instant,
+}
+
+impl<'m> Recorder<'m> {
+    fn new(monitor: Monitor<'m>) -> Self {
+        Recorder {
+            monitor,
+            records: Vec::new(),
+            cuts: Vec::new(),
+            start: Instant::now(),
+        }
+    }
+
+    fn note(&mut self, event: &Event<'_>) {
+        match event {
+            Event::Stage(text) => (self.monitor)(Progress::Stage(text)),
+            Event::Step { record, .. } => {
+                (self.monitor)(Progress::Step(record));
+                self.records.push((*record).clone());
+            }
+            Event::Cut(cut) => {
+                (self.monitor)(Progress::Cut(cut));
+                self.cuts.push((*cut).clone());
+            }
+        }
+    }
+
+    fn into_curve(self, stopped: Option<Error>) -> Curve {
+        Curve {
+            records: self.records,
+            cuts: self.cuts,
+            stopped,
+            seconds: self.start.elapsed().as_secs_f64(),
+        }
+    }
+}
+
+/// Runs the protocol without writing files; stage 1-2 failures are errors, a stop in stage 3 is
+/// kept in [`Curve::stopped`].
+pub fn curve(params: &Parameters, spec: MeshSpec, protocol: &Protocol, monitor: Monitor) -> Result<Curve> {
+    let mut recorder = Recorder::new(monitor);
+    let outcome = stages::run(&Bilayer::new(params), spec, protocol, &mut |event| {
+        recorder.note(&event);
+        Ok(())
+    })?;
+    Ok(recorder.into_curve(outcome.stopped))
+}
+
+/// `onset.json`: the three estimates beside the linear theory.
+#[derive(Clone, Debug, Serialize)]
+pub struct OnsetReport {
+    pub k: f64,
+    pub waves: f64,
+    #[serde(flatten)]
+    pub estimates: OnsetEstimates,
+    pub d_linear_theory: f64,
+    pub a2_fit_window: f64,
+    pub note: &'static str,
+}
+
+const ONSET_NOTE: &str = "d_max_curvature is the first peak (largest within +-0.01 in d) of \
+    kappa = A''/(1 + A'^2)^(3/2), the paper's rule; kappa, and so this estimate, depends on the relative scaling \
+    of A (in units of H) and d, and on the imperfection. d_steepest is the first peak of A'. d_a2_fit is where a \
+    straight line fitted to A^2 against d over [d_steepest, d_steepest + a2_fit_window] crosses zero. \
+    d_linear_theory is the exact linear theory's d_c(k) for the seeded k.";
+
+impl OnsetReport {
+    /// The estimates of `curve` and the linear theory's `d_c(k)`.
+    pub fn new(params: &Parameters, k: f64, length: f64, curve: &Curve) -> Result<Self> {
+        let (d, a) = curve.points();
+        Ok(OnsetReport {
+            k,
+            waves: k * length / (2.0 * std::f64::consts::PI),
+            estimates: OnsetEstimates::from_curve(&d, &a),
+            d_linear_theory: StabilityAnalysis::new(params, Method::Exact)?.critical_compression(k)?,
+            a2_fit_window: A2_FIT_WINDOW,
+            note: ONSET_NOTE,
+        })
+    }
+}
+
+/// Summed wall times and counts of the Newton phases over the accepted steps.
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct PhaseTotals {
+    pub assembly_seconds: f64,
+    pub analysis_seconds: f64,
+    pub factorisation_seconds: f64,
+    pub solve_seconds: f64,
+    pub assemblies: usize,
+    pub factorisations: usize,
+    pub solves: usize,
+    pub newton_iterations: usize,
+}
+
+impl PhaseTotals {
+    pub fn of(records: &[StepRecord]) -> Self {
+        records.iter().fold(PhaseTotals::default(), |t, r| PhaseTotals {
+            assembly_seconds: t.assembly_seconds + r.timings.assembly.as_secs_f64(),
+            analysis_seconds: t.analysis_seconds + r.timings.analysis.as_secs_f64(),
+            factorisation_seconds: t.factorisation_seconds + r.timings.factorisation.as_secs_f64(),
+            solve_seconds: t.solve_seconds + r.timings.solve.as_secs_f64(),
+            assemblies: t.assemblies + r.timings.assemblies,
+            factorisations: t.factorisations + r.timings.factorisations,
+            solves: t.solves + r.timings.solves,
+            newton_iterations: t.newton_iterations + r.iterations,
+        })
+    }
+}
+
+/// `simulate.json`.
+#[derive(Debug, Serialize)]
+pub struct SimulationSummary {
+    pub command: &'static str,
+    pub parameters: Parameters,
+    pub mesh: MeshSummary,
+    pub k: f64,
+    pub imperfection: f64,
+    pub d_max: f64,
+    pub d_reached: f64,
+    pub completed: bool,
+    pub stopped: Option<String>,
+    pub accepted_steps: usize,
+    pub cuts: usize,
+    pub totals: PhaseTotals,
+    pub wall_seconds: f64,
+    pub onset: OnsetReport,
+    pub files: Vec<String>,
+}
+
+/// The mesh of a run as written to JSON.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct MeshSummary {
+    pub nx: usize,
+    pub layer_elements: usize,
+    pub substrate_elements: usize,
+    pub top_substrate_thickness: f64,
+    pub length: f64,
+    pub depth: f64,
+    pub unknowns: usize,
+}
+
+impl From<&MeshSpec> for MeshSummary {
+    fn from(s: &MeshSpec) -> Self {
+        MeshSummary {
+            nx: s.nx,
+            layer_elements: s.layer_elements,
+            substrate_elements: s.substrate_elements,
+            top_substrate_thickness: s.top_substrate_thickness,
+            length: s.length,
+            depth: s.depth,
+            unknowns: s.num_dofs(),
+        }
+    }
+}
+
+/// Runs the study and writes its files (module docs); a stop in stage 3 is returned as an error
+/// after everything computed so far has been written.
+pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Monitor) -> Result<SimulationSummary> {
+    params.validate()?;
+    study.validate()?;
+    crate::output::ensure_dir(out)?;
+    let start = Instant::now();
+    let materials = Bilayer::new(params);
+    let mut table = CsvWriter::create(&out.join("amplitude.csv"), &AMPLITUDE_HEADER)?;
+    let mut snapshots = Snapshots::new(out, study.vtu_every);
+    let mut recorder = Recorder::new(monitor);
+    let outcome = stages::run(&materials, study.mesh, &study.protocol, &mut |event| {
+        if let Event::Step { record, system, u } = &event {
+            table.append(&[
+                record.d,
+                record.amplitude,
+                record.iterations as f64,
+                *record.residual_history.last().expect("non-empty"),
+                record.min_jacobian,
+                record.seconds,
+            ])?;
+            snapshots.maybe_write(record.d, system, &materials, u)?;
+        }
+        recorder.note(&event);
+        Ok(())
+    })?;
+    let continuation = &outcome.continuation;
+    let (system, u, d_reached) = (continuation.system(), continuation.displacement(), continuation.d());
+    snapshots.write_final(d_reached, system, &materials, u)?;
+    let mut surface = CsvWriter::create(&out.join("surface.csv"), &["x", "y"])?;
+    for (x, y) in surface_profile(system.mesh(), u) {
+        surface.append(&[x, y])?;
+    }
+    let curve = recorder.into_curve(outcome.stopped);
+    let onset = OnsetReport::new(params, study.protocol.k, study.mesh.length, &curve)?;
+    write_json(&out.join("onset.json"), &onset)?;
+    let mut files: Vec<PathBuf> = ["amplitude.csv", "surface.csv", "onset.json", "simulate.pvd"]
+        .iter()
+        .map(|f| out.join(f))
+        .collect();
+    files.extend(fig3(&curve, &onset).save(out, "fig3")?);
+    let summary = SimulationSummary {
+        command: "simulate",
+        parameters: params.clone(),
+        mesh: MeshSummary::from(&study.mesh),
+        k: study.protocol.k,
+        imperfection: study.protocol.imperfection,
+        d_max: study.protocol.d_max,
+        d_reached,
+        completed: curve.stopped.is_none(),
+        stopped: curve.stopped.as_ref().map(|e| e.to_string()),
+        accepted_steps: curve.records.len(),
+        cuts: curve.cuts.len(),
+        totals: PhaseTotals::of(&curve.records),
+        wall_seconds: start.elapsed().as_secs_f64(),
+        onset,
+        files: files.iter().map(|f| f.display().to_string()).collect(),
+    };
+    write_json(&out.join("simulate.json"), &summary)?;
+    match curve.stopped {
+        Some(e) => Err(Error::Solver(format!(
+            "{e}; the path up to d = {d_reached:.6} is in {}",
+            out.display()
+        ))),
+        None => Ok(summary),
+    }
+}
+
+/// VTU snapshots every `every` in `d`, collected in `simulate.pvd`.
+struct Snapshots {
+    dir: PathBuf,
+    every: f64,
+    collection: Collection,
+    next_mark: f64,
+    last_written: Option<f64>,
+}
+
+impl Snapshots {
+    fn new(dir: &Path, every: f64) -> Self {
+        Snapshots {
+            dir: dir.to_path_buf(),
+            every,
+            collection: Collection::new(&dir.join("simulate.pvd")),
+            next_mark: 0.0,
+            last_written: None,
+        }
+    }
+
+    /// Writes the state when `d` has reached the next mark of `every` (and the first state).
+    fn maybe_write(&mut self, d: f64, system: &System, materials: &Bilayer, u: &[f64]) -> Result<()> {
+        if self.collection.is_empty() || d >= self.next_mark - 1e-9 {
+            self.write(d, system, materials, u)?;
+            self.next_mark = ((d / self.every + 1e-9).floor() + 1.0) * self.every;
+        }
+        Ok(())
+    }
+
+    /// Writes the final state unless it was just written.
+    fn write_final(&mut self, d: f64, system: &System, materials: &Bilayer, u: &[f64]) -> Result<()> {
+        match self.last_written {
+            Some(last) if last == d => Ok(()),
+            _ => self.write(d, system, materials, u),
+        }
+    }
+
+    fn write(&mut self, d: f64, system: &System, materials: &Bilayer, u: &[f64]) -> Result<()> {
+        let path = self.dir.join(format!("simulate_{:04}.vtu", self.collection.len()));
+        write_state(&path, system, materials, u, Vec::new())?;
+        self.collection.add(d, &path)?;
+        self.last_written = Some(d);
+        Ok(())
+    }
+}
