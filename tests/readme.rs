@@ -39,6 +39,7 @@ fn run(command: &str, extra: &[(&str, &str)]) -> (PathBuf, String) {
         match args.iter().position(|a| a == flag) {
             Some(i) => args[i + 1] = value.to_string(),
             None if *flag == "--out" => {}
+            None if value.is_empty() => args.push(flag.to_string()),
             None => args.extend([flag.to_string(), value.to_string()]),
         }
     }
@@ -107,15 +108,35 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                 };
                 assert!(d_at_zero("mu_f=50") < d_at_zero("mu_f=1"));
             }
-            "bench" => {
+            "bench" if command.ends_with("stability") => {
                 let (_, stdout) = run(command, &[]);
                 assert!(stdout.contains("Fig. 4b sweep"));
+            }
+            "bench" => {
+                let (_, stdout) = run(command, &[("--coarse-only", "")]);
+                assert!(stdout.contains("coarse") && stdout.contains("22110"), "{stdout}");
+            }
+            "simulate" => {
+                // The steepest point of A(d) against the linear theory's d_c(k) (a second,
+                // independent method), on the coarse mesh.
+                let (dir, _) = run(command, &[("--mesh", "coarse"), ("--d-max", "0.2")]);
+                let onset = json(dir.join("onset.json"));
+                let (fe, theory) = (onset["d_steepest"].as_f64().unwrap(), onset["d_linear_theory"].as_f64().unwrap());
+                assert!((fe / theory - 1.0).abs() < 0.02, "FE {fe} vs theory {theory}");
+                assert!(dir.join("amplitude.csv").exists() && dir.join("simulate.pvd").exists());
+            }
+            "bifurcation" => {
+                // The inertia of the FE tangent against the linear theory over admissible k.
+                let (dir, _) = run(command, &[("--mesh", "coarse")]);
+                let report = json(dir.join("bifurcation.json"));
+                let (fe, theory) = (report["d_bifurcation"].as_f64().unwrap(), report["d_linear_theory_min"].as_f64().unwrap());
+                assert!((fe / theory - 1.0).abs() < 1e-3, "FE {fe} vs theory {theory}");
             }
             "reproduce" => {
                 // The report carries the paper's fibre-free check k0 = 0.5515 beside ours.
                 let (dir, _) = run(command, &[("--only", "fig4b")]);
                 let report = std::fs::read_to_string(dir.join("report.md")).unwrap();
-                assert!(report.contains("| 0.5515 | 0.5515 |"), "{report}");
+                assert!(report.contains("| 0.5515 | 0.551513 |"), "{report}");
                 assert!(dir.join("report.html").exists() && dir.join("fig4b.png").exists());
             }
             other => panic!("README shows `{command}` but no test runs `{other}`"),

@@ -2,12 +2,16 @@
 
 use super::common::ParamArgs;
 use clap::{Args, ValueEnum};
+use fiberfold::studies::bench_fe::{self, default_meshes, FeBenchSetup};
 use fiberfold::Result;
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum BenchTarget {
     /// Linear stability: one d_c(k), one onset, the Fig. 4b sweep.
     Stability,
+    /// Finite elements: the beta = pi/4, N = 4.5 curve to d = 0.25 on coarse and fine meshes,
+    /// split per Newton iteration into assembly / factorisation / solve, with peak memory.
+    Fe,
 }
 
 #[derive(Args)]
@@ -17,6 +21,12 @@ pub struct BenchArgs {
     pub target: BenchTarget,
     #[command(flatten)]
     pub params: ParamArgs,
+    /// fe: also the extra mesh (315,594 unknowns, about 2 minutes and 1.1 GB).
+    #[arg(long)]
+    pub extra: bool,
+    /// fe: only the coarse mesh (seconds).
+    #[arg(long, conflicts_with = "extra")]
+    pub coarse_only: bool,
 }
 
 pub fn run(args: &BenchArgs) -> Result<()> {
@@ -25,6 +35,24 @@ pub fn run(args: &BenchArgs) -> Result<()> {
         BenchTarget::Stability => {
             println!("timing the linear stability analysis (medians of repeated runs)...");
             print!("{}", fiberfold::studies::bench_stability::run(&params)?);
+        }
+        BenchTarget::Fe => {
+            let mut meshes = default_meshes(args.extra);
+            if args.coarse_only {
+                meshes.truncate(1);
+            }
+            // The curve is at beta = pi/4; explicit --params/--set replace it.
+            let user_params = args.params.params.is_some() || !args.params.set.is_empty();
+            let setup = if user_params { FeBenchSetup { params, ..FeBenchSetup::default() } } else { FeBenchSetup::default() };
+            println!(
+                "timing the FE curve (beta = {:.6}, N = {}, to d = {}) on {} mesh(es)...",
+                setup.params.beta,
+                setup.waves,
+                setup.d_max,
+                meshes.len()
+            );
+            let bench = bench_fe::run(&setup, &meshes, &|_| {})?;
+            print!("{bench}");
         }
     }
     Ok(())

@@ -6,7 +6,7 @@
 use super::{curve, OnsetReport, Progress};
 use crate::error::Result;
 use crate::mesh::MeshSpec;
-use crate::output::{write_json, Figure, LineStyle, Series};
+use crate::output::{write_json, Figure, Legend, LineStyle, Series};
 use crate::parameters::Parameters;
 use crate::protocol::{wavenumber_of_waves, OnsetEstimates, Protocol};
 use crate::stability::{Method, StabilityAnalysis};
@@ -110,7 +110,8 @@ fn figure(params: &Parameters, options: &Fig4aOptions, rows: &[Fig4aRow]) -> Res
         "Fig. 4a: critical compression against wavenumber",
         "wavenumber k",
         "d_c",
-    );
+    )
+    .with_legend(Legend::LowerRight);
     for (colour, &beta) in options.betas.iter().enumerate() {
         let analysis = StabilityAnalysis::new(&Parameters { beta, ..params.clone() }, Method::Exact)?;
         let theory = linspace(0.3, 1.0, 71)
