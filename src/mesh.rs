@@ -1,7 +1,8 @@
 //! Structured meshes of the bilayer: 9-node biquadratic (Q2) quadrilaterals over the reference
 //! domain `0 <= X <= L`, `-D <= Y <= 1` (NOTES.md, "The finite-element set-up"). Elements are
-//! uniform in X and through the layer `0 <= Y <= 1`; in the substrate they grow geometrically
-//! from `h0` at the interface, `h_k = h0 r^k`, with `r` chosen so that `sum_k h_k = D` exactly.
+//! uniform in X (or refined near chosen points, [`XRefinement`]) and through the layer
+//! `0 <= Y <= 1`; in the substrate they grow geometrically from `h0` at the interface,
+//! `h_k = h0 r^k`, with `r` chosen so that `sum_k h_k = D` exactly.
 //!
 //! Nodes form a `(2 nx + 1) x (2 ny + 1)` grid numbered column by column (Y fastest, the shorter
 //! direction): grid node `(i, j)` is `i (2 ny + 1) + j`, with `i = 0` at `X = 0` and `j = 0` at
@@ -9,6 +10,7 @@
 //! `(xi, eta) = (a - 1, b - 1)`. Displacement unknown `c` (0: x, 1: y) of node `n` is `2 n + c`.
 
 use crate::error::{Error, Result};
+use crate::numerics::density::equidistribute;
 use crate::numerics::grading::geometric_ratio;
 
 /// Thickness of the stiff layer: the unit of length.
@@ -38,6 +40,43 @@ pub struct MeshSpec {
     pub length: f64,
     /// Depth `D` of the substrate.
     pub depth: f64,
+    /// Refinement in X (`None`: uniform).
+    pub x_refinement: Option<XRefinement>,
+}
+
+/// Elements in X sized inversely to the density `1 + (ratio - 1) sum_j exp(-((X - X_j) / width)^2)`
+/// with centres `X_j = offset + j period` (e.g. the troughs of a seeded mode, or a crease at 0).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct XRefinement {
+    /// How many times denser the elements are at a centre than far from all centres.
+    pub ratio: f64,
+    pub width: f64,
+    pub offset: f64,
+    pub period: f64,
+}
+
+impl XRefinement {
+    /// The element density at `x`.
+    pub fn density(&self, x: f64, length: f64) -> f64 {
+        let first = ((-self.offset - 3.0 * self.width) / self.period).ceil() as i64;
+        let last = ((length - self.offset + 3.0 * self.width) / self.period).floor() as i64;
+        let bumps: f64 = (first..=last)
+            .map(|j| (-((x - self.offset - j as f64 * self.period) / self.width).powi(2)).exp())
+            .sum();
+        1.0 + (self.ratio - 1.0) * bumps
+    }
+
+    fn validate(&self) -> Result<()> {
+        if !(self.ratio.is_finite() && self.ratio >= 1.0) {
+            return Err(Error::invalid("refinement ratio", self.ratio, "[1, inf)"));
+        }
+        for (name, value) in [("refinement width", self.width), ("refinement period", self.period)] {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(Error::invalid(name, value, "(0, inf)"));
+            }
+        }
+        Ok(())
+    }
 }
 
 impl MeshSpec {
@@ -57,6 +96,21 @@ impl MeshSpec {
             top_substrate_thickness,
             length,
             depth,
+            x_refinement: None,
+        }
+    }
+
+    /// The same mesh refined in X by `refinement`.
+    pub fn refined(mut self, refinement: XRefinement) -> Self {
+        self.x_refinement = Some(refinement);
+        self
+    }
+
+    /// X of the element boundaries, from 0 to `L`.
+    fn element_columns(&self) -> Vec<f64> {
+        match self.x_refinement {
+            None => (0..=self.nx).map(|i| self.length * i as f64 / self.nx as f64).collect(),
+            Some(r) => equidistribute(|x| r.density(x, self.length), self.length, self.nx),
         }
     }
 
@@ -100,6 +154,9 @@ impl MeshSpec {
             if !(value.is_finite() && value > 0.0) {
                 return Err(Error::invalid(name, value, "(0, inf)"));
             }
+        }
+        if let Some(r) = &self.x_refinement {
+            r.validate()?;
         }
         let h0 = self.top_substrate_thickness;
         let feasible = if self.substrate_elements == 1 {
@@ -171,10 +228,13 @@ impl Mesh {
                 _ => 0.5 * (element_rows[j / 2] + element_rows[j / 2 + 1]),
             })
             .collect();
-        let dx = spec.length / (2 * spec.nx) as f64;
+        let element_columns = spec.element_columns();
         let mut coordinates = Vec::with_capacity(columns * rows);
         for i in 0..columns {
-            let x = if i + 1 == columns { spec.length } else { dx * i as f64 };
+            let x = match i % 2 {
+                0 => element_columns[i / 2],
+                _ => 0.5 * (element_columns[i / 2] + element_columns[i / 2 + 1]),
+            };
             coordinates.extend(node_y.iter().map(|&y| [x, y]));
         }
         let mut elements = Vec::with_capacity(spec.nx * spec.ny());

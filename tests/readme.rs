@@ -121,7 +121,10 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                 // independent method), on the coarse mesh.
                 let (dir, _) = run(command, &[("--mesh", "coarse"), ("--d-max", "0.2")]);
                 let onset = json(dir.join("onset.json"));
-                let (fe, theory) = (onset["d_steepest"].as_f64().unwrap(), onset["d_linear_theory"].as_f64().unwrap());
+                let (fe, theory) = (
+                    onset["d_steepest"].as_f64().unwrap(),
+                    onset["d_linear_theory"].as_f64().unwrap(),
+                );
                 assert!((fe / theory - 1.0).abs() < 0.02, "FE {fe} vs theory {theory}");
                 assert!(dir.join("amplitude.csv").exists() && dir.join("simulate.pvd").exists());
             }
@@ -129,7 +132,10 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                 // The inertia of the FE tangent against the linear theory over admissible k.
                 let (dir, _) = run(command, &[("--mesh", "coarse")]);
                 let report = json(dir.join("bifurcation.json"));
-                let (fe, theory) = (report["d_bifurcation"].as_f64().unwrap(), report["d_linear_theory_min"].as_f64().unwrap());
+                let (fe, theory) = (
+                    report["d_bifurcation"].as_f64().unwrap(),
+                    report["d_linear_theory_min"].as_f64().unwrap(),
+                );
                 assert!((fe / theory - 1.0).abs() < 1e-3, "FE {fe} vs theory {theory}");
             }
             "reproduce" => {

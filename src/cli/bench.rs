@@ -43,7 +43,14 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             }
             // The curve is at beta = pi/4; explicit --params/--set replace it.
             let user_params = args.params.params.is_some() || !args.params.set.is_empty();
-            let setup = if user_params { FeBenchSetup { params, ..FeBenchSetup::default() } } else { FeBenchSetup::default() };
+            let setup = if user_params {
+                FeBenchSetup {
+                    params,
+                    ..FeBenchSetup::default()
+                }
+            } else {
+                FeBenchSetup::default()
+            };
             println!(
                 "timing the FE curve (beta = {:.6}, N = {}, to d = {}) on {} mesh(es)...",
                 setup.params.beta,

@@ -2,7 +2,7 @@
 
 use super::common::{report_files, ParamArgs};
 use clap::{Args, ValueEnum};
-use fiberfold::mesh::MeshSpec;
+use fiberfold::mesh::{MeshSpec, XRefinement};
 use fiberfold::protocol::{mode_number, wavenumber_of_waves, Protocol, StabilisationSettings, StepControl};
 use fiberfold::studies::simulate::{self, Progress, SimulateStudy};
 use fiberfold::{Error, Result};
@@ -107,13 +107,23 @@ pub struct SimulateArgs {
     #[arg(long, default_value_t = 0.005, allow_negative_numbers = true)]
     pub max_step: f64,
 
-    /// Smallest step in d; a failure at this step stops the run.
-    #[arg(long, default_value_t = 1e-5, allow_negative_numbers = true)]
+    /// Smallest step in d; a failure at this step stops the run (snaps to a crease are
+    /// crossed with steps down to about eta / 10).
+    #[arg(long, default_value_t = 1e-7, allow_negative_numbers = true)]
     pub min_step: f64,
 
     /// Newton iterations allowed per step before the step is cut, in [1, 100].
-    #[arg(long, default_value_t = 12)]
+    #[arg(long, default_value_t = 25)]
     pub max_newton_iterations: usize,
+
+    /// Refine the mesh in X near the troughs of the seeded mode: elements RATIO times smaller
+    /// there (Gaussian bumps of width --refine-width), the same number of elements in X.
+    #[arg(long, value_name = "RATIO", allow_negative_numbers = true)]
+    pub refine_troughs: Option<f64>,
+
+    /// Width in X of the refinement around each trough.
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    pub refine_width: f64,
 
     /// Amplitude A2 of the long-wave imperfection -A2 cos(pi X / 50), in [0, 1): it deepens
     /// the troughs near X = 0 and lets the pattern leave an unstable periodic branch.
@@ -124,14 +134,15 @@ pub struct SimulateArgs {
     #[arg(long)]
     pub no_contact: bool,
 
-    /// Viscous stabilisation coefficient eta (units of mu_s H^-2 d); 0 turns it off.
-    #[arg(long, default_value_t = 1e-5, allow_negative_numbers = true)]
+    /// Viscous stabilisation: damping eta / h relative to the reference stiffness on a step h
+    /// in d; 0 turns it off.
+    #[arg(long, default_value_t = 1e-6, allow_negative_numbers = true)]
     pub eta: f64,
 
-    /// Report the number of negative eigenvalues of the tangent at every converged state (one
-    /// more factorisation per step).
+    /// Do not track the number of negative eigenvalues of the tangent at every converged state
+    /// (saves one factorisation per step; secondary.json then has no bifurcations).
     #[arg(long)]
-    pub inertia: bool,
+    pub no_inertia: bool,
 
     /// Spacing in d of the VTU snapshots.
     #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
@@ -145,12 +156,22 @@ pub struct SimulateArgs {
 impl SimulateArgs {
     /// The validated study.
     fn study(&self) -> Result<SimulateStudy> {
-        let mesh = self.mesh.resolve()?;
+        let mut mesh = self.mesh.resolve()?;
         let k = match (self.waves, self.k) {
             (Some(waves), _) => wavenumber_of_waves(waves, mesh.length)?,
             (None, Some(k)) => mode_number(k, mesh.length)? as f64 * std::f64::consts::PI / mesh.length,
             (None, None) => return Err(Error::invalid("waves", "none", "--waves N or --k K")),
         };
+        if let Some(ratio) = self.refine_troughs {
+            // The troughs of A_init cos(k X) (A_init > 0): X = (2 j + 1) pi / k.
+            mesh = mesh.refined(XRefinement {
+                ratio,
+                width: self.refine_width,
+                offset: std::f64::consts::PI / k,
+                period: 2.0 * std::f64::consts::PI / k,
+            });
+            mesh.validate()?;
+        }
         if !(1..=100).contains(&self.max_newton_iterations) {
             return Err(Error::invalid(
                 "max-newton-iterations",
@@ -166,7 +187,7 @@ impl SimulateArgs {
             ..StepControl::default()
         };
         protocol.newton.max_iterations = self.max_newton_iterations;
-        protocol.newton.inertia_at_solution = self.inertia;
+        protocol.newton.inertia_at_solution = !self.no_inertia;
         protocol.imperfection2 = self.imperfection2;
         protocol.contact = !self.no_contact;
         if !(self.eta.is_finite() && self.eta >= 0.0) {
@@ -251,6 +272,25 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         show(o.estimates.d_steepest),
         show(o.estimates.d_a2_fit),
         o.d_linear_theory
+    );
+    let c = &summary.contact;
+    println!(
+        "contact: first at d = {}, final closed length {:.4} in {} zone(s), largest penetration {:.1e}, \
+         stabilisation dissipated {:.2e} of the strain energy (largest {:.2e}), min J {:.4}",
+        show(c.d_first_contact),
+        c.contact_length_final,
+        c.contact_zones_final,
+        c.penetration_max,
+        c.stabilisation_energy_fraction_final,
+        c.stabilisation_energy_fraction_max,
+        c.min_jacobian
+    );
+    let s = &summary.secondary;
+    println!(
+        "secondary bifurcations: first at d = {} ({} changes of the inertia); branch followed: {}",
+        show(s.d_secondary),
+        s.changes.len(),
+        s.branch.kind
     );
     report_files(&summary.files.iter().map(PathBuf::from).collect::<Vec<_>>());
     Ok(())

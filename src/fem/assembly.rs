@@ -302,7 +302,11 @@ impl System {
     fn pattern_for(&mut self, bc: &Dirichlet, groups: &[Vec<usize>]) -> Result<&Pattern> {
         let n = self.num_dofs();
         if let Some(&bad) = bc.dofs().iter().chain(groups.iter().flatten()).find(|&&d| d >= n) {
-            return Err(Error::invalid("prescribed or coupled unknown", bad, &format!("[0, {n})")));
+            return Err(Error::invalid(
+                "prescribed or coupled unknown",
+                bad,
+                &format!("[0, {n})"),
+            ));
         }
         if self
             .pattern
@@ -339,7 +343,9 @@ fn group_contribution(
         }
     }
     if !chunk.is_empty() {
-        let free: Vec<usize> = (0..n).filter(|&i| matches!(pattern.slots[dofs[i]], Slot::Free(_))).collect();
+        let free: Vec<usize> = (0..n)
+            .filter(|&i| matches!(pattern.slots[dofs[i]], Slot::Free(_)))
+            .collect();
         let mut entries = chunk.iter_mut();
         for &a in &free {
             for &b in &free {

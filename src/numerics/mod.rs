@@ -1,6 +1,7 @@
 //! Small numerical utilities that no dependency provides in the form needed here.
 
 pub mod banded;
+pub mod density;
 pub mod grading;
 pub mod minimize;
 pub mod roots;

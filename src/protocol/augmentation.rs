@@ -49,14 +49,16 @@ impl Augmentation {
         materials: &Bilayer,
         contact: bool,
         stabilisation: Option<StabilisationSettings>,
-    ) -> Self {
+    ) -> Result<Self> {
         let mesh = system.mesh();
         let mu = materials.layer.mu.max(materials.substrate.matrix.mu);
         let planes = vec![Plane::left(0.0), Plane::right(mesh.spec().length)];
-        Augmentation {
+        Ok(Augmentation {
             contact: contact.then(|| Contact::new(mesh, planes, ContactSettings::for_mesh(mesh, mu))),
-            stabilisation: stabilisation.map(|s| Stabilisation::new(system, materials, s)),
-        }
+            stabilisation: stabilisation
+                .map(|s| Stabilisation::new(system, materials, s))
+                .transpose()?,
+        })
     }
 
     /// Equilibrium at `d` (prescribed by `bc`) from the predictor `u`, stepping from the

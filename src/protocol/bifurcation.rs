@@ -199,7 +199,7 @@ pub fn find_bifurcation(materials: &Bilayer, spec: MeshSpec, settings: &Bifurcat
 }
 
 /// `u_y` of the top-surface nodes, sorted by `X`.
-fn top_uy(mesh: &Mesh, u: &[f64]) -> Vec<f64> {
+pub(crate) fn top_uy(mesh: &Mesh, u: &[f64]) -> Vec<f64> {
     mesh.top().into_iter().map(|n| u[dof(n, Y)]).collect()
 }
 
@@ -215,7 +215,7 @@ fn scale_to_surface(mesh: &Mesh, u: &mut [f64]) {
 
 /// The `m >= 1` maximising `|sum_i w_i v_i cos(m pi X_i / L)|` (trapezoidal weights) over the
 /// top-surface nodes.
-fn dominant_cosine(values: &[f64], length: f64, mesh: &Mesh) -> usize {
+pub(crate) fn dominant_cosine(values: &[f64], length: f64, mesh: &Mesh) -> usize {
     let xs: Vec<f64> = mesh.top().into_iter().map(|n| mesh.coordinates()[n][0]).collect();
     let last = xs.len() - 1;
     let coefficient = |m: usize| -> f64 {

@@ -2,13 +2,18 @@
 //! stages ([`stages`]) with adaptive displacement control ([`continuation`]), the seeded
 //! imperfection and admissible wavenumbers ([`imperfection`]), the top surface and its
 //! amplitude ([`surface`]), onset estimates from `A(d)` ([`onset`]), and the exact bifurcation
-//! of the discretised perfect system from the inertia of its tangent ([`bifurcation`]).
+//! of the discretised perfect system from the inertia of its tangent ([`bifurcation`]). Past the
+//! onset, the path to a crease adds contact and viscous stabilisation to every step
+//! ([`augmentation`], [`stabilisation`]) and tracks secondary bifurcations ([`secondary`]); a
+//! crease seeded in a homogeneous half-space gives the creasing threshold ([`crease_seed`]).
 
 pub mod augmentation;
 pub mod bifurcation;
 pub mod continuation;
+pub mod crease_seed;
 pub mod imperfection;
 pub mod onset;
+pub mod secondary;
 pub mod stabilisation;
 pub mod stages;
 pub mod surface;

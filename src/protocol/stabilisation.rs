@@ -1,18 +1,22 @@
 //! Viscous (pseudo-dynamic) stabilisation of displacement control, in the spirit of ABAQUS's
 //! `*STATIC, STABILIZE`: the end-shortening `d` is the pseudo-time, and each step from
 //! `(d_0, u_0)` to `d = d_0 + h` minimises the strain energy plus
-//! `E_v = eta / (2 h) sum_n m_n |u_n - u_0,n - (u_h(d) - u_h(d_0))_n|^2`,
-//! a backward-Euler step of a damper with lumped nodal areas `m_n` (unit-density mass) that acts
-//! on the non-affine part of the motion (`u_h` is the homogeneous solution of the bilayer, so
-//! uniform compression is not damped). Where the path is smooth the damping force
-//! `eta / h m du` is of order `eta`, negligible; across a snap the step is cut and `eta / h`
-//! grows, so the damper carries the jump. The energy it dissipates, `eta / h |du|_m^2` per step,
-//! is summed and reported against the strain energy; `eta` is cut whenever that fraction would
-//! exceed the budget, and the step is redone.
+//! `E_v = eta / (2 h) sum_i c_i (u_i - u_0,i - (u_h(d) - u_h(d_0))_i)^2`,
+//! a backward-Euler step of dampers on every unknown that act on the non-affine part of the
+//! motion (`u_h` is the homogeneous solution of the bilayer, so uniform compression is not
+//! damped). The damping is proportional to the stiffness, `c_i = K_ii` of the reference state,
+//! so that `eta / h` is the damping relative to the elastic tangent at every scale of the mesh
+//! (the cusp of a closing trough is an element-scale instability). The damper engages only on
+//! steps shorter than `engage_below` (`1e-3`, a fifth of the usual step): where the path is
+//! smooth it is not damped at all (so the onset and `A(d)` are those of the elastic problem);
+//! across a snap the step is cut and `eta / h` grows until the damped step is well posed, so
+//! the damper carries the jump. The work of the damping forces, `eta / h |du|_c^2` per step, is summed and reported
+//! against the strain energy; `eta` is cut whenever that fraction would exceed the budget, and
+//! the step is redone.
 
 use crate::error::{Error, Result};
 use crate::fem::added::{AddedEnergy, Block};
-use crate::fem::element::{gauss_rule, shape_functions};
+use crate::fem::element::{self, DOFS};
 use crate::fem::System;
 use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
@@ -21,7 +25,7 @@ use crate::protocol::bifurcation::homogeneous_displacement;
 /// Damping coefficient and energy budget.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct StabilisationSettings {
-    /// Initial `eta`, in units of `mu_s H^-2` times `d` (the pseudo-time).
+    /// Initial `eta`: damping relative to the reference stiffness, times the step in `d`.
     pub eta: f64,
     /// Largest allowed ratio of the dissipated to the strain energy.
     pub budget: f64,
@@ -29,17 +33,20 @@ pub struct StabilisationSettings {
     pub cut: f64,
     /// Smallest `eta` tried before a step is given up.
     pub min_eta: f64,
+    /// Steps in `d` at least this long are not damped.
+    pub engage_below: f64,
 }
 
 impl Default for StabilisationSettings {
-    /// `eta = 1e-5` (the damping force is `1e-5 / h` of the elastic scale: negligible at the
-    /// usual step `h = 0.005`, of order one at the smallest step `1e-5`), budget 1 %.
+    /// `eta = 1e-6` (damping `1e-6 / h` of the stiffness, equal to it at `h = 1e-6`) on steps
+    /// below `1e-3`, budget 1 %.
     fn default() -> Self {
         StabilisationSettings {
-            eta: 1e-5,
+            eta: 1e-6,
             budget: 0.01,
             cut: 0.25,
             min_eta: 1e-9,
+            engage_below: 1e-3,
         }
     }
 }
@@ -49,34 +56,34 @@ impl Default for StabilisationSettings {
 pub struct Stabilisation {
     pub settings: StabilisationSettings,
     materials: Bilayer,
-    /// Lumped nodal areas `m_n = sum_e int N_n dA`.
-    masses: Vec<f64>,
+    /// Diagonal `K_ii` of the reference stiffness (all unknowns).
+    stiffness: Vec<f64>,
     groups: Vec<Vec<usize>>,
     eta: f64,
     dissipated: f64,
 }
 
 impl Stabilisation {
-    /// The damper of `system` (nodal areas from its elements' Gauss weights).
-    pub fn new(system: &System, materials: &Bilayer, settings: StabilisationSettings) -> Self {
+    /// The damper of `system`, proportional to the diagonal of its stiffness at `u = 0`.
+    pub fn new(system: &System, materials: &Bilayer, settings: StabilisationSettings) -> Result<Self> {
         let mesh = system.mesh();
-        let mut masses = vec![0.0; mesh.num_nodes()];
-        let shapes: Vec<_> = gauss_rule().iter().map(|(xi, _)| shape_functions(*xi)).collect();
-        for (nodes, geometry) in mesh.elements().iter().zip(system.geometry()) {
-            for (w, n) in geometry.weights().iter().zip(&shapes) {
-                for (a, &node) in nodes.iter().enumerate() {
-                    masses[node] += w * n[a];
-                }
+        let mut stiffness = vec![0.0; mesh.num_dofs()];
+        let mut k = [[0.0; DOFS]; DOFS];
+        for (e, (geometry, material)) in system.geometry().iter().zip(system.materials()).enumerate() {
+            element::evaluate(geometry, material, &[0.0; DOFS], Some(&mut k))?;
+            let nodes = &mesh.elements()[e];
+            for (i, row) in k.iter().enumerate() {
+                stiffness[2 * nodes[i / 2] + i % 2] += row[i];
             }
         }
-        Stabilisation {
+        Ok(Stabilisation {
             settings,
             materials: *materials,
-            masses,
+            stiffness,
             groups: (0..mesh.num_nodes()).map(|n| vec![2 * n, 2 * n + 1]).collect(),
             eta: settings.eta,
             dissipated: 0.0,
-        }
+        })
     }
 
     /// The current `eta`.
@@ -89,17 +96,26 @@ impl Stabilisation {
         self.dissipated
     }
 
-    /// The damper of the step from `(d0, u0)` to `d` on `system`'s mesh.
+    /// The damper of the step from `(d0, u0)` to `d` on `system`'s mesh (zero damping on steps
+    /// of at least `engage_below`, keeping the same groups and so the same pattern).
     pub fn damper(&self, system: &System, d0: f64, u0: &[f64], d: f64) -> Result<Damper<'_>> {
         let mesh = system.mesh();
         let before = homogeneous_displacement(mesh, &homogeneous_state(&self.materials, d0)?);
         let after = homogeneous_displacement(mesh, &homogeneous_state(&self.materials, d)?);
-        let reference = u0.iter().zip(after.iter().zip(&before)).map(|(u, (a, b))| u + a - b).collect();
+        let reference = u0
+            .iter()
+            .zip(after.iter().zip(&before))
+            .map(|(u, (a, b))| u + a - b)
+            .collect();
         Ok(Damper {
             groups: &self.groups,
-            masses: &self.masses,
+            stiffness: &self.stiffness,
             reference,
-            factor: self.eta / (d - d0),
+            factor: if d - d0 < self.settings.engage_below {
+                self.eta / (d - d0)
+            } else {
+                0.0
+            },
         })
     }
 
@@ -123,10 +139,10 @@ impl Stabilisation {
     }
 }
 
-/// The damping energy of one step: `factor / 2 sum_n m_n |u_n - reference_n|^2`, `factor = eta / h`.
+/// The damping energy of one step: `factor / 2 sum_i c_i (u_i - reference_i)^2`, `factor = eta / h`.
 pub struct Damper<'a> {
     groups: &'a [Vec<usize>],
-    masses: &'a [f64],
+    stiffness: &'a [f64],
     reference: Vec<f64>,
     factor: f64,
 }
@@ -137,11 +153,10 @@ impl Damper<'_> {
         Damper { factor: 0.0, ..self }
     }
 
-    /// Energy the damper dissipates on the step ending at `u`: `factor |u - reference|_m^2`.
+    /// Work of the damping forces on the step ending at `u`: `factor |u - reference|_c^2`.
     pub fn dissipation(&self, u: &[f64]) -> f64 {
-        let r = &self.reference;
-        let sum: f64 = (0..self.masses.len())
-            .map(|n| self.masses[n] * ((u[2 * n] - r[2 * n]).powi(2) + (u[2 * n + 1] - r[2 * n + 1]).powi(2)))
+        let sum: f64 = (0..u.len())
+            .map(|i| self.stiffness[i] * (u[i] - self.reference[i]).powi(2))
             .sum();
         self.factor * sum
     }
@@ -153,12 +168,16 @@ impl AddedEnergy for Damper<'_> {
     }
 
     fn block(&self, g: usize, u: &[f64], with_tangent: bool) -> Block {
-        let c = self.factor * self.masses[g];
-        let v = [u[2 * g] - self.reference[2 * g], u[2 * g + 1] - self.reference[2 * g + 1]];
+        let c = [2 * g, 2 * g + 1].map(|i| self.factor * self.stiffness[i]);
+        let v = [2 * g, 2 * g + 1].map(|i| u[i] - self.reference[i]);
         Block {
-            energy: 0.5 * c * (v[0] * v[0] + v[1] * v[1]),
-            gradient: vec![c * v[0], c * v[1]],
-            hessian: if with_tangent { vec![c, 0.0, 0.0, c] } else { Vec::new() },
+            energy: 0.5 * (c[0] * v[0] * v[0] + c[1] * v[1] * v[1]),
+            gradient: vec![c[0] * v[0], c[1] * v[1]],
+            hessian: if with_tangent {
+                vec![c[0], 0.0, 0.0, c[1]]
+            } else {
+                Vec::new()
+            },
         }
     }
 }

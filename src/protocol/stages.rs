@@ -55,17 +55,24 @@ impl Protocol {
         }
     }
 
-    /// The same protocol carried on to a crease: contact and default stabilisation in stage 3.
+    /// The same protocol carried on to a crease: contact and default stabilisation in stage 3,
+    /// steps down to `1e-7` (where the damping `eta / h` of a snap is ten times the stiffness)
+    /// and up to 25 Newton iterations per step (contact changes cost a few).
     pub fn with_crease_path(mut self) -> Self {
         self.contact = true;
         self.stabilisation = Some(StabilisationSettings::default());
+        self.control.min = 1e-7;
+        self.newton.max_iterations = 25;
         self
     }
 
     /// Checks `k` against the domain of `spec`, `A_init` in `[0, 1)` and `d_max` in `(0.005, 1)`.
     pub fn validate(&self, spec: &MeshSpec) -> Result<()> {
         mode_number(self.k, spec.length)?;
-        for (name, value) in [("imperfection", self.imperfection), ("imperfection2", self.imperfection2)] {
+        for (name, value) in [
+            ("imperfection", self.imperfection),
+            ("imperfection2", self.imperfection2),
+        ] {
             if !(value.is_finite() && (0.0..1.0).contains(&value)) {
                 return Err(Error::invalid(name, value, "[0, 1)"));
             }
@@ -123,8 +130,14 @@ pub fn run(
         .map_err(|e| stage_failure(1, e.into()))?;
     if protocol.imperfection > 0.0 || protocol.imperfection2 > 0.0 {
         observer(Event::Stage(&format!(
-            "stage 2: imperfection {} cos({:.6} X) - {} cos(pi X / L) of the reference geometry, equilibrium at d = {d0}",
-            protocol.imperfection, protocol.k, protocol.imperfection2
+            "stage 2: imperfection {} cos({:.6} X){} of the reference geometry, equilibrium at d = {d0}",
+            protocol.imperfection,
+            protocol.k,
+            if protocol.imperfection2 > 0.0 {
+                format!(" - {} cos(pi X / L)", protocol.imperfection2)
+            } else {
+                String::new()
+            }
         )))?;
         let imperfection = Imperfection {
             amplitude: protocol.imperfection,
@@ -157,7 +170,8 @@ pub fn run(
         protocol.d_max
     )))?;
     let augmentation = (protocol.contact || protocol.stabilisation.is_some())
-        .then(|| Augmentation::new(&system, materials, protocol.contact, protocol.stabilisation));
+        .then(|| Augmentation::new(&system, materials, protocol.contact, protocol.stabilisation))
+        .transpose()?;
     let mut continuation = Continuation::new(system, newton, protocol.control, d0, u)?;
     if let Some(augmentation) = augmentation {
         continuation = continuation.with_augmentation(augmentation);

@@ -3,9 +3,12 @@
 //!
 //! A pair's normal gap `g` is positive when open and negative when penetrating. With the
 //! multiplier estimate `lambda >= 0` (a nominal pressure: force per reference length), the
-//! penalty `eps` and the slave node's reference tributary length `w`, the pair's energy is
-//! `psi = w / (2 eps) <lambda - eps g>_+^2` (Simo & Laursen 1992, up to a constant); its
-//! contact pressure is `p = <lambda - eps g>_+`, and Uzawa's update is `lambda <- p`.
+//! penalty `eps` and the slave node's reference tributary length `w`, the pair's pressure is
+//! `p = P(lambda - eps g)` with `P(s) = <s>_+` (Simo & Laursen 1992) smoothed over
+//! `|s| < b`: `P = (s + b)^2 / (4 b)` there, so that the energy `psi = w / eps Phi(s)`,
+//! `Phi' = P`, is twice continuously differentiable and Newton's method meets no kink when a
+//! pair opens or closes. `b = eps delta / 2` spreads the switch over a gap `delta` far below
+//! the tolerance. Uzawa's update is `lambda <- p`.
 
 use super::super::added::Block;
 use nalgebra::SVector;
@@ -31,19 +34,36 @@ pub fn projection(s: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
     ((s[0] - a[0]) * t[0] + (s[1] - a[1]) * t[1]) / (t[0] * t[0] + t[1] * t[1])
 }
 
-/// The pair energy `psi(g) = w / (2 eps) <lambda - eps g>_+^2`.
-pub fn pair_energy<D: DualNum<Primitive = f64> + Copy>(gap: D, multiplier: f64, penalty: f64, weight: f64) -> D {
-    let pressure = -gap * penalty + multiplier;
-    if pressure.re() > 0.0 {
-        pressure * pressure * (0.5 * weight / penalty)
+/// Width `delta` of the gaps over which a pair switches on (far below the tolerance `1e-3 H`).
+pub const SWITCH_GAP: f64 = 1e-4;
+
+/// `Phi(s)`, the integral of the smoothed ramp `P` with half-width `b`.
+fn ramp_integral<D: DualNum<Primitive = f64> + Copy>(s: D, b: f64) -> D {
+    if s.re() >= b {
+        s * s * 0.5 + b * b / 6.0
+    } else if s.re() > -b {
+        let t = s + b;
+        t * t * t / (12.0 * b)
     } else {
         D::zero()
     }
 }
 
-/// Contact pressure `<lambda - eps g>_+`.
+/// The pair energy `psi(g) = w / eps Phi(lambda - eps g)` (module docs).
+pub fn pair_energy<D: DualNum<Primitive = f64> + Copy>(gap: D, multiplier: f64, penalty: f64, weight: f64) -> D {
+    ramp_integral(-gap * penalty + multiplier, 0.5 * penalty * SWITCH_GAP) * (weight / penalty)
+}
+
+/// Contact pressure `P(lambda - eps g)`.
 pub fn pressure(gap: f64, multiplier: f64, penalty: f64) -> f64 {
-    (multiplier - penalty * gap).max(0.0)
+    let (s, b) = (multiplier - penalty * gap, 0.5 * penalty * SWITCH_GAP);
+    if s >= b {
+        s
+    } else if s > -b {
+        (s + b) * (s + b) / (4.0 * b)
+    } else {
+        0.0
+    }
 }
 
 /// Energy, gradient and Hessian of `energy` of `N` coordinates at `x`, as a [`Block`].
@@ -94,10 +114,33 @@ mod tests {
         assert!((block.gradient[0] + w * eps * 0.01).abs() < 1e-14);
         assert_eq!(block.gradient[1], 0.0);
         assert!((block.hessian[0] - w * eps).abs() < 1e-12);
-        assert!((block.energy - 0.5 * w * eps * g * g).abs() < 1e-15);
+        let b = 0.5 * eps * SWITCH_GAP;
+        assert!((block.energy - 0.5 * w * eps * g * g - w * b * b / (6.0 * eps)).abs() < 1e-15);
         // Open and without multiplier: nothing.
         let open = differentiate(|x| pair_energy(x[0], 0.0, eps, w), [0.01], true);
         assert_eq!((open.energy, open.gradient[0], open.hessian[0]), (0.0, 0.0, 0.0));
         assert_eq!(pressure(g, 0.5, eps), 1.5);
+    }
+
+    #[test]
+    fn the_switch_is_smooth_and_integrates_to_the_energy() {
+        let (eps, w, lambda) = (1e4, 0.2, 0.0);
+        let b = 0.5 * eps * SWITCH_GAP;
+        // Across the switch (gaps from -2 delta to 2 delta) the force is -w P and its slope w eps P'.
+        for k in -20..=20 {
+            let g = k as f64 * 0.1 * SWITCH_GAP;
+            let block = differentiate(|x| pair_energy(x[0], lambda, eps, w), [g], true);
+            assert!((block.gradient[0] + w * pressure(g, lambda, eps)).abs() < 1e-12);
+            let h = 1e-9;
+            let slope = -w * (pressure(g + h, lambda, eps) - pressure(g - h, lambda, eps)) / (2.0 * h);
+            // (P' has a kink at the ends of the switch: central differences straddling it err by ~eps h / b.)
+            assert!(
+                (block.hessian[0] - slope).abs() < 1e-4 * w * eps,
+                "{g}: {} vs {slope}",
+                block.hessian[0]
+            );
+        }
+        assert_eq!(pressure(-SWITCH_GAP / 2.0, 0.0, eps), b);
+        assert_eq!(pressure(SWITCH_GAP / 2.0, 0.0, eps), 0.0);
     }
 }

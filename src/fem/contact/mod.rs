@@ -12,7 +12,7 @@ pub mod gap;
 pub mod search;
 pub mod solve;
 
-pub use search::{Pair, Plane, Surface};
+pub use search::{End, Pair, Plane, Surface};
 pub use solve::{solve_with_contact, ContactSolve};
 
 use super::added::{AddedEnergy, Block};
@@ -121,11 +121,16 @@ impl Contact {
     pub fn search(&mut self, u: &[f64]) -> bool {
         let x = self.surface.positions(u);
         let s = self.settings;
-        let pairs = search::find_pairs(&x, &self.planes, s.search_distance, s.self_contact);
+        let pairs = search::find_pairs(&x, &self.planes, s.search_distance, s.self_contact, &self.pairs);
         if pairs == self.pairs {
             return false;
         }
-        let old: HashMap<_, f64> = self.pairs.iter().map(key).zip(self.multipliers.iter().copied()).collect();
+        let old: HashMap<_, f64> = self
+            .pairs
+            .iter()
+            .map(key)
+            .zip(self.multipliers.iter().copied())
+            .collect();
         self.multipliers = pairs.iter().map(|p| old.get(&key(p)).copied().unwrap_or(0.0)).collect();
         self.groups = pairs.iter().map(|p| self.surface.dofs(p)).collect();
         self.pairs = pairs;
@@ -162,21 +167,24 @@ impl Contact {
         }
     }
 
-    /// Pressures, closed length and penetration at `u` (with the current multipliers).
+    /// Pressures, closed length and penetration at `u`, an accepted state whose multipliers
+    /// have been updated: each pair's pressure is then its multiplier.
     pub fn state(&self, u: &[f64]) -> ContactState {
         let n = self.surface.len();
-        let (eps, x) = (self.settings.penalty, self.surface.positions(u));
+        let x = self.surface.positions(u);
         let mut force = vec![[0.0; 2]; n];
         let mut on_plane = vec![false; n];
         let gaps = self.gaps(u);
-        for (g, (pair, (&lambda, dofs))) in self.pairs.iter().zip(self.multipliers.iter().zip(&self.groups)).enumerate() {
-            if pressure(gaps[g], lambda, eps) == 0.0 {
+        for (pair, (&lambda, dofs)) in self.pairs.iter().zip(self.multipliers.iter().zip(&self.groups)) {
+            if lambda == 0.0 {
                 continue;
             }
-            let gradient = self.block_of(pair, lambda, u, dofs, false).gradient;
+            // The pair pushes with `w lambda` along the gradient of its gap.
+            let w = self.surface.weights[pair.slave()];
+            let gradient = self.gap_gradient(pair, u, dofs);
             for (k, &node) in pair.surface_nodes().iter().enumerate() {
-                force[node][0] += gradient[2 * k];
-                force[node][1] += gradient[2 * k + 1];
+                force[node][0] += w * lambda * gradient[2 * k];
+                force[node][1] += w * lambda * gradient[2 * k + 1];
             }
             on_plane[pair.slave()] |= matches!(pair, Pair::Plane { .. });
         }
@@ -203,14 +211,32 @@ impl Contact {
         }
     }
 
+    /// `dg/dx` of `pair`'s gap over its unknowns at `u`.
+    fn gap_gradient(&self, pair: &Pair, u: &[f64], dofs: &[usize]) -> Vec<f64> {
+        let position = |k: usize| self.position(pair, u, dofs, k);
+        match *pair {
+            Pair::Plane { plane, .. } => {
+                let p = self.planes[plane];
+                differentiate(|x| plane_gap([x[0], x[1]], p.normal, p.offset), position(0), false).gradient
+            }
+            Pair::Segment { .. } => {
+                let (s, a, b) = (position(0), position(1), position(2));
+                let x = [s[0], s[1], a[0], a[1], b[0], b[1]];
+                differentiate(|x| segment_gap([x[0], x[1]], [x[2], x[3]], [x[4], x[5]]), x, false).gradient
+            }
+        }
+    }
+
+    /// Deformed position of the `k`-th surface node of `pair`.
+    fn position(&self, pair: &Pair, u: &[f64], dofs: &[usize], k: usize) -> [f64; 2] {
+        let r = self.surface.reference[pair.surface_nodes()[k]];
+        [r[0] + u[dofs[2 * k]], r[1] + u[dofs[2 * k + 1]]]
+    }
+
     /// The energy block of `pair` with multiplier `lambda` at `u`.
     fn block_of(&self, pair: &Pair, lambda: f64, u: &[f64], dofs: &[usize], with_tangent: bool) -> Block {
         let (eps, w) = (self.settings.penalty, self.surface.weights[pair.slave()]);
-        let position = |k: usize| {
-            let node = pair.surface_nodes()[k];
-            let r = self.surface.reference[node];
-            [r[0] + u[dofs[2 * k]], r[1] + u[dofs[2 * k + 1]]]
-        };
+        let position = |k: usize| self.position(pair, u, dofs, k);
         match *pair {
             Pair::Plane { plane, .. } => {
                 let p = self.planes[plane];

@@ -18,22 +18,43 @@ use crate::mesh::Mesh;
 pub struct Plane {
     pub normal: [f64; 2],
     pub offset: f64,
+    /// A symmetry plane through the first (`Some(First)`) or last surface node: the boundary
+    /// conditions hold that node on the plane, so it is not a slave of this plane.
+    pub holds: Option<End>,
+}
+
+/// An end of the surface.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum End {
+    First,
+    Last,
 }
 
 impl Plane {
-    /// `x >= position`: the left symmetry plane (at 0) or any wall facing `+x`.
+    /// The left symmetry plane `x >= position`, through the first surface node.
     pub fn left(position: f64) -> Self {
         Plane {
             normal: [1.0, 0.0],
             offset: position,
+            holds: Some(End::First),
         }
     }
 
-    /// `x <= position`: the right symmetry plane (at `L (1 - d)`).
+    /// The right symmetry plane `x <= position` (at `L (1 - d)`), through the last surface node.
     pub fn right(position: f64) -> Self {
         Plane {
             normal: [-1.0, 0.0],
             offset: -position,
+            holds: Some(End::Last),
+        }
+    }
+
+    /// Whether surface node `slave` of `count` may be a slave of this plane.
+    fn admits(&self, slave: usize, count: usize) -> bool {
+        match self.holds {
+            Some(End::First) => slave != 0,
+            Some(End::Last) => slave + 1 != count,
+            None => true,
         }
     }
 }
@@ -146,20 +167,35 @@ pub fn gap(pair: &Pair, x: &[[f64; 2]], planes: &[Plane]) -> f64 {
 /// meet there, and must still find one.
 const OVERHANG: f64 = 0.1;
 
-/// All pairs within `distance_limit` of contact at the deformed positions `x` (module docs), sorted.
-pub fn find_pairs(x: &[[f64; 2]], planes: &[Plane], distance_limit: f64, self_contact: bool) -> Vec<Pair> {
+/// All pairs within `distance_limit` of contact at the deformed positions `x` (module docs),
+/// sorted. A slave keeps its segment in `previous` while that one still qualifies, so that a
+/// slave facing a master node does not flip between the two segments that meet there.
+pub fn find_pairs(
+    x: &[[f64; 2]],
+    planes: &[Plane],
+    distance_limit: f64,
+    self_contact: bool,
+    previous: &[Pair],
+) -> Vec<Pair> {
     let mut pairs = Vec::new();
     for slave in 0..x.len() {
         for (plane, p) in planes.iter().enumerate() {
-            if plane_gap(x[slave], p.normal, p.offset) < distance_limit {
+            if p.admits(slave, x.len()) && plane_gap(x[slave], p.normal, p.offset) < distance_limit {
                 pairs.push(Pair::Plane { slave, plane });
             }
         }
     }
     if self_contact && x.len() > 3 {
         let normals = node_normals(x);
+        let kept: std::collections::HashMap<usize, usize> = previous
+            .iter()
+            .filter_map(|p| match *p {
+                Pair::Segment { slave, segment } => Some((slave, segment)),
+                Pair::Plane { .. } => None,
+            })
+            .collect();
         for (slave, n) in normals.iter().enumerate() {
-            let nearest = (0..x.len() - 1)
+            let candidates = (0..x.len() - 1)
                 .filter(|&j| j + 1 != slave && j != slave)
                 .filter_map(|j| {
                     let (a, b) = (x[j], x[j + 1]);
@@ -170,8 +206,17 @@ pub fn find_pairs(x: &[[f64; 2]], planes: &[Plane], distance_limit: f64, self_co
                     let c = xi.clamp(0.0, 1.0);
                     let distance = (x[slave][0] - a[0] - c * t[0]).hypot(x[slave][1] - a[1] - c * t[1]);
                     (outside <= OVERHANG && distance < distance_limit && facing).then_some((distance, outside, j))
-                })
-                .min_by(|p, q| p.0.total_cmp(&q.0).then(p.1.total_cmp(&q.1)));
+                });
+            let mut nearest: Option<(f64, f64, usize)> = None;
+            for candidate in candidates {
+                if kept.get(&slave) == Some(&candidate.2) {
+                    nearest = Some((f64::NEG_INFINITY, 0.0, candidate.2));
+                    break;
+                }
+                if nearest.is_none_or(|best| (candidate.0, candidate.1) < (best.0, best.1)) {
+                    nearest = Some(candidate);
+                }
+            }
             if let Some((_, _, segment)) = nearest {
                 pairs.push(Pair::Segment { slave, segment });
             }
@@ -195,20 +240,23 @@ mod tests {
     #[test]
     fn flanks_of_a_closing_trough_pair_up_and_flat_surfaces_do_not() {
         let x = trough(0.02);
-        let pairs = find_pairs(&x, &[], 0.1, true);
+        let pairs = find_pairs(&x, &[], 0.1, true, &[]);
         // Every node but the tip (index 4) faces the other flank.
         let slaves: Vec<usize> = pairs.iter().map(Pair::slave).collect();
         assert!(!slaves.contains(&4), "{pairs:?}");
         assert!(slaves.contains(&1) && slaves.contains(&7), "{pairs:?}");
         for pair in &pairs {
-            let Pair::Segment { slave, segment } = *pair else { panic!() };
+            let Pair::Segment { slave, segment } = *pair else {
+                panic!()
+            };
             assert!((slave < 4) != (segment < 4), "{pair:?} pairs a flank with itself");
             assert!(gap(pair, &x, &[]) > 0.0);
         }
         let flat: Vec<[f64; 2]> = (0..9).map(|i| [i as f64 * 0.1, 1.0]).collect();
-        assert!(find_pairs(&flat, &[], 0.5, true).is_empty());
-        let near_wall = find_pairs(&flat, &[Plane::left(0.0), Plane::right(0.8)], 0.15, false);
-        let expected = [(0, 0), (1, 0), (7, 1), (8, 1)].map(|(slave, plane)| Pair::Plane { slave, plane });
+        assert!(find_pairs(&flat, &[], 0.5, true, &[]).is_empty());
+        // The end nodes are held on the symmetry planes and are no slaves of them.
+        let near_wall = find_pairs(&flat, &[Plane::left(0.0), Plane::right(0.8)], 0.15, false, &[]);
+        let expected = [(1, 0), (7, 1)].map(|(slave, plane)| Pair::Plane { slave, plane });
         assert_eq!(near_wall, expected);
     }
 }

@@ -2,26 +2,54 @@
 
 use super::{Claim, Piece, ReproduceOptions};
 use crate::error::Result;
+use crate::mesh::MeshSpec;
 use crate::output::write_json;
 use crate::parameters::Parameters;
-use crate::studies::stability_figures::Resolution;
-use crate::studies::Tick;
-use crate::mesh::MeshSpec;
 use crate::protocol::{wavenumber_of_waves, BifurcationSettings, Protocol};
 use crate::studies::bifurcation::{self, BifurcationStudy};
 use crate::studies::simulate::{self, fig4a, Fig4aOptions, SimulateStudy};
+use crate::studies::stability_figures::Resolution;
+use crate::studies::Tick;
 use std::path::Path;
 
 /// The pieces, in report order.
 pub fn pieces() -> Vec<Piece> {
     vec![
-        Piece { name: "homogeneous", figures: &["fig2"], run: run_homogeneous },
-        Piece { name: "fig4b", figures: &["fig4b"], run: run_fig4b },
-        Piece { name: "fig5", figures: &["fig5"], run: run_fig5 },
-        Piece { name: "fig6", figures: &["fig6"], run: run_fig6 },
-        Piece { name: "fig3", figures: &["fig3"], run: run_fig3 },
-        Piece { name: "fig4a", figures: &["fig4a"], run: run_fig4a },
-        Piece { name: "bifurcation", figures: &["mode"], run: run_bifurcation },
+        Piece {
+            name: "homogeneous",
+            figures: &["fig2"],
+            run: run_homogeneous,
+        },
+        Piece {
+            name: "fig4b",
+            figures: &["fig4b"],
+            run: run_fig4b,
+        },
+        Piece {
+            name: "fig5",
+            figures: &["fig5"],
+            run: run_fig5,
+        },
+        Piece {
+            name: "fig6",
+            figures: &["fig6"],
+            run: run_fig6,
+        },
+        Piece {
+            name: "fig3",
+            figures: &["fig3"],
+            run: run_fig3,
+        },
+        Piece {
+            name: "fig4a",
+            figures: &["fig4a"],
+            run: run_fig4a,
+        },
+        Piece {
+            name: "bifurcation",
+            figures: &["mode"],
+            run: run_bifurcation,
+        },
     ]
 }
 
@@ -33,7 +61,11 @@ fn significant(x: f64) -> String {
 
 fn claim(what: &str, paper: f64, ours: f64, command: &str) -> Claim {
     let relative = ours / paper - 1.0;
-    let verdict = if relative.abs() < 0.01 { "agrees within 1 %" } else { "differs" };
+    let verdict = if relative.abs() < 0.01 {
+        "agrees within 1 %"
+    } else {
+        "differs"
+    };
     let note = format!("{verdict} ({:+.3} %)", 100.0 * relative);
     Claim {
         what: what.into(),
@@ -114,8 +146,15 @@ fn run_homogeneous(params: &Parameters, _: &ReproduceOptions, dir: &Path, tick: 
 
 /// Fig. 3: one run at beta = pi/4 with N = 5 waves (k = 0.628, next to k0 = 0.609) to d = 0.21.
 fn run_fig3(params: &Parameters, options: &ReproduceOptions, dir: &Path, _: Tick) -> Result<Vec<Claim>> {
-    let p = Parameters { beta: std::f64::consts::FRAC_PI_4, ..params.clone() };
-    let mesh = if options.quick { MeshSpec::coarse() } else { MeshSpec::fine() };
+    let p = Parameters {
+        beta: std::f64::consts::FRAC_PI_4,
+        ..params.clone()
+    };
+    let mesh = if options.quick {
+        MeshSpec::coarse()
+    } else {
+        MeshSpec::fine()
+    };
     let k = wavenumber_of_waves(5.0, mesh.length)?;
     let study = SimulateStudy::new(mesh, Protocol::new(k, 0.05, 0.21));
     let summary = simulate::run(&p, &study, dir, &|_| {})?;
@@ -123,10 +162,20 @@ fn run_fig3(params: &Parameters, options: &ReproduceOptions, dir: &Path, _: Tick
     let command = "fiberfold simulate --set beta=0.785398 --waves 5 --mesh fine --d-max 0.21";
     let mut claims = Vec::new();
     if let Some(d) = onset.estimates.d_steepest {
-        claims.push(claim("FE onset (steepest A(d)) vs linear theory, beta = pi/4, N = 5", onset.d_linear_theory, d, command));
+        claims.push(claim(
+            "FE onset (steepest A(d)) vs linear theory, beta = pi/4, N = 5",
+            onset.d_linear_theory,
+            d,
+            command,
+        ));
     }
     if let Some(d) = onset.estimates.d_max_curvature {
-        claims.push(claim("FE onset (paper's max curvature of A(d)) vs linear theory", onset.d_linear_theory, d, command));
+        claims.push(claim(
+            "FE onset (paper's max curvature of A(d)) vs linear theory",
+            onset.d_linear_theory,
+            d,
+            command,
+        ));
     }
     Ok(claims)
 }
@@ -149,9 +198,19 @@ fn run_fig4a(params: &Parameters, options: &ReproduceOptions, dir: &Path, tick: 
 
 /// The exact bifurcation of the discretised perfect system at beta = pi/4.
 fn run_bifurcation(params: &Parameters, options: &ReproduceOptions, dir: &Path, _: Tick) -> Result<Vec<Claim>> {
-    let p = Parameters { beta: std::f64::consts::FRAC_PI_4, ..params.clone() };
-    let mesh = if options.quick { MeshSpec::coarse() } else { MeshSpec::fine() };
-    let study = BifurcationStudy { mesh, settings: BifurcationSettings::default() };
+    let p = Parameters {
+        beta: std::f64::consts::FRAC_PI_4,
+        ..params.clone()
+    };
+    let mesh = if options.quick {
+        MeshSpec::coarse()
+    } else {
+        MeshSpec::fine()
+    };
+    let study = BifurcationStudy {
+        mesh,
+        settings: BifurcationSettings::default(),
+    };
     let report = bifurcation::run(&p, &study, dir)?;
     Ok(vec![claim(
         "FE bifurcation of the perfect system (LDL^T inertia) vs min over m of d_c(m pi/50), beta = pi/4",

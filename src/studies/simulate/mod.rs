@@ -1,14 +1,21 @@
 //! `simulate`: the paper's loading protocol (section 2.1) on one mesh. Writes, into the output
 //! folder, `amplitude.csv` (a row per converged state, flushed at once), VTU snapshots with
-//! `simulate.pvd`, `surface.csv` (final top surface), `onset.json`, Fig. 3 and `simulate.json`.
+//! `simulate.pvd`, `surface.csv` (final top surface), `onset.json`, `contact.json`,
+//! `secondary.json` with its modes, Fig. 3 and `simulate.json`.
 //! A run that stops early keeps all of this for the path so far and then returns the error.
 
+mod crease;
 mod fig3;
 mod fig4a;
+mod fig7;
+mod secondary;
 mod state_vtu;
 
+pub use crease::{crease_columns, ContactReport, CREASE_COLUMNS};
 pub use fig3::fig3;
 pub use fig4a::{fig4a, Fig4aOptions, Fig4aRow};
+pub use fig7::{fig7, Fig7Facts, Fig7State, FIG7_D};
+pub use secondary::{SecondaryReport, SecondaryTracker};
 pub use state_vtu::write_state;
 
 use crate::error::{Error, Result};
@@ -25,7 +32,7 @@ use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// Columns of `amplitude.csv`.
+/// Columns of `amplitude.csv` (then [`CREASE_COLUMNS`]).
 pub const AMPLITUDE_HEADER: [&str; 6] = ["d", "A", "newton_iterations", "residual", "min_J", "step_seconds"];
 
 /// What the study reports while it runs.
@@ -216,6 +223,8 @@ pub struct SimulationSummary {
     pub totals: PhaseTotals,
     pub wall_seconds: f64,
     pub onset: OnsetReport,
+    pub contact: ContactReport,
+    pub secondary: SecondaryReport,
     pub files: Vec<String>,
 }
 
@@ -229,6 +238,8 @@ pub struct MeshSummary {
     pub length: f64,
     pub depth: f64,
     pub unknowns: usize,
+    /// Refinement in X: `[ratio, width, offset, period]` of [`crate::mesh::XRefinement`].
+    pub x_refinement: Option<[f64; 4]>,
 }
 
 impl From<&MeshSpec> for MeshSummary {
@@ -241,6 +252,7 @@ impl From<&MeshSpec> for MeshSummary {
             length: s.length,
             depth: s.depth,
             unknowns: s.num_dofs(),
+            x_refinement: s.x_refinement.map(|r| [r.ratio, r.width, r.offset, r.period]),
         }
     }
 }
@@ -253,27 +265,31 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
     crate::output::ensure_dir(out)?;
     let start = Instant::now();
     let materials = Bilayer::new(params);
-    let mut table = CsvWriter::create(&out.join("amplitude.csv"), &AMPLITUDE_HEADER)?;
+    let header: Vec<&str> = AMPLITUDE_HEADER.iter().chain(&CREASE_COLUMNS).copied().collect();
+    let mut table = CsvWriter::create(&out.join("amplitude.csv"), &header)?;
     let mut snapshots = Snapshots::new(out, study.vtu_every);
     let mut recorder = Recorder::new(monitor);
+    let mut secondary = SecondaryTracker::default();
     let outcome = stages::run(&materials, study.mesh, &study.protocol, &mut |event| {
         if let Event::Step { record, system, u } = &event {
-            table.append(&[
+            let columns = [
                 record.d,
                 record.amplitude,
                 record.iterations as f64,
                 *record.residual_history.last().expect("non-empty"),
                 record.min_jacobian,
                 record.seconds,
-            ])?;
-            snapshots.maybe_write(record.d, system, &materials, u)?;
+            ];
+            table.append(&[&columns[..], &crease_columns(record)].concat())?;
+            snapshots.maybe_write(record, system, &materials, u)?;
+            secondary.note(record, u);
         }
         recorder.note(&event);
         Ok(())
     })?;
     let continuation = &outcome.continuation;
     let (system, u, d_reached) = (continuation.system(), continuation.displacement(), continuation.d());
-    snapshots.write_final(d_reached, system, &materials, u)?;
+    snapshots.write_final(recorder.records.last(), d_reached, system, &materials, u)?;
     let mut surface = CsvWriter::create(&out.join("surface.csv"), &["x", "y"])?;
     for (x, y) in surface_profile(system.mesh(), u) {
         surface.append(&[x, y])?;
@@ -281,11 +297,23 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
     let curve = recorder.into_curve(outcome.stopped);
     let onset = OnsetReport::new(params, study.protocol.k, study.mesh.length, &curve)?;
     write_json(&out.join("onset.json"), &onset)?;
-    let mut files: Vec<PathBuf> = ["amplitude.csv", "surface.csv", "onset.json", "simulate.pvd"]
-        .iter()
-        .map(|f| out.join(f))
-        .collect();
+    let contact = ContactReport::new(&curve.records);
+    write_json(&out.join("contact.json"), &contact)?;
+    let p = &study.protocol;
+    let (secondary, secondary_files) =
+        secondary.finish(&curve.records, system.mesh(), &materials, p.k, p.imperfection2, u, out)?;
+    let mut files: Vec<PathBuf> = [
+        "amplitude.csv",
+        "surface.csv",
+        "onset.json",
+        "contact.json",
+        "simulate.pvd",
+    ]
+    .iter()
+    .map(|f| out.join(f))
+    .collect();
     files.extend(fig3(&curve, &onset).save(out, "fig3")?);
+    files.extend(secondary_files);
     let summary = SimulationSummary {
         command: "simulate",
         parameters: params.clone(),
@@ -301,6 +329,8 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
         totals: PhaseTotals::of(&curve.records),
         wall_seconds: start.elapsed().as_secs_f64(),
         onset,
+        contact,
+        secondary,
         files: files.iter().map(|f| f.display().to_string()).collect(),
     };
     write_json(&out.join("simulate.json"), &summary)?;
@@ -334,25 +364,42 @@ impl Snapshots {
     }
 
     /// Writes the state when `d` has reached the next mark of `every` (and the first state).
-    fn maybe_write(&mut self, d: f64, system: &System, materials: &Bilayer, u: &[f64]) -> Result<()> {
+    fn maybe_write(&mut self, record: &StepRecord, system: &System, materials: &Bilayer, u: &[f64]) -> Result<()> {
+        let d = record.d;
         if self.collection.is_empty() || d >= self.next_mark - 1e-9 {
-            self.write(d, system, materials, u)?;
+            self.write(Some(record), d, system, materials, u)?;
             self.next_mark = ((d / self.every + 1e-9).floor() + 1.0) * self.every;
         }
         Ok(())
     }
 
     /// Writes the final state unless it was just written.
-    fn write_final(&mut self, d: f64, system: &System, materials: &Bilayer, u: &[f64]) -> Result<()> {
+    fn write_final(
+        &mut self,
+        record: Option<&StepRecord>,
+        d: f64,
+        system: &System,
+        materials: &Bilayer,
+        u: &[f64],
+    ) -> Result<()> {
         match self.last_written {
             Some(last) if last == d => Ok(()),
-            _ => self.write(d, system, materials, u),
+            _ => self.write(record, d, system, materials, u),
         }
     }
 
-    fn write(&mut self, d: f64, system: &System, materials: &Bilayer, u: &[f64]) -> Result<()> {
+    /// Writes one snapshot, with the contact pressure of `record` as point data.
+    fn write(
+        &mut self,
+        record: Option<&StepRecord>,
+        d: f64,
+        system: &System,
+        materials: &Bilayer,
+        u: &[f64],
+    ) -> Result<()> {
         let path = self.dir.join(format!("simulate_{:04}.vtu", self.collection.len()));
-        write_state(&path, system, materials, u, Vec::new())?;
+        let pressure = crease::pressure_array(record, system.mesh().num_nodes());
+        write_state(&path, system, materials, u, vec![pressure])?;
         self.collection.add(d, &path)?;
         self.last_written = Some(d);
         Ok(())

@@ -1,0 +1,134 @@
+//! Secondary bifurcations along the computed (wrinkled) path, and which branch the path took.
+//!
+//! The number of negative pivots of the converged tangent `K = L D L^T` is, by Sylvester's law,
+//! the number of unstable directions of the state; every change of it between two accepted
+//! steps brackets a bifurcation (or a limit point) of the path. Its mode is the eigenvector of
+//! the eigenvalue nearest zero at the state after the change, by inverse iteration with the
+//! factor. The branch is "periodic" when the troughs of the seeded mode end up equally deep,
+//! "localised" when one trough is clearly the deepest, and "modulated" when several deep
+//! troughs alternate with shallow ones (e.g. a period doubling).
+
+use super::continuation::StepRecord;
+use super::surface::surface_profile;
+use crate::error::Result;
+use crate::fem::linear_solver::multiply;
+use crate::fem::{model_conditions, SparseLdlt, System};
+use crate::mesh::Mesh;
+use serde::Serialize;
+
+/// Troughs whose depths differ by more than this fraction of the deepest are clearly different.
+pub const LOCALISED_SPREAD: f64 = 0.2;
+
+/// One change of the inertia between consecutive accepted steps.
+#[derive(Clone, Debug, Serialize)]
+pub struct InertiaChange {
+    pub d_before: f64,
+    pub d_after: f64,
+    pub negative_before: usize,
+    pub negative_after: usize,
+}
+
+/// Every change of the number of negative pivots along `records` (steps without it are skipped).
+pub fn inertia_changes(records: &[StepRecord]) -> Vec<InertiaChange> {
+    let tracked: Vec<(f64, usize)> = records.iter().filter_map(|r| Some((r.d, r.negative_pivots?))).collect();
+    tracked
+        .windows(2)
+        .filter(|w| w[0].1 != w[1].1)
+        .map(|w| InertiaChange {
+            d_before: w[0].0,
+            d_after: w[1].0,
+            negative_before: w[0].1,
+            negative_after: w[1].1,
+        })
+        .collect()
+}
+
+/// The eigenpair of the elastic tangent at the state `u` (end-shortening `d`) whose eigenvalue
+/// is nearest zero: inverse iteration, the mode on all unknowns (zero where prescribed) scaled to
+/// a largest top-surface `|u_y|` of 1.
+pub fn mode_nearest_zero(system: &mut System, u: &[f64], d: f64, iterations: usize) -> Result<(Vec<f64>, f64)> {
+    let bc = model_conditions(system.mesh(), d)?;
+    let k = system
+        .assemble(u, &bc, None, true)?
+        .tangent
+        .expect("assembled with the tangent");
+    let mut solver = SparseLdlt::new(k.symbolic());
+    solver.factorize(k.as_ref());
+    let n = solver.dimension();
+    let mut x: Vec<f64> = (0..n)
+        .map(|i| ((i as f64 + 1.0) * 0.754_877_666).fract() - 0.5)
+        .collect();
+    let mut rayleigh = f64::INFINITY;
+    for _ in 0..iterations {
+        normalise(&mut x);
+        let mut y = x.clone();
+        solver.solve_in_place(&mut y)?;
+        let next = dot(&y, &x) / dot(&y, &y);
+        x = y;
+        let converged = (next - rayleigh).abs() <= 1e-10 * next.abs();
+        rayleigh = next;
+        if converged {
+            break;
+        }
+    }
+    normalise(&mut x);
+    let eigenvalue = dot(&x, &multiply(k.as_ref(), &x));
+    let mut mode = vec![0.0; system.num_dofs()];
+    for (&dof, &v) in system.free_dofs(&bc)?.iter().zip(&x) {
+        mode[dof] = v;
+    }
+    let top = system.mesh().top();
+    let largest = top.iter().fold(0.0f64, |m, &n| m.max(mode[2 * n + 1].abs()));
+    if largest > 0.0 {
+        mode.iter_mut().for_each(|v| *v /= largest);
+    }
+    Ok((mode, eigenvalue))
+}
+
+/// The branch a path ended on: the depth below the highest surface point of each trough of the
+/// seeded mode `cos(k X)` (at `X = (2 j + 1) pi / k`), and "periodic", "localised" or "modulated".
+#[derive(Clone, Debug, Serialize)]
+pub struct Branch {
+    pub trough_depths: Vec<f64>,
+    pub kind: &'static str,
+}
+
+/// Classifies the final state `u` of `mesh` seeded with wavenumber `k` (module docs).
+pub fn branch(mesh: &Mesh, u: &[f64], k: f64) -> Branch {
+    let profile = surface_profile(mesh, u);
+    let reference: Vec<f64> = mesh.top().iter().map(|&n| mesh.coordinates()[n][0]).collect();
+    let top = profile.iter().fold(f64::NEG_INFINITY, |m, p| m.max(p.1));
+    let half = std::f64::consts::PI / k;
+    let length = mesh.spec().length;
+    let trough_depths: Vec<f64> = (0..)
+        .map(|j| (2 * j + 1) as f64 * half)
+        .take_while(|&centre| centre <= length + 1e-9)
+        .map(|centre| {
+            let lowest = reference
+                .iter()
+                .zip(&profile)
+                .filter(|(x, _)| (**x - centre).abs() <= 0.5 * half)
+                .fold(f64::INFINITY, |m, (_, p)| m.min(p.1));
+            top - lowest
+        })
+        .collect();
+    let mut sorted = trough_depths.clone();
+    sorted.sort_by(|a, b| b.total_cmp(a));
+    let spread = |other: f64| sorted[0] - other > LOCALISED_SPREAD * sorted[0];
+    let kind = match sorted.as_slice() {
+        [] | [_] => "periodic",
+        [_, second, ..] if spread(*second) => "localised",
+        [.., shallowest] if spread(*shallowest) => "modulated",
+        _ => "periodic",
+    };
+    Branch { trough_depths, kind }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+fn normalise(x: &mut [f64]) {
+    let norm = dot(x, x).sqrt();
+    x.iter_mut().for_each(|v| *v /= norm);
+}

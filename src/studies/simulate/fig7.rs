@@ -1,0 +1,266 @@
+//! Fig. 7: the wrinkle growing into a crease (section 3.2), `beta` from the parameters, N = 5,
+//! at `d = 0.24, 0.40, 0.48` (the closest accepted states): the deformed top surface (left) and
+//! the von Mises stress on the deformed mesh near the surface (right; elements drawn through
+//! their eight boundary nodes, colour scale shared and clipped at the 99th percentile).
+
+use crate::error::{Error, Result};
+use crate::fem::fields::cell_fields;
+use crate::fem::System;
+use crate::material::Bilayer;
+use crate::mesh::MeshSpec;
+use crate::output::plot::{register_font, FONT};
+use crate::output::write_json;
+use crate::parameters::Parameters;
+use crate::protocol::{stages, wavenumber_of_waves, Event, Protocol, StepControl};
+use crate::studies::Tick;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+
+/// The compressions shown.
+pub const FIG7_D: [f64; 3] = [0.24, 0.40, 0.48];
+/// Depth below the highest surface point drawn in the stress panels.
+const WINDOW_DEPTH: f64 = 12.0;
+/// The boundary loop of a Q2 element through its local nodes `a + 3 b`.
+const BOUNDARY: [usize; 8] = [0, 1, 2, 5, 8, 7, 6, 3];
+
+/// One panel's state.
+#[derive(Clone, Debug, Serialize)]
+pub struct Fig7State {
+    pub d_target: f64,
+    pub d: f64,
+    pub amplitude: f64,
+    pub in_contact: bool,
+    pub contact_length: f64,
+    pub max_von_mises: f64,
+    #[serde(skip)]
+    u: Vec<f64>,
+}
+
+/// What Fig. 7 shows, with its files.
+#[derive(Clone, Debug, Serialize)]
+pub struct Fig7Facts {
+    pub beta: f64,
+    pub waves: f64,
+    pub unknowns: usize,
+    pub states: Vec<Fig7State>,
+    pub d_first_contact: Option<f64>,
+    pub d_reached: f64,
+    pub seconds: f64,
+    pub files: Vec<PathBuf>,
+}
+
+/// Runs `params` (N = 5 waves, `A_init = 0.05`, contact and stabilisation) on `mesh` to
+/// `d = 0.48` and writes `fig7.png`, `fig7.svg` and `fig7.json` into `out`; `quick` records
+/// states at most every 0.01 in `d` instead of 0.005 and skips the inertia. `tick` is called
+/// after every accepted state.
+pub fn fig7(params: &Parameters, mesh: MeshSpec, quick: bool, out: &Path, tick: Tick) -> Result<Fig7Facts> {
+    crate::output::ensure_dir(out)?;
+    let start = std::time::Instant::now();
+    let materials = Bilayer::new(params);
+    let waves = 5.0;
+    let mut protocol = Protocol::new(wavenumber_of_waves(waves, mesh.length)?, 0.05, FIG7_D[2]).with_crease_path();
+    let step = if quick { 0.01 } else { 0.005 };
+    protocol.control = StepControl {
+        initial: step,
+        max: step,
+        ..protocol.control
+    };
+    protocol.newton.inertia_at_solution = false;
+    let mut states: Vec<Option<Fig7State>> = vec![None; FIG7_D.len()];
+    let mut first_contact = None;
+    let outcome = stages::run(&materials, mesh, &protocol, &mut |event| {
+        if let Event::Step { record, u, .. } = event {
+            let augmented = record.augmented.clone().unwrap_or_default();
+            if augmented.in_contact && first_contact.is_none() {
+                first_contact = Some(record.d);
+            }
+            for (slot, &target) in states.iter_mut().zip(&FIG7_D) {
+                if slot
+                    .as_ref()
+                    .is_none_or(|s| (record.d - target).abs() < (s.d - target).abs())
+                {
+                    *slot = Some(Fig7State {
+                        d_target: target,
+                        d: record.d,
+                        amplitude: record.amplitude,
+                        in_contact: augmented.in_contact,
+                        contact_length: augmented.contact_length,
+                        max_von_mises: 0.0,
+                        u: u.to_vec(),
+                    });
+                }
+            }
+            tick();
+        }
+        Ok(())
+    })?;
+    if let Some(e) = outcome.stopped {
+        return Err(Error::Solver(format!("Fig. 7: {e}")));
+    }
+    let system = outcome.continuation.system();
+    let mut states: Vec<Fig7State> = states.into_iter().flatten().collect();
+    let mut panels = Vec::new();
+    for state in &mut states {
+        let panel = Panel::new(system, &materials, state)?;
+        state.max_von_mises = panel.cells.iter().fold(0.0, |m, c| m.max(c.1));
+        panels.push(panel);
+    }
+    let scale = percentile(panels.iter().flat_map(|p| p.cells.iter().map(|c| c.1)).collect(), 0.99);
+    register_font();
+    let (png, svg) = (out.join("fig7.png"), out.join("fig7.svg"));
+    let size = (1400, 1050);
+    let fail = |path: &Path, message: String| Error::Plot {
+        path: path.display().to_string(),
+        message,
+    };
+    draw(BitMapBackend::new(&png, size).into_drawing_area(), &panels, scale).map_err(|m| fail(&png, m))?;
+    draw(SVGBackend::new(&svg, size).into_drawing_area(), &panels, scale).map_err(|m| fail(&svg, m))?;
+    let json = out.join("fig7.json");
+    let facts = Fig7Facts {
+        beta: params.beta,
+        waves,
+        unknowns: mesh.num_dofs(),
+        states,
+        d_first_contact: first_contact,
+        d_reached: outcome.continuation.d(),
+        seconds: start.elapsed().as_secs_f64(),
+        files: vec![png, svg, json.clone()],
+    };
+    write_json(&json, &facts)?;
+    Ok(facts)
+}
+
+/// What one row draws: the surface, and the deformed elements near it with their von Mises stress.
+struct Panel {
+    d: f64,
+    surface: Vec<(f64, f64)>,
+    cells: Vec<(Vec<(f64, f64)>, f64)>,
+    x_max: f64,
+    y_range: (f64, f64),
+}
+
+impl Panel {
+    fn new(system: &System, materials: &Bilayer, state: &Fig7State) -> Result<Self> {
+        let mesh = system.mesh();
+        let u = &state.u;
+        let position = |n: usize| {
+            let x = mesh.coordinates()[n];
+            (x[0] + u[2 * n], x[1] + u[2 * n + 1])
+        };
+        let surface: Vec<(f64, f64)> = mesh.top().into_iter().map(position).collect();
+        let top = surface.iter().fold(f64::NEG_INFINITY, |m, p| m.max(p.1));
+        let bottom = top - WINDOW_DEPTH;
+        let von_mises = cell_fields(system, materials, u)?.von_mises;
+        let cells = mesh
+            .elements()
+            .iter()
+            .zip(von_mises)
+            .map(|(nodes, s)| (BOUNDARY.iter().map(|&a| position(nodes[a])).collect::<Vec<_>>(), s))
+            .filter(|(polygon, _)| polygon.iter().any(|p| p.1 >= bottom))
+            .collect();
+        Ok(Panel {
+            d: state.d,
+            surface,
+            cells,
+            x_max: mesh.spec().length * (1.0 - state.d),
+            y_range: (bottom, top + 0.5),
+        })
+    }
+}
+
+impl Panel {
+    /// The surface's own height range, with a margin.
+    fn surface_range(&self) -> std::ops::Range<f64> {
+        let (low, high) = self
+            .surface
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.1), h.max(p.1)));
+        let margin = 0.05 * (high - low).max(0.1);
+        (low - margin)..(high + margin)
+    }
+}
+
+/// The `q` quantile of `values` (0 when empty).
+fn percentile(mut values: Vec<f64>, q: f64) -> f64 {
+    values.sort_by(f64::total_cmp);
+    values
+        .get(((values.len() as f64 - 1.0) * q) as usize)
+        .copied()
+        .unwrap_or(0.0)
+        .max(f64::MIN_POSITIVE)
+}
+
+/// A viridis-like colour map on `[0, 1]`.
+fn colour(t: f64) -> RGBColor {
+    const STOPS: [(u8, u8, u8); 5] = [
+        (68, 1, 84),
+        (59, 82, 139),
+        (33, 145, 140),
+        (94, 201, 98),
+        (253, 231, 37),
+    ];
+    let s = t.clamp(0.0, 1.0) * (STOPS.len() - 1) as f64;
+    let (i, f) = (
+        (s.floor() as usize).min(STOPS.len() - 2),
+        s - s.floor().min((STOPS.len() - 2) as f64),
+    );
+    let mix = |a: u8, b: u8| (a as f64 + (b as f64 - a as f64) * f).round() as u8;
+    RGBColor(
+        mix(STOPS[i].0, STOPS[i + 1].0),
+        mix(STOPS[i].1, STOPS[i + 1].1),
+        mix(STOPS[i].2, STOPS[i + 1].2),
+    )
+}
+
+fn draw<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    panels: &[Panel],
+    scale: f64,
+) -> std::result::Result<(), String> {
+    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    root.fill(&WHITE).map_err(e)?;
+    let rows = root.split_evenly((panels.len(), 2));
+    for (panel, pair) in panels.iter().zip(rows.chunks(2)) {
+        let mut profile = ChartBuilder::on(&pair[0])
+            .caption(format!("surface profile, d = {:.3}", panel.d), (FONT, 18))
+            .margin(8)
+            .x_label_area_size(30)
+            .y_label_area_size(45)
+            .build_cartesian_2d(0.0..panel.x_max, panel.surface_range())
+            .map_err(e)?;
+        profile
+            .configure_mesh()
+            .light_line_style(WHITE.mix(0.0))
+            .label_style((FONT, 12))
+            .draw()
+            .map_err(e)?;
+        profile
+            .draw_series(LineSeries::new(panel.surface.iter().copied(), BLACK.stroke_width(2)))
+            .map_err(e)?;
+        let mut map = ChartBuilder::on(&pair[1])
+            .caption(
+                format!("von Mises stress (0 to {scale:.2} mu_s), d = {:.3}", panel.d),
+                (FONT, 18),
+            )
+            .margin(8)
+            .x_label_area_size(30)
+            .y_label_area_size(45)
+            .build_cartesian_2d(0.0..panel.x_max, panel.y_range.0..panel.y_range.1)
+            .map_err(e)?;
+        map.configure_mesh()
+            .light_line_style(WHITE.mix(0.0))
+            .label_style((FONT, 12))
+            .draw()
+            .map_err(e)?;
+        map.draw_series(
+            panel
+                .cells
+                .iter()
+                .map(|(polygon, s)| Polygon::new(polygon.clone(), colour(s / scale).filled())),
+        )
+        .map_err(e)?;
+    }
+    root.present().map_err(e)
+}

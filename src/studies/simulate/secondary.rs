@@ -1,0 +1,141 @@
+//! `secondary.json`: every change of the tangent's inertia along the run (the secondary
+//! bifurcations of the wrinkled path, [`crate::protocol::secondary`]), the mode of the first few
+//! (`secondary_mode_<i>.vtu`, and the top-surface `u_y` of the first in `secondary_mode.png`),
+//! and the branch the run ended on.
+
+use super::write_state;
+use crate::error::Result;
+use crate::fem::System;
+use crate::material::Bilayer;
+use crate::mesh::Mesh;
+use crate::output::vtu::DataArray;
+use crate::output::{write_json, Figure, LineStyle, Series};
+use crate::protocol::bifurcation::{dominant_cosine, top_uy};
+use crate::protocol::secondary::{branch, inertia_changes, mode_nearest_zero, Branch, InertiaChange};
+use crate::protocol::StepRecord;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+
+/// How many modes are computed and written (the first changes).
+const MODES: usize = 3;
+/// Inverse iterations per mode.
+const INVERSE_ITERATIONS: usize = 60;
+
+/// Keeps the states just after the first [`MODES`] changes of the inertia.
+#[derive(Default)]
+pub struct SecondaryTracker {
+    last: Option<usize>,
+    states: Vec<(f64, Vec<f64>)>,
+}
+
+impl SecondaryTracker {
+    /// Looks at one accepted state.
+    pub fn note(&mut self, record: &StepRecord, u: &[f64]) {
+        let Some(negative) = record.negative_pivots else { return };
+        if self.last.is_some_and(|last| last != negative) && self.states.len() < MODES {
+            self.states.push((record.d, u.to_vec()));
+        }
+        self.last = Some(negative);
+    }
+}
+
+/// One change with its mode.
+#[derive(Clone, Debug, Serialize)]
+pub struct SecondaryChange {
+    #[serde(flatten)]
+    pub change: InertiaChange,
+    /// Eigenvalue nearest zero of the elastic tangent after the change, and its mode's dominant
+    /// number of half wavelengths across the domain (`None` past the first few changes).
+    pub eigenvalue: Option<f64>,
+    pub mode_half_waves: Option<usize>,
+    pub mode_file: Option<String>,
+}
+
+/// `secondary.json`.
+#[derive(Clone, Debug, Serialize)]
+pub struct SecondaryReport {
+    /// First `d` with a changed inertia (`None`: none, or inertia not tracked).
+    pub d_secondary: Option<f64>,
+    pub changes: Vec<SecondaryChange>,
+    pub inertia_tracked: bool,
+    pub imperfection2: f64,
+    /// The branch the run ended on, from the depths of the seeded troughs.
+    pub branch: Branch,
+    pub note: &'static str,
+}
+
+const SECONDARY_NOTE: &str = "The inertia is the number of negative pivots of the undamped tangent (elastic plus \
+    contact) at every accepted state; a change between d_before and d_after brackets a bifurcation or limit point \
+    of the computed path, and d_secondary is the d_after of the first change. Modes come from inverse iteration on \
+    the elastic tangent (contact stiffness left out) at d_after. branch compares the depths of the seeded troughs \
+    at the last state: 'periodic' if all are within 20 % of the deepest, 'localised' if the deepest leads the next \
+    by more than that, 'modulated' otherwise (several deep troughs between shallow ones).";
+
+impl SecondaryTracker {
+    /// Computes the modes, writes their files and `secondary.json` into `out`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn finish(
+        self,
+        records: &[StepRecord],
+        mesh: &Mesh,
+        materials: &Bilayer,
+        k: f64,
+        imperfection2: f64,
+        u_final: &[f64],
+        out: &Path,
+    ) -> Result<(SecondaryReport, Vec<PathBuf>)> {
+        let mut files = Vec::new();
+        let mut changes: Vec<SecondaryChange> = inertia_changes(records)
+            .into_iter()
+            .map(|change| SecondaryChange {
+                change,
+                eigenvalue: None,
+                mode_half_waves: None,
+                mode_file: None,
+            })
+            .collect();
+        let mut system = System::new(mesh.clone(), materials)?;
+        for (i, ((d, u), change)) in self.states.iter().zip(changes.iter_mut()).enumerate() {
+            let (mode, eigenvalue) = mode_nearest_zero(&mut system, u, *d, INVERSE_ITERATIONS)?;
+            let path = out.join(format!("secondary_mode_{i}.vtu"));
+            let array = DataArray::plane_vectors("mode", mode.chunks(2).map(|c| [c[0], c[1]]));
+            write_state(&path, &system, materials, u, vec![array])?;
+            let uy = top_uy(mesh, &mode);
+            if i == 0 {
+                files.extend(mode_figure(mesh, &uy, *d).save(out, "secondary_mode")?);
+            }
+            change.eigenvalue = Some(eigenvalue);
+            change.mode_half_waves = Some(dominant_cosine(&uy, mesh.spec().length, mesh));
+            change.mode_file = Some(path.display().to_string());
+            files.push(path);
+        }
+        let report = SecondaryReport {
+            d_secondary: changes.first().map(|c| c.change.d_after),
+            changes,
+            inertia_tracked: records.iter().any(|r| r.negative_pivots.is_some()),
+            imperfection2,
+            branch: branch(mesh, u_final, k),
+            note: SECONDARY_NOTE,
+        };
+        let json = out.join("secondary.json");
+        write_json(&json, &report)?;
+        files.push(json);
+        Ok((report, files))
+    }
+}
+
+/// The top-surface `u_y` of a mode against the reference `X`.
+fn mode_figure(mesh: &Mesh, uy: &[f64], d: f64) -> Figure {
+    let x = mesh.top().into_iter().map(|n| mesh.coordinates()[n][0]);
+    Figure::new(
+        format!("First secondary bifurcation mode, d = {d:.4}"),
+        "reference X",
+        "mode u_y on the top surface",
+    )
+    .with(Series::new(
+        "",
+        x.zip(uy.iter().copied()).collect(),
+        LineStyle::Solid,
+        0,
+    ))
+}

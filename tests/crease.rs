@@ -1,0 +1,201 @@
+//! The path to a crease against independent facts: the creasing threshold of a homogeneous
+//! neo-Hookean half-space (Hong, Zhao & Suo 2009: ~0.35, far below Biot's 0.456), and a run
+//! through first contact that never inverts an element, never penetrates beyond `1e-3 H`, and
+//! dissipates less than 1 % of the strain energy in its stabilisation.
+
+use fiberfold::material::Bilayer;
+use fiberfold::mesh::MeshSpec;
+use fiberfold::protocol::{stages, Event, Protocol, StepControl, StepRecord};
+use fiberfold::studies::crease_threshold::{crease_threshold, CreaseThresholdStudy, BIOT_STRAIN};
+use fiberfold::Parameters;
+use std::f64::consts::{FRAC_PI_4, PI};
+
+#[test]
+fn a_seeded_crease_pays_off_near_the_creasing_strain_far_below_biot() {
+    // K = 100 mu (Poisson's ratio 0.495); a 12 x 12 block, 48 elements across refined 8 times
+    // at the crease, fold length 1: 11,058 unknowns, about 10 s. Refined studies (twice the
+    // elements in each direction, or the whole problem scaled by two) move the threshold by
+    // 1e-3; this small mesh lands at 0.360. The band of the test is [0.33, 0.38], looser
+    // than Hong, Zhao & Suo's 0.35 by the coarse mesh, the finite domain and K / mu = 100.
+    let study = CreaseThresholdStudy::new(100.0, 12.0, 48, 8, 20, 8.0);
+    let threshold = crease_threshold(&study).unwrap();
+    for e in &threshold.evaluations {
+        println!(
+            "eps {:.4}: (U_crease - U_flat) / (mu a^2) = {:+.5}, depth {:.3}, min J {:.3}",
+            e.strain, e.scaled_difference, e.depth, e.min_jacobian
+        );
+        assert!(e.min_jacobian > 0.0);
+    }
+    println!("threshold {:.4} in {:.1} s", threshold.strain, threshold.seconds);
+    assert!((0.33..=0.38).contains(&threshold.strain), "{}", threshold.strain);
+    assert!(threshold.strain < BIOT_STRAIN - 0.07);
+    let first = &threshold.evaluations[0];
+    assert!(
+        first.strain == 0.30 && first.difference > 0.0,
+        "no crease at eps = 0.30"
+    );
+}
+
+/// Every accepted state of a run on the short domain `L = D = 10` (20 x (2 + 8) elements, one
+/// wave: a trough at `X = 5`) carried to a crease with contact and stabilisation.
+fn crease_run(d_max: f64) -> Vec<StepRecord> {
+    let params = Parameters {
+        beta: FRAC_PI_4,
+        ..Parameters::default()
+    };
+    let mut protocol = Protocol::new(2.0 * PI / 10.0, 0.05, d_max).with_crease_path();
+    protocol.control = StepControl {
+        min: 1e-7,
+        ..StepControl::default()
+    };
+    protocol.newton.max_iterations = 40;
+    let mut records = Vec::new();
+    let outcome = stages::run(
+        &Bilayer::new(&params),
+        MeshSpec::new(20, 2, 8, 0.5, 10.0, 10.0),
+        &protocol,
+        &mut |event| {
+            if let Event::Step { record, .. } = event {
+                records.push(record.clone());
+            }
+            Ok(())
+        },
+    )
+    .unwrap();
+    assert!(outcome.stopped.is_none(), "{:?}", outcome.stopped);
+    records
+}
+
+#[test]
+fn a_run_through_contact_never_inverts_nor_penetrates_and_dissipates_little() {
+    let records = crease_run(0.45);
+    let first = records
+        .iter()
+        .find(|r| r.augmented.as_ref().is_some_and(|a| a.in_contact));
+    let last = records.last().unwrap();
+    println!(
+        "{} steps to d = {}, first contact at {:?}, final contact length {:.3}",
+        records.len(),
+        last.d,
+        first.map(|r| r.d),
+        last.augmented.as_ref().unwrap().contact_length
+    );
+    assert!(first.is_some(), "the trough closes before d = 0.45");
+    for r in &records[1..] {
+        let a = r.augmented.as_ref().unwrap();
+        assert!(r.min_jacobian > 0.0, "J = {} at d = {}", r.min_jacobian, r.d);
+        assert!(a.penetration <= 1e-3, "penetration {} at d = {}", a.penetration, r.d);
+        assert!(a.stabilisation_energy_fraction <= 0.01, "at d = {}", r.d);
+    }
+    assert!(last.augmented.as_ref().unwrap().contact_length > 0.0);
+}
+
+#[test]
+fn a_run_to_a_crease_writes_contact_secondary_and_pressure() {
+    use fiberfold::studies::simulate::{self, Progress, SimulateStudy};
+    let dir = std::env::temp_dir().join(format!("fiberfold-crease-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut protocol = Protocol::new(2.0 * PI / 10.0, 0.05, 0.36).with_crease_path();
+    protocol.newton.inertia_at_solution = true;
+    let study = SimulateStudy {
+        mesh: MeshSpec::new(20, 2, 8, 0.5, 10.0, 10.0),
+        protocol,
+        vtu_every: 0.1,
+    };
+    let params = Parameters {
+        beta: FRAC_PI_4,
+        ..Parameters::default()
+    };
+    let summary = simulate::run(&params, &study, &dir, &|_: Progress<'_>| {}).unwrap();
+    let contact: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("contact.json")).unwrap()).unwrap();
+    let first = contact["d_first_contact"].as_f64().unwrap();
+    assert!(first > 0.2 && first < 0.36, "{contact}");
+    assert_eq!(contact["d_reached"].as_f64().unwrap(), 0.36);
+    assert!(contact["contact_length_final"].as_f64().unwrap() > 0.0);
+    let secondary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("secondary.json")).unwrap()).unwrap();
+    assert!(
+        secondary.get("d_secondary").is_some() && secondary["inertia_tracked"] == true,
+        "{secondary}"
+    );
+    assert_eq!(
+        secondary["branch"]["kind"], "periodic",
+        "one trough is always 'periodic'"
+    );
+    let csv = std::fs::read_to_string(dir.join("amplitude.csv")).unwrap();
+    let last: Vec<f64> = csv
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    assert_eq!(last[6], 1.0, "in contact at the end: {csv}");
+    let vtu = std::fs::read_to_string(dir.join("simulate_0004.vtu")).unwrap();
+    assert!(vtu.contains(r#"Name="contact_pressure""#));
+    assert_eq!(summary.contact.d_first_contact, Some(first));
+}
+
+#[test]
+fn fig7_shows_the_wrinkle_the_contact_and_the_crease() {
+    use fiberfold::studies::simulate::{fig7, FIG7_D};
+    let dir = std::env::temp_dir().join(format!("fiberfold-fig7-{}", std::process::id()));
+    let params = Parameters {
+        beta: FRAC_PI_4,
+        ..Parameters::default()
+    };
+    // The paper's domain on a very coarse mesh (4,242 unknowns): five elements per half wave.
+    let facts = fig7(&params, MeshSpec::new(50, 1, 10, 1.0, 50.0, 50.0), true, &dir, &|| {}).unwrap();
+    println!("{facts:#?}");
+    assert_eq!(facts.states.len(), 3);
+    for (state, target) in facts.states.iter().zip(FIG7_D) {
+        assert!((state.d - target).abs() <= 0.005, "{} for {target}", state.d);
+        assert!(state.max_von_mises > 0.0);
+    }
+    assert!(!facts.states[0].in_contact && facts.states[2].in_contact);
+    assert!(facts.states[2].amplitude > facts.states[0].amplitude);
+    for file in &facts.files {
+        assert!(std::fs::metadata(file).unwrap().len() > 500, "{}", file.display());
+    }
+}
+
+/// The refined threshold studies quoted in the closing note (several minutes):
+/// `cargo test --release --test crease -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn refined_crease_thresholds() {
+    for (label, study) in [
+        (
+            "K = 100, 12 x 12, 48 x (8 + 20), x8",
+            CreaseThresholdStudy::new(100.0, 12.0, 48, 8, 20, 8.0),
+        ),
+        (
+            "K = 100, 12 x 12, 96 x (16 + 30), x8",
+            CreaseThresholdStudy::new(100.0, 12.0, 96, 16, 30, 8.0),
+        ),
+        (
+            "K = 100, 24 x 24, 96 x (8 + 30), x8",
+            CreaseThresholdStudy::new(100.0, 24.0, 96, 8, 30, 8.0),
+        ),
+        (
+            "K = 300, 12 x 12, 48 x (8 + 20), x8",
+            CreaseThresholdStudy::new(300.0, 12.0, 48, 8, 20, 8.0),
+        ),
+        (
+            "K = 300, 12 x 12, 96 x (16 + 30), x8",
+            CreaseThresholdStudy::new(300.0, 12.0, 96, 16, 30, 8.0),
+        ),
+    ] {
+        match crease_threshold(&study) {
+            Ok(t) => println!(
+                "{label}: threshold {:.4} ({} unknowns, {} evaluations, {:.1} s)",
+                t.strain,
+                t.unknowns,
+                t.evaluations.len(),
+                t.seconds
+            ),
+            Err(e) => println!("{label}: {e}"),
+        }
+    }
+}
