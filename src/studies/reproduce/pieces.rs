@@ -50,6 +50,11 @@ pub fn pieces() -> Vec<Piece> {
             figures: &["mode"],
             run: run_bifurcation,
         },
+        Piece {
+            name: "fig7",
+            figures: &["fig7"],
+            run: run_fig7,
+        },
     ]
 }
 
@@ -144,17 +149,26 @@ fn run_homogeneous(params: &Parameters, _: &ReproduceOptions, dir: &Path, tick: 
     Ok(vec![])
 }
 
-/// Fig. 3: one run at beta = pi/4 with N = 5 waves (k = 0.628, next to k0 = 0.609) to d = 0.21.
-fn run_fig3(params: &Parameters, options: &ReproduceOptions, dir: &Path, _: Tick) -> Result<Vec<Claim>> {
+/// The FE pieces' case: fibres at beta = pi/4 (the paper's Figs. 3 and 7) on the coarse mesh
+/// when quick, else the fine one.
+fn fe_case(params: &Parameters, options: &ReproduceOptions) -> (Parameters, MeshSpec) {
     let p = Parameters {
         beta: std::f64::consts::FRAC_PI_4,
         ..params.clone()
     };
-    let mesh = if options.quick {
-        MeshSpec::coarse()
-    } else {
-        MeshSpec::fine()
-    };
+    (
+        p,
+        if options.quick {
+            MeshSpec::coarse()
+        } else {
+            MeshSpec::fine()
+        },
+    )
+}
+
+/// Fig. 3: one run at beta = pi/4 with N = 5 waves (k = 0.628, next to k0 = 0.609) to d = 0.21.
+fn run_fig3(params: &Parameters, options: &ReproduceOptions, dir: &Path, _: Tick) -> Result<Vec<Claim>> {
+    let (p, mesh) = fe_case(params, options);
     let k = wavenumber_of_waves(5.0, mesh.length)?;
     let study = SimulateStudy::new(mesh, Protocol::new(k, 0.05, 0.21));
     let summary = simulate::run(&p, &study, dir, &|_| {})?;
@@ -198,15 +212,7 @@ fn run_fig4a(params: &Parameters, options: &ReproduceOptions, dir: &Path, tick: 
 
 /// The exact bifurcation of the discretised perfect system at beta = pi/4.
 fn run_bifurcation(params: &Parameters, options: &ReproduceOptions, dir: &Path, _: Tick) -> Result<Vec<Claim>> {
-    let p = Parameters {
-        beta: std::f64::consts::FRAC_PI_4,
-        ..params.clone()
-    };
-    let mesh = if options.quick {
-        MeshSpec::coarse()
-    } else {
-        MeshSpec::fine()
-    };
+    let (p, mesh) = fe_case(params, options);
     let study = BifurcationStudy {
         mesh,
         settings: BifurcationSettings::default(),
@@ -218,4 +224,25 @@ fn run_bifurcation(params: &Parameters, options: &ReproduceOptions, dir: &Path, 
         report.d_bifurcation,
         "fiberfold bifurcation --set beta=0.785398 --mesh fine",
     )])
+}
+
+/// Fig. 7: the wrinkle (N = 5, beta = pi/4) followed into a crease with self-contact to d = 0.48.
+fn run_fig7(params: &Parameters, options: &ReproduceOptions, dir: &Path, tick: Tick) -> Result<Vec<Claim>> {
+    let (p, mesh) = fe_case(params, options);
+    let facts = crate::studies::simulate::fig7(&p, mesh, options.quick, dir, tick)?;
+    let mut claims = vec![claim(
+        "compression reached by the crease run (beta = pi/4, N = 5)",
+        0.48,
+        facts.d_reached,
+        "fiberfold simulate --set beta=0.785398 --waves 5 --mesh fine --d-max 0.48",
+    )];
+    if let Some(d) = facts.d_first_contact {
+        claims.push(claim(
+            "first self-contact of the surface (paper: one ABAQUS mesh)",
+            0.4,
+            d,
+            "fiberfold simulate --set beta=0.785398 --waves 5 --mesh fine --d-max 0.48",
+        ));
+    }
+    Ok(claims)
 }
