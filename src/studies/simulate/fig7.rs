@@ -236,8 +236,10 @@ fn draw<DB: DrawingBackend>(
             .label_style((FONT, 12))
             .draw()
             .map_err(e)?;
+        // One-pixel lines: a wider polyline's mitred joins degenerate where the surface folds
+        // back on itself (the two faces of a closed crease) and lose those segments.
         profile
-            .draw_series(LineSeries::new(panel.surface.iter().copied(), BLACK.stroke_width(2)))
+            .draw_series(LineSeries::new(panel.surface.iter().copied(), BLACK.stroke_width(1)))
             .map_err(e)?;
         let mut map = ChartBuilder::on(&pair[1])
             .caption(
