@@ -233,6 +233,47 @@ pub fn multiply(a: SparseColMatRef<'_, usize, f64>, x: &[f64]) -> Vec<f64> {
     y
 }
 
+/// The eigenpair of `k` whose eigenvalue is nearest zero, by inverse iteration with the factor
+/// of `k` held in `solver`: the unit eigenvector on the free unknowns and its Rayleigh quotient.
+/// Stops when the quotient changes by less than `tolerance` relative.
+pub fn inverse_iteration(
+    solver: &mut SparseLdlt,
+    k: SparseColMatRef<'_, usize, f64>,
+    iterations: usize,
+    tolerance: f64,
+) -> Result<(Vec<f64>, f64)> {
+    // A start with a component along every eigenvector (deterministic, no symmetry).
+    let mut x: Vec<f64> = (0..solver.dimension())
+        .map(|i| ((i as f64 + 1.0) * 0.754_877_666).fract() - 0.5)
+        .collect();
+    let mut rayleigh = f64::INFINITY;
+    for _ in 0..iterations {
+        normalise(&mut x);
+        let mut y = x.clone();
+        solver.solve_in_place(&mut y)?;
+        // y = K^-1 x, so y.K y / y.y = y.x / y.y.
+        let next = dot(&y, &x) / dot(&y, &y);
+        x = y;
+        let converged = (next - rayleigh).abs() <= tolerance * next.abs();
+        rayleigh = next;
+        if converged {
+            break;
+        }
+    }
+    normalise(&mut x);
+    let eigenvalue = dot(&x, &multiply(k, &x));
+    Ok((x, eigenvalue))
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+fn normalise(x: &mut [f64]) {
+    let norm = dot(x, x).sqrt();
+    x.iter_mut().for_each(|v| *v /= norm);
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

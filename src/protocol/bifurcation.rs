@@ -10,7 +10,7 @@
 
 use crate::error::{Error, Result};
 use crate::fem::boundary::{dof, X, Y};
-use crate::fem::linear_solver::multiply;
+use crate::fem::linear_solver::inverse_iteration;
 use crate::fem::{model_conditions, SparseLdlt, System};
 use crate::homogeneous::{homogeneous_state, HomogeneousState};
 use crate::material::Bilayer;
@@ -115,28 +115,7 @@ impl HomogeneousPath<'_> {
     /// on the free unknowns, with its Rayleigh quotient.
     fn smallest_mode(&mut self, iterations: usize, k: &SparseColMat<usize, f64>) -> Result<(Vec<f64>, f64)> {
         let solver = self.solver.as_mut().expect("factorised before");
-        let n = solver.dimension();
-        // A start with a component along every eigenvector (deterministic, no symmetry).
-        let mut x: Vec<f64> = (0..n)
-            .map(|i| ((i as f64 + 1.0) * 0.754_877_666).fract() - 0.5)
-            .collect();
-        let mut rayleigh = f64::INFINITY;
-        for _ in 0..iterations {
-            normalise(&mut x);
-            let mut y = x.clone();
-            solver.solve_in_place(&mut y)?;
-            // y = K^-1 x, so y.K y / y.y = y.x / y.y.
-            let next = dot(&y, &x) / dot(&y, &y);
-            x = y;
-            let converged = (next - rayleigh).abs() <= 1e-12 * next.abs();
-            rayleigh = next;
-            if converged {
-                break;
-            }
-        }
-        normalise(&mut x);
-        let eigenvalue = dot(&x, &multiply(k.as_ref(), &x));
-        Ok((x, eigenvalue))
+        inverse_iteration(solver, k.as_ref(), iterations, 1e-12)
     }
 }
 
@@ -231,13 +210,4 @@ pub(crate) fn dominant_cosine(values: &[f64], length: f64, mesh: &Mesh) -> usize
     (1..=last)
         .max_by(|&a, &b| coefficient(a).total_cmp(&coefficient(b)))
         .unwrap_or(1)
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
-fn normalise(x: &mut [f64]) {
-    let norm = dot(x, x).sqrt();
-    x.iter_mut().for_each(|v| *v /= norm);
 }

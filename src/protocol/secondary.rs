@@ -11,7 +11,7 @@
 use super::continuation::StepRecord;
 use super::surface::surface_profile;
 use crate::error::Result;
-use crate::fem::linear_solver::multiply;
+use crate::fem::linear_solver::inverse_iteration;
 use crate::fem::{model_conditions, SparseLdlt, System};
 use crate::mesh::Mesh;
 use serde::Serialize;
@@ -54,25 +54,7 @@ pub fn mode_nearest_zero(system: &mut System, u: &[f64], d: f64, iterations: usi
         .expect("assembled with the tangent");
     let mut solver = SparseLdlt::new(k.symbolic());
     solver.factorize(k.as_ref());
-    let n = solver.dimension();
-    let mut x: Vec<f64> = (0..n)
-        .map(|i| ((i as f64 + 1.0) * 0.754_877_666).fract() - 0.5)
-        .collect();
-    let mut rayleigh = f64::INFINITY;
-    for _ in 0..iterations {
-        normalise(&mut x);
-        let mut y = x.clone();
-        solver.solve_in_place(&mut y)?;
-        let next = dot(&y, &x) / dot(&y, &y);
-        x = y;
-        let converged = (next - rayleigh).abs() <= 1e-10 * next.abs();
-        rayleigh = next;
-        if converged {
-            break;
-        }
-    }
-    normalise(&mut x);
-    let eigenvalue = dot(&x, &multiply(k.as_ref(), &x));
+    let (x, eigenvalue) = inverse_iteration(&mut solver, k.as_ref(), iterations, 1e-10)?;
     let mut mode = vec![0.0; system.num_dofs()];
     for (&dof, &v) in system.free_dofs(&bc)?.iter().zip(&x) {
         mode[dof] = v;
@@ -122,13 +104,4 @@ pub fn branch(mesh: &Mesh, u: &[f64], k: f64) -> Branch {
         _ => "periodic",
     };
     Branch { trough_depths, kind }
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
-fn normalise(x: &mut [f64]) {
-    let norm = dot(x, x).sqrt();
-    x.iter_mut().for_each(|v| *v /= norm);
 }
