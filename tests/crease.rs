@@ -131,7 +131,7 @@ fn a_run_to_a_crease_writes_contact_secondary_and_pressure() {
         .split(',')
         .map(|x| x.parse().unwrap())
         .collect();
-    assert_eq!(last[6], 1.0, "in contact at the end: {csv}");
+    assert_eq!(last[7], 1.0, "in contact at the end: {csv}");
     let vtu = std::fs::read_to_string(dir.join("simulate_0004.vtu")).unwrap();
     assert!(vtu.contains(r#"Name="contact_pressure""#));
     assert_eq!(summary.contact.d_first_contact, Some(first));

@@ -125,10 +125,16 @@ pub struct SimulateArgs {
     #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     pub refine_width: f64,
 
-    /// Amplitude A2 of the long-wave imperfection -A2 cos(pi X / 50), in [0, 1): it deepens
-    /// the troughs near X = 0 and lets the pattern leave an unstable periodic branch.
+    /// Amplitude A2 of the long-wave imperfection -A2 cos(2 pi N2 X / 50) of the reference
+    /// geometry, in [0, 1): it lets the pattern leave an unstable periodic branch (use the
+    /// shape of the first secondary mode: its N2 is printed at the end of a periodic run).
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub imperfection2: f64,
+
+    /// Waves N2 of the long-wave imperfection across the domain, 2 N2 a positive integer
+    /// (0.5: one half wave, deepest at X = 0; N/2: a period doubling).
+    #[arg(long, value_name = "N2", default_value_t = 0.5, allow_negative_numbers = true)]
+    pub imperfection2_waves: f64,
 
     /// Turn off contact of the top surface with the symmetry planes and with itself.
     #[arg(long)]
@@ -189,6 +195,7 @@ impl SimulateArgs {
         protocol.newton.max_iterations = self.max_newton_iterations;
         protocol.newton.inertia_at_solution = !self.no_inertia;
         protocol.imperfection2 = self.imperfection2;
+        protocol.imperfection2_waves = self.imperfection2_waves;
         protocol.contact = !self.no_contact;
         if !(self.eta.is_finite() && self.eta >= 0.0) {
             return Err(Error::invalid("eta", self.eta, "[0, inf)"));
@@ -214,7 +221,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     println!(
         "simulate: k = {:.6} ({} waves), A_init = {}, d to {}, {} unknowns",
         p.k,
-        p.k * study.mesh.length / (2.0 * std::f64::consts::PI),
+        mode_number(p.k, study.mesh.length)? as f64 / 2.0,
         p.imperfection,
         p.d_max,
         study.mesh.num_dofs()
@@ -273,6 +280,12 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         show(o.estimates.d_a2_fit),
         o.d_linear_theory
     );
+    if let Some(d) = o.d_ellipticity_loss.filter(|&d| d < summary.d_reached) {
+        println!(
+            "note: the homogeneous state loses strong ellipticity at d = {d:.4}; beyond it the continuum admits \
+             shear bands, so steps shrink and results there depend on the mesh"
+        );
+    }
     let c = &summary.contact;
     println!(
         "contact: first at d = {}, final closed length {:.4} in {} zone(s), largest penetration {:.1e}, \
@@ -292,6 +305,15 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         s.changes.len(),
         s.branch.kind
     );
+    let first_mode = s.changes.first().and_then(|c| c.mode_half_waves);
+    if let (Some(m), "periodic") = (first_mode, s.branch.kind) {
+        println!(
+            "  the first secondary mode has {} waves across the domain: to leave the periodic branch, seed it with \
+             e.g. --imperfection2 0.01 --imperfection2-waves {}",
+            m as f64 / 2.0,
+            m as f64 / 2.0
+        );
+    }
     report_files(&summary.files.iter().map(PathBuf::from).collect::<Vec<_>>());
     Ok(())
 }

@@ -83,6 +83,8 @@ pub struct StepRecord {
     pub step: f64,
     /// Wrinkle amplitude `A` of the converged state.
     pub amplitude: f64,
+    /// Strain energy of the converged state (per unit length out of plane, units mu_s H^2).
+    pub strain_energy: f64,
     /// Newton iterations of the accepted attempt.
     pub iterations: usize,
     /// `|r_f|` before each iteration and at convergence.
@@ -110,6 +112,7 @@ impl StepRecord {
             d,
             step,
             amplitude,
+            strain_energy: report.energy,
             iterations: report.iterations,
             residual_history: report.residual_history.clone(),
             relative_residual: residual / report.force_norm.max(f64::MIN_POSITIVE),

@@ -5,7 +5,7 @@
 
 use super::augmentation::Augmentation;
 use super::continuation::{Continuation, Event, StepControl, StepRecord};
-use super::imperfection::{mode_number, Imperfection};
+use super::imperfection::{mode_number, wavenumber_of_waves, Imperfection};
 use super::stabilisation::StabilisationSettings;
 use super::surface::amplitude;
 use crate::error::{Error, Result};
@@ -35,9 +35,12 @@ pub struct Protocol {
     pub contact: bool,
     /// Viscous stabilisation of stage 3, if any.
     pub stabilisation: Option<StabilisationSettings>,
-    /// `A_2` of the long-wave imperfection `-A_2 cos(pi X / L)` added in stage 2 (it lowers
-    /// the surface near `X = 0`, deepening the troughs there: a seed for localisation).
+    /// `A_2` of the long-wave imperfection `-A_2 cos(2 pi N_2 X / L)` added in stage 2 (it
+    /// lowers the surface near `X = 0`, deepening the troughs there: a seed for localisation).
     pub imperfection2: f64,
+    /// `N_2`, the waves of the long-wave imperfection across the domain (`2 N_2` a positive
+    /// integer; `1/2` by default: one half wave). `N / 2` seeds a period doubling.
+    pub imperfection2_waves: f64,
 }
 
 impl Protocol {
@@ -52,6 +55,7 @@ impl Protocol {
             contact: false,
             stabilisation: None,
             imperfection2: 0.0,
+            imperfection2_waves: 0.5,
         }
     }
 
@@ -69,6 +73,13 @@ impl Protocol {
     /// Checks `k` against the domain of `spec`, `A_init` in `[0, 1)` and `d_max` in `(0.005, 1)`.
     pub fn validate(&self, spec: &MeshSpec) -> Result<()> {
         mode_number(self.k, spec.length)?;
+        wavenumber_of_waves(self.imperfection2_waves, spec.length).map_err(|_| {
+            Error::invalid(
+                "imperfection2-waves",
+                self.imperfection2_waves,
+                "N2 with 2 N2 a positive integer",
+            )
+        })?;
         for (name, value) in [
             ("imperfection", self.imperfection),
             ("imperfection2", self.imperfection2),
@@ -134,7 +145,10 @@ pub fn run(
             protocol.imperfection,
             protocol.k,
             if protocol.imperfection2 > 0.0 {
-                format!(" - {} cos(pi X / L)", protocol.imperfection2)
+                format!(
+                    " - {} cos(2 pi {} X / L)",
+                    protocol.imperfection2, protocol.imperfection2_waves
+                )
             } else {
                 String::new()
             }
@@ -146,7 +160,7 @@ pub fn run(
         };
         let long_wave = Imperfection {
             amplitude: -protocol.imperfection2,
-            k: std::f64::consts::PI / spec.length,
+            k: wavenumber_of_waves(protocol.imperfection2_waves, spec.length)?,
             depth: spec.depth,
         };
         let mesh = perfect.perturbed(|x| {

@@ -26,14 +26,22 @@ use crate::output::vtu::Collection;
 use crate::output::{write_json, CsvWriter};
 use crate::parameters::Parameters;
 use crate::protocol::onset::A2_FIT_WINDOW;
-use crate::protocol::{stages, surface_profile, Cut, Event, OnsetEstimates, Protocol, StepRecord};
+use crate::protocol::{mode_number, stages, surface_profile, Cut, Event, OnsetEstimates, Protocol, StepRecord};
 use crate::stability::{Method, StabilityAnalysis};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Columns of `amplitude.csv` (then [`CREASE_COLUMNS`]).
-pub const AMPLITUDE_HEADER: [&str; 6] = ["d", "A", "newton_iterations", "residual", "min_J", "step_seconds"];
+pub const AMPLITUDE_HEADER: [&str; 7] = [
+    "d",
+    "A",
+    "strain_energy",
+    "newton_iterations",
+    "residual",
+    "min_J",
+    "step_seconds",
+];
 
 /// What the study reports while it runs.
 pub enum Progress<'a> {
@@ -153,6 +161,8 @@ pub struct OnsetReport {
     #[serde(flatten)]
     pub estimates: OnsetEstimates,
     pub d_linear_theory: f64,
+    /// Where the homogeneously compressed bilayer loses strong ellipticity, if before d = 1.
+    pub d_ellipticity_loss: Option<f64>,
     pub a2_fit_window: f64,
     pub note: &'static str,
 }
@@ -161,17 +171,21 @@ const ONSET_NOTE: &str = "d_max_curvature is the first peak (largest within +-0.
     kappa = A''/(1 + A'^2)^(3/2), the paper's rule; kappa, and so this estimate, depends on the relative scaling \
     of A (in units of H) and d, and on the imperfection. d_steepest is the first peak of A'. d_a2_fit is where a \
     straight line fitted to A^2 against d over [d_steepest, d_steepest + a2_fit_window] crosses zero. \
-    d_linear_theory is the exact linear theory's d_c(k) for the seeded k.";
+    d_linear_theory is the exact linear theory's d_c(k) for the seeded k. d_ellipticity_loss is the compression at \
+    which the homogeneous state loses strong ellipticity (null if it does not): beyond it the continuum admits \
+    shear bands (e.g. compressed fibres at small beta) and the solution depends on the mesh.";
 
 impl OnsetReport {
     /// The estimates of `curve` and the linear theory's `d_c(k)`.
     pub fn new(params: &Parameters, k: f64, length: f64, curve: &Curve) -> Result<Self> {
         let (d, a) = curve.points();
+        let theory = StabilityAnalysis::new(params, Method::Exact)?;
         Ok(OnsetReport {
             k,
-            waves: k * length / (2.0 * std::f64::consts::PI),
+            waves: mode_number(k, length)? as f64 / 2.0,
             estimates: OnsetEstimates::from_curve(&d, &a),
-            d_linear_theory: StabilityAnalysis::new(params, Method::Exact)?.critical_compression(k)?,
+            d_linear_theory: theory.critical_compression(k)?,
+            d_ellipticity_loss: theory.ellipticity_loss(),
             a2_fit_window: A2_FIT_WINDOW,
             note: ONSET_NOTE,
         })
@@ -275,6 +289,7 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
             let columns = [
                 record.d,
                 record.amplitude,
+                record.strain_energy,
                 record.iterations as f64,
                 *record.residual_history.last().expect("non-empty"),
                 record.min_jacobian,
@@ -300,8 +315,15 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
     let contact = ContactReport::new(&curve.records);
     write_json(&out.join("contact.json"), &contact)?;
     let p = &study.protocol;
-    let (secondary, secondary_files) =
-        secondary.finish(&curve.records, system.mesh(), &materials, p.k, p.imperfection2, u, out)?;
+    let (secondary, secondary_files) = secondary.finish(
+        &curve.records,
+        system.mesh(),
+        &materials,
+        p.k,
+        (p.imperfection2, p.imperfection2_waves),
+        u,
+        out,
+    )?;
     let mut files: Vec<PathBuf> = [
         "amplitude.csv",
         "surface.csv",

@@ -59,6 +59,7 @@ pub struct SecondaryReport {
     pub changes: Vec<SecondaryChange>,
     pub inertia_tracked: bool,
     pub imperfection2: f64,
+    pub imperfection2_waves: f64,
     /// The branch the run ended on, from the depths of the seeded troughs.
     pub branch: Branch,
     pub note: &'static str,
@@ -80,7 +81,7 @@ impl SecondaryTracker {
         mesh: &Mesh,
         materials: &Bilayer,
         k: f64,
-        imperfection2: f64,
+        (imperfection2, imperfection2_waves): (f64, f64),
         u_final: &[f64],
         out: &Path,
     ) -> Result<(SecondaryReport, Vec<PathBuf>)> {
@@ -114,6 +115,7 @@ impl SecondaryTracker {
             changes,
             inertia_tracked: records.iter().any(|r| r.negative_pivots.is_some()),
             imperfection2,
+            imperfection2_waves,
             branch: branch(mesh, u_final, k),
             note: SECONDARY_NOTE,
         };

@@ -1,0 +1,69 @@
+//! Leaving the unstable periodic wrinkle: on a domain of four waves the periodic path loses
+//! stability (the tangent gains a negative eigenvalue). A small long-wave imperfection of the
+//! reference geometry (`A_2 = 0.01`, 1.5 waves across the domain) breaks the symmetry: the run
+//! ends with one trough much deeper than the others, and with less strain energy than the
+//! periodic path at the same compression (an unstable state is not a minimum).
+
+use fiberfold::material::Bilayer;
+use fiberfold::mesh::MeshSpec;
+use fiberfold::protocol::secondary::branch;
+use fiberfold::protocol::{stages, Event, Protocol, StepRecord};
+use fiberfold::Parameters;
+use std::f64::consts::{FRAC_PI_4, PI};
+
+/// The records, branch kind and trough depths of a run to `d_max` on `L = D = 40`
+/// (80 x (2 + 12) elements) seeded with four waves, beta = pi/4, and the long-wave imperfection
+/// `(A_2, N_2)`.
+fn four_wave_run(d_max: f64, (a2, n2): (f64, f64)) -> (Vec<StepRecord>, &'static str, Vec<f64>) {
+    let params = Parameters {
+        beta: FRAC_PI_4,
+        ..Parameters::default()
+    };
+    let k = 2.0 * PI * 4.0 / 40.0;
+    let mut protocol = Protocol::new(k, 0.05, d_max).with_crease_path();
+    protocol.newton.inertia_at_solution = true;
+    protocol.imperfection2 = a2;
+    protocol.imperfection2_waves = n2;
+    let mut records = Vec::new();
+    let outcome = stages::run(
+        &Bilayer::new(&params),
+        MeshSpec::new(80, 2, 12, 0.5, 40.0, 40.0),
+        &protocol,
+        &mut |event| {
+            if let Event::Step { record, .. } = event {
+                records.push(record.clone());
+            }
+            Ok(())
+        },
+    )
+    .unwrap();
+    assert!(outcome.stopped.is_none(), "{:?}", outcome.stopped);
+    let c = &outcome.continuation;
+    let b = branch(c.system().mesh(), c.displacement(), k);
+    (records, b.kind, b.trough_depths)
+}
+
+#[test]
+fn a_long_wave_imperfection_leaves_the_unstable_periodic_path_for_a_lower_energy() {
+    let d_max = 0.26;
+    let (periodic, kind, depths) = four_wave_run(d_max, (0.0, 0.5));
+    let unstable_from = periodic.iter().find(|r| r.negative_pivots.unwrap() > 0).map(|r| r.d);
+    println!("periodic: {kind} {depths:?}, unstable from d = {unstable_from:?}");
+    assert_eq!(kind, "periodic");
+    assert!(
+        unstable_from.is_some_and(|d| d < d_max - 0.02),
+        "the periodic path loses stability"
+    );
+
+    let (seeded, kind, depths) = four_wave_run(d_max, (0.01, 1.5));
+    println!("seeded: {kind} {depths:?}");
+    assert_eq!(kind, "localised");
+    let (a, b) = (periodic.last().unwrap(), seeded.last().unwrap());
+    assert_eq!(a.d, b.d);
+    println!(
+        "strain energy at d = {}: periodic {}, seeded {}",
+        a.d, a.strain_energy, b.strain_energy
+    );
+    assert!(b.strain_energy < a.strain_energy);
+    assert!(seeded.iter().all(|r| r.min_jacobian > 0.0));
+}
