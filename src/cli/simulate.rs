@@ -306,7 +306,8 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         s.branch.kind
     );
     let first_mode = s.changes.first().and_then(|c| c.mode_half_waves);
-    if let (Some(m), "periodic") = (first_mode, s.branch.kind) {
+    let unseeded = p.imperfection2 == 0.0;
+    if let (Some(m), "periodic", true) = (first_mode, s.branch.kind, unseeded) {
         println!(
             "  the first secondary mode has {} waves across the domain: to leave the periodic branch, seed it with \
              e.g. --imperfection2 0.01 --imperfection2-waves {}",
