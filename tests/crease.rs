@@ -135,6 +135,11 @@ fn a_run_to_a_crease_writes_contact_secondary_and_pressure() {
     let vtu = std::fs::read_to_string(dir.join("simulate_0004.vtu")).unwrap();
     assert!(vtu.contains(r#"Name="contact_pressure""#));
     assert_eq!(summary.contact.d_first_contact, Some(first));
+    // Fig. 7's panel at d = 0.24, the only one of its compressions this run reaches.
+    let png = dir.join("fig7.png");
+    assert!(summary.files.iter().any(|f| f == &png.display().to_string()));
+    let (width, height) = png_size(&png);
+    assert_eq!((width, height), (1400, 350));
 }
 
 #[test]
@@ -198,4 +203,12 @@ fn refined_crease_thresholds() {
             Err(e) => println!("{label}: {e}"),
         }
     }
+}
+
+/// Width and height from a PNG's IHDR chunk.
+fn png_size(path: &std::path::Path) -> (u32, u32) {
+    let bytes = std::fs::read(path).unwrap();
+    assert_eq!(&bytes[1..4], b"PNG");
+    let be = |i: usize| u32::from_be_bytes(bytes[i..i + 4].try_into().unwrap());
+    (be(16), be(20))
 }

@@ -30,6 +30,9 @@ pub struct ReproduceArgs {
     pub only: Vec<String>,
 }
 
+/// The pieces whose fibre angles are those of the paper's figures, not the parameters'.
+const FIXED_ANGLE_PIECES: [&str; 4] = ["fig3", "fig4a", "bifurcation", "fig7"];
+
 pub fn run(args: &ReproduceArgs) -> Result<()> {
     let params = args.params.resolve()?;
     let jobs = args
@@ -57,6 +60,14 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
         pieces.len(),
         args.out.display()
     );
+    let default_beta = fiberfold::Parameters::default().beta;
+    if params.beta != default_beta && pieces.iter().any(|p| FIXED_ANGLE_PIECES.contains(&p.name)) {
+        println!(
+            "  note: {} keep the paper's fibre angles (pi/4; Fig. 4a: 0, pi/4, pi/2) whatever beta is set to; \
+             `fiberfold simulate --set beta=...` runs another angle",
+            FIXED_ANGLE_PIECES.join(", ")
+        );
+    }
     fiberfold::output::ensure_dir(&args.out)?;
     let start = Instant::now();
     let bar = progress(pieces.len(), "reproduce");

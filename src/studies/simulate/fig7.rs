@@ -11,7 +11,7 @@ use crate::mesh::MeshSpec;
 use crate::output::plot::{register_font, FONT};
 use crate::output::write_json;
 use crate::parameters::Parameters;
-use crate::protocol::{stages, wavenumber_of_waves, Event, Protocol, StepControl};
+use crate::protocol::{stages, wavenumber_of_waves, Event, Protocol, StepControl, StepRecord};
 use crate::studies::Tick;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -51,6 +51,87 @@ pub struct Fig7Facts {
     pub files: Vec<PathBuf>,
 }
 
+/// The accepted states nearest the compressions of Fig. 7 that a path reaches, collected as it
+/// goes, and the first contact.
+pub struct CreaseSnapshots {
+    targets: Vec<f64>,
+    states: Vec<Option<Fig7State>>,
+    first_contact: Option<f64>,
+}
+
+impl CreaseSnapshots {
+    /// Collects the states nearest those of [`FIG7_D`] up to `d_max`.
+    pub fn new(d_max: f64) -> Self {
+        let targets: Vec<f64> = FIG7_D.iter().copied().filter(|&d| d <= d_max + 1e-9).collect();
+        CreaseSnapshots {
+            states: vec![None; targets.len()],
+            targets,
+            first_contact: None,
+        }
+    }
+
+    /// Keeps `u` where `record` is the nearest state to a target so far.
+    pub fn note(&mut self, record: &StepRecord, u: &[f64]) {
+        let augmented = record.augmented.clone().unwrap_or_default();
+        if augmented.in_contact && self.first_contact.is_none() {
+            self.first_contact = Some(record.d);
+        }
+        for (slot, &target) in self.states.iter_mut().zip(&self.targets) {
+            if slot
+                .as_ref()
+                .is_none_or(|s| (record.d - target).abs() < (s.d - target).abs())
+            {
+                *slot = Some(Fig7State {
+                    d_target: target,
+                    d: record.d,
+                    amplitude: record.amplitude,
+                    in_contact: augmented.in_contact,
+                    contact_length: augmented.contact_length,
+                    max_von_mises: 0.0,
+                    u: u.to_vec(),
+                });
+            }
+        }
+    }
+
+    /// The first `d` in contact, if any.
+    pub fn first_contact(&self) -> Option<f64> {
+        self.first_contact
+    }
+
+    /// Draws `fig7.png` and `fig7.svg` into `out` (nothing if no target was reached), titled
+    /// with the fibre angle `beta`; the states drawn, and the files.
+    pub fn draw(
+        self,
+        system: &System,
+        materials: &Bilayer,
+        beta: f64,
+        out: &Path,
+    ) -> Result<(Vec<Fig7State>, Vec<PathBuf>)> {
+        let mut states: Vec<Fig7State> = self.states.into_iter().flatten().collect();
+        if states.is_empty() {
+            return Ok((states, Vec::new()));
+        }
+        let mut panels = Vec::new();
+        for state in &mut states {
+            let panel = Panel::new(system, materials, state)?;
+            state.max_von_mises = panel.cells.iter().fold(0.0, |m, c| m.max(c.1));
+            panels.push(panel);
+        }
+        let scale = percentile(panels.iter().flat_map(|p| p.cells.iter().map(|c| c.1)).collect(), 0.99);
+        register_font();
+        let (png, svg) = (out.join("fig7.png"), out.join("fig7.svg"));
+        let size = (1400, 350 * panels.len() as u32);
+        let fail = |path: &Path, message: String| Error::Plot {
+            path: path.display().to_string(),
+            message,
+        };
+        draw(BitMapBackend::new(&png, size).into_drawing_area(), &panels, scale, beta).map_err(|m| fail(&png, m))?;
+        draw(SVGBackend::new(&svg, size).into_drawing_area(), &panels, scale, beta).map_err(|m| fail(&svg, m))?;
+        Ok((states, vec![png, svg]))
+    }
+}
+
 /// Runs `params` (N = 5 waves, `A_init = 0.05`, contact and stabilisation) on `mesh` to
 /// `d = 0.48` and writes `fig7.png`, `fig7.svg` and `fig7.json` into `out`; `quick` records
 /// states at most every 0.01 in `d` instead of 0.005 and skips the inertia. `tick` is called
@@ -68,30 +149,10 @@ pub fn fig7(params: &Parameters, mesh: MeshSpec, quick: bool, out: &Path, tick: 
         ..protocol.control
     };
     protocol.newton.inertia_at_solution = false;
-    let mut states: Vec<Option<Fig7State>> = vec![None; FIG7_D.len()];
-    let mut first_contact = None;
+    let mut snapshots = CreaseSnapshots::new(FIG7_D[2]);
     let outcome = stages::run(&materials, mesh, &protocol, &mut |event| {
         if let Event::Step { record, u, .. } = event {
-            let augmented = record.augmented.clone().unwrap_or_default();
-            if augmented.in_contact && first_contact.is_none() {
-                first_contact = Some(record.d);
-            }
-            for (slot, &target) in states.iter_mut().zip(&FIG7_D) {
-                if slot
-                    .as_ref()
-                    .is_none_or(|s| (record.d - target).abs() < (s.d - target).abs())
-                {
-                    *slot = Some(Fig7State {
-                        d_target: target,
-                        d: record.d,
-                        amplitude: record.amplitude,
-                        in_contact: augmented.in_contact,
-                        contact_length: augmented.contact_length,
-                        max_von_mises: 0.0,
-                        u: u.to_vec(),
-                    });
-                }
-            }
+            snapshots.note(record, u);
             tick();
         }
         Ok(())
@@ -99,34 +160,19 @@ pub fn fig7(params: &Parameters, mesh: MeshSpec, quick: bool, out: &Path, tick: 
     if let Some(e) = outcome.stopped {
         return Err(Error::Solver(format!("Fig. 7: {e}")));
     }
-    let system = outcome.continuation.system();
-    let mut states: Vec<Fig7State> = states.into_iter().flatten().collect();
-    let mut panels = Vec::new();
-    for state in &mut states {
-        let panel = Panel::new(system, &materials, state)?;
-        state.max_von_mises = panel.cells.iter().fold(0.0, |m, c| m.max(c.1));
-        panels.push(panel);
-    }
-    let scale = percentile(panels.iter().flat_map(|p| p.cells.iter().map(|c| c.1)).collect(), 0.99);
-    register_font();
-    let (png, svg) = (out.join("fig7.png"), out.join("fig7.svg"));
-    let size = (1400, 1050);
-    let fail = |path: &Path, message: String| Error::Plot {
-        path: path.display().to_string(),
-        message,
-    };
-    draw(BitMapBackend::new(&png, size).into_drawing_area(), &panels, scale).map_err(|m| fail(&png, m))?;
-    draw(SVGBackend::new(&svg, size).into_drawing_area(), &panels, scale).map_err(|m| fail(&svg, m))?;
+    let d_first_contact = snapshots.first_contact();
+    let (states, mut files) = snapshots.draw(outcome.continuation.system(), &materials, params.beta, out)?;
     let json = out.join("fig7.json");
+    files.push(json.clone());
     let facts = Fig7Facts {
         beta: params.beta,
         waves,
         unknowns: mesh.num_dofs(),
         states,
-        d_first_contact: first_contact,
+        d_first_contact,
         d_reached: outcome.continuation.d(),
         seconds: start.elapsed().as_secs_f64(),
-        files: vec![png, svg, json.clone()],
+        files,
     };
     write_json(&json, &facts)?;
     Ok(facts)
@@ -218,13 +264,17 @@ fn draw<DB: DrawingBackend>(
     root: DrawingArea<DB, Shift>,
     panels: &[Panel],
     scale: f64,
+    beta: f64,
 ) -> std::result::Result<(), String> {
     let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(e)?;
     let rows = root.split_evenly((panels.len(), 2));
     for (panel, pair) in panels.iter().zip(rows.chunks(2)) {
         let mut profile = ChartBuilder::on(&pair[0])
-            .caption(format!("surface profile, d = {:.3}", panel.d), (FONT, 18))
+            .caption(
+                format!("surface profile, beta = {beta:.3}, d = {:.3}", panel.d),
+                (FONT, 18),
+            )
             .margin(8)
             .x_label_area_size(30)
             .y_label_area_size(45)

@@ -1,7 +1,8 @@
 //! `simulate`: the paper's loading protocol (section 2.1) on one mesh. Writes, into the output
 //! folder, `amplitude.csv` (a row per converged state, flushed at once), VTU snapshots with
 //! `simulate.pvd`, `surface.csv` (final top surface), `onset.json`, `contact.json`,
-//! `secondary.json` with its modes, Fig. 3 and `simulate.json`.
+//! `secondary.json` with its modes, Fig. 3, Fig. 7's panels at the compressions it reaches
+//! (when contact is on) and `simulate.json`.
 //! A run that stops early keeps all of this for the path so far and then returns the error.
 
 mod crease;
@@ -14,7 +15,7 @@ mod state_vtu;
 pub use crease::{crease_columns, ContactReport, CREASE_COLUMNS};
 pub use fig3::fig3;
 pub use fig4a::{fig4a, Fig4aOptions, Fig4aRow};
-pub use fig7::{fig7, Fig7Facts, Fig7State, FIG7_D};
+pub use fig7::{fig7, CreaseSnapshots, Fig7Facts, Fig7State, FIG7_D};
 pub use secondary::{SecondaryReport, SecondaryTracker};
 pub use state_vtu::write_state;
 
@@ -284,6 +285,7 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
     let mut snapshots = Snapshots::new(out, study.vtu_every);
     let mut recorder = Recorder::new(monitor);
     let mut secondary = SecondaryTracker::default();
+    let mut crease = CreaseSnapshots::new(study.protocol.d_max);
     let outcome = stages::run(&materials, study.mesh, &study.protocol, &mut |event| {
         if let Event::Step { record, system, u } = &event {
             let columns = [
@@ -298,6 +300,7 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
             table.append(&[&columns[..], &crease_columns(record)].concat())?;
             snapshots.maybe_write(record, system, &materials, u)?;
             secondary.note(record, u);
+            crease.note(record, u);
         }
         recorder.note(&event);
         Ok(())
@@ -336,6 +339,9 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
     .collect();
     files.extend(fig3(&curve, &onset).save(out, "fig3")?);
     files.extend(secondary_files);
+    if p.contact {
+        files.extend(crease.draw(system, &materials, params.beta, out)?.1);
+    }
     let summary = SimulationSummary {
         command: "simulate",
         parameters: params.clone(),
