@@ -273,6 +273,23 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         "reached d = {} in {:.1} s ({} steps, {} Newton iterations, {} cuts)",
         summary.d_reached, summary.wall_seconds, summary.accepted_steps, summary.totals.newton_iterations, summary.cuts
     );
+    let t = &summary.totals;
+    let phases = t.assembly_seconds + t.analysis_seconds + t.factorisation_seconds + t.solve_seconds;
+    println!(
+        "time: steps {:.1} s = accepted Newton iterations {:.1} s (assembly {:.1}, symbolic {:.1}, factorisation {:.1}, \
+         solves {:.1}) + inertia {:.1} s + discarded attempts {:.1} s + contact search, updates, predictor {:.1} s; \
+         stages 1-2, output and modes {:.1} s",
+        t.step_seconds,
+        phases,
+        t.assembly_seconds,
+        t.analysis_seconds,
+        t.factorisation_seconds,
+        t.solve_seconds,
+        t.inertia_seconds,
+        t.failed_attempt_seconds,
+        t.step_seconds - phases - t.inertia_seconds - t.failed_attempt_seconds,
+        summary.wall_seconds - t.step_seconds
+    );
     println!(
         "onset: max curvature {}, steepest {}, A^2 fit {}; linear theory d_c(k) = {:.5}",
         show(o.estimates.d_max_curvature),

@@ -36,6 +36,8 @@ pub struct AugmentedRecord {
     pub stabilisation_energy_fraction: f64,
     pub dissipated_energy: f64,
     pub eta: f64,
+    /// Wall time of the inertia of the accepted state (one more factorisation).
+    pub inertia_seconds: f64,
     /// Nominal contact pressure `(node, p)` at every top-surface node.
     #[serde(skip)]
     pub pressure: Vec<(usize, f64)>,
@@ -125,7 +127,9 @@ impl Augmentation {
                 let undamped = damper.map(|damper| damper.undamped());
                 let contact: &dyn AddedEnergy = self.contact.as_ref().map_or(&NoAddedEnergy, |c| c);
                 let damping: &dyn AddedEnergy = undamped.as_ref().map_or(&NoAddedEnergy, |d| d);
+                let started = std::time::Instant::now();
                 report.negative_pivots = newton.inertia(system, u, bc, &Sum::new(vec![contact, damping]))?;
+                record.inertia_seconds = started.elapsed().as_secs_f64();
             }
             if let Some(s) = &mut self.stabilisation {
                 let Some(fraction) = s.book(dissipation, report.energy)? else {

@@ -97,6 +97,8 @@ pub struct StepRecord {
     pub negative_pivots: Option<usize>,
     /// Wall time of the step, failed attempts included.
     pub seconds: f64,
+    /// Wall time of the attempts discarded before this one was accepted.
+    pub failed_seconds: f64,
     /// Wall times of the accepted attempt's phases.
     #[serde(skip)]
     pub timings: Timings,
@@ -119,6 +121,7 @@ impl StepRecord {
             min_jacobian: report.min_jacobian,
             negative_pivots: report.negative_pivots,
             seconds,
+            failed_seconds: 0.0,
             timings: report.timings,
             augmented: None,
         }
@@ -210,14 +213,17 @@ impl Continuation {
     pub fn advance_to(&mut self, target: f64, observer: &mut dyn FnMut(Event<'_>) -> Result<()>) -> Result<()> {
         let c = self.control;
         let mut started = Instant::now();
+        let mut failed_seconds = 0.0;
         while target - self.d() > 1e-12 {
             let step = self.step.min(target - self.d());
             let d = self.d() + step;
+            let attempt_started = Instant::now();
             match self.attempt(d) {
                 Ok((report, u, augmented)) => {
                     let a = amplitude(self.system.mesh(), &u);
                     let mut record = StepRecord::new(d, step, a, &report, started.elapsed().as_secs_f64());
                     record.augmented = augmented;
+                    record.failed_seconds = failed_seconds;
                     observer(Event::Step {
                         record: &record,
                         system: &self.system,
@@ -231,8 +237,10 @@ impl Continuation {
                         self.step = (self.step * c.grow).min(c.max);
                     }
                     started = Instant::now();
+                    failed_seconds = 0.0;
                 }
                 Err(reason) if step > c.min * (1.0 + 1e-9) => {
+                    failed_seconds += attempt_started.elapsed().as_secs_f64();
                     observer(Event::Cut(&Cut {
                         d,
                         step,

@@ -204,6 +204,12 @@ pub struct PhaseTotals {
     pub factorisations: usize,
     pub solves: usize,
     pub newton_iterations: usize,
+    /// Inertia of the accepted states (an extra assembly and factorisation each).
+    pub inertia_seconds: f64,
+    /// Attempts discarded (steps cut).
+    pub failed_attempt_seconds: f64,
+    /// All steps: the phases above plus contact search, multiplier updates and prediction.
+    pub step_seconds: f64,
 }
 
 impl PhaseTotals {
@@ -217,6 +223,9 @@ impl PhaseTotals {
             factorisations: t.factorisations + r.timings.factorisations,
             solves: t.solves + r.timings.solves,
             newton_iterations: t.newton_iterations + r.iterations,
+            inertia_seconds: t.inertia_seconds + r.augmented.as_ref().map_or(0.0, |a| a.inertia_seconds),
+            failed_attempt_seconds: t.failed_attempt_seconds + r.failed_seconds,
+            step_seconds: t.step_seconds + r.seconds,
         })
     }
 }
