@@ -176,10 +176,22 @@ fn inadmissible_wavenumbers_are_rejected_with_exit_code_2() {
     for (flag, value, words) in [
         ("--k", "0.6", ["`k`", "half wavelengths"]),
         ("--waves", "4.3", ["`waves`", "2N a positive integer"]),
+        (
+            "--imperfection2-waves",
+            "0.3",
+            ["`imperfection2-waves`", "2 N2 a positive integer"],
+        ),
     ] {
         let dir = scratch("bad-k");
+        let seeded = if flag == "--imperfection2-waves" {
+            &["--waves", "5"][..]
+        } else {
+            &[]
+        };
         let out = Command::new(env!("CARGO_BIN_EXE_fiberfold"))
-            .args(["simulate", flag, value, "--out"])
+            .arg("simulate")
+            .args(seeded)
+            .args([flag, value, "--out"])
             .arg(&dir)
             .output()
             .unwrap();

@@ -36,7 +36,8 @@ pub struct Protocol {
     /// Viscous stabilisation of stage 3, if any.
     pub stabilisation: Option<StabilisationSettings>,
     /// `A_2` of the long-wave imperfection `-A_2 cos(2 pi N_2 X / L)` added in stage 2 (it
-    /// lowers the surface near `X = 0`, deepening the troughs there: a seed for localisation).
+    /// lowers the surface at `X = 0` and wherever the cosine is positive, deepening the troughs
+    /// there: a seed for a modulated or localised pattern).
     pub imperfection2: f64,
     /// `N_2`, the waves of the long-wave imperfection across the domain (`2 N_2` a positive
     /// integer; `1/2` by default: one half wave). `N / 2` seeds a period doubling.
