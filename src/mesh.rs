@@ -12,6 +12,7 @@
 use crate::error::{Error, Result};
 use crate::numerics::density::equidistribute;
 use crate::numerics::grading::geometric_ratio;
+use serde::Serialize;
 
 /// Thickness of the stiff layer: the unit of length.
 pub const LAYER_THICKNESS: f64 = 1.0;
@@ -26,7 +27,7 @@ pub enum Region {
 }
 
 /// Size and grading of a structured bilayer mesh.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct MeshSpec {
     /// Number of elements along X.
     pub nx: usize,
@@ -46,7 +47,7 @@ pub struct MeshSpec {
 
 /// Elements in X sized inversely to the density `1 + (ratio - 1) sum_j exp(-((X - X_j) / width)^2)`
 /// with centres `X_j = offset + j period` (e.g. the troughs of a seeded mode, or a crease at 0).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct XRefinement {
     /// How many times denser the elements are at a centre than far from all centres.
     pub ratio: f64,

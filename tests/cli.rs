@@ -1,21 +1,9 @@
 //! The command line as a user meets it: bad input gives a one-line error naming the parameter
 //! and its allowed range with exit code 2; good input writes the promised files.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+mod common;
 
-fn fiberfold(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fiberfold"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fiberfold-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
-}
+use common::{fiberfold, scratch};
 
 /// Runs a command that must be rejected; returns its stderr.
 fn rejected(args: &[&str], must_mention: &[&str]) -> String {

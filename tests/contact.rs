@@ -5,13 +5,14 @@
 //! penalty's penetration below the tolerance.
 
 use fiberfold::fem::added::AddedEnergy;
+mod common;
+
+use common::homogeneous_material;
 use fiberfold::fem::boundary::{X, Y};
 use fiberfold::fem::contact::{solve_with_contact, Contact, ContactSettings, End, Pair, Plane};
 use fiberfold::fem::fields::cell_fields;
 use fiberfold::fem::{dof, Dirichlet, Newton, NewtonSettings, System};
-use fiberfold::material::Bilayer;
 use fiberfold::mesh::{Mesh, MeshSpec};
-use fiberfold::Parameters;
 
 /// Energy and gradient (all unknowns) of an added energy at `u`.
 fn energy_and_gradient(added: &dyn AddedEnergy, u: &[f64]) -> (f64, Vec<f64>) {
@@ -98,19 +99,6 @@ fn contact_force_and_tangent_match_central_differences() {
         let fd = (plus.1[i] - minus.1[i]) / (2.0 * h);
         assert!((fd - value).abs() < 1e-6 * scale, "unknown {i}: {fd} vs {value}");
     }
-}
-
-/// Layer and substrate the same neo-Hookean solid (`mu = 1`, `K = 3`, no fibres).
-fn homogeneous_material() -> Bilayer {
-    Bilayer::new(&Parameters {
-        mu_l: 1.0,
-        K_l: 3.0,
-        mu_s: 1.0,
-        K_s: 3.0,
-        phi_m: 1.0,
-        phi_f: 0.0,
-        ..Parameters::default()
-    })
 }
 
 /// A block `[0, 2] x [-2, 1]` with rollers on both sides and the bottom, pressed down by the

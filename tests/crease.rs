@@ -3,10 +3,13 @@
 //! through first contact that never inverts an element, never penetrates beyond `1e-3 H`, and
 //! dissipates less than 1 % of the strain energy in its stabilisation.
 
-use fiberfold::material::Bilayer;
+mod common;
+
+use common::scratch;
 use fiberfold::mesh::MeshSpec;
-use fiberfold::protocol::{stages, Event, Protocol, StepControl, StepRecord};
+use fiberfold::protocol::{Protocol, StepControl, StepRecord};
 use fiberfold::studies::crease_threshold::{crease_threshold, CreaseThresholdStudy, BIOT_STRAIN};
+use fiberfold::studies::simulate;
 use fiberfold::Parameters;
 use std::f64::consts::{FRAC_PI_4, PI};
 
@@ -49,21 +52,9 @@ fn crease_run(d_max: f64) -> Vec<StepRecord> {
         ..StepControl::default()
     };
     protocol.newton.max_iterations = 40;
-    let mut records = Vec::new();
-    let outcome = stages::run(
-        &Bilayer::new(&params),
-        MeshSpec::new(20, 2, 8, 0.5, 10.0, 10.0),
-        &protocol,
-        &mut |event| {
-            if let Event::Step { record, .. } = event {
-                records.push(record.clone());
-            }
-            Ok(())
-        },
-    )
-    .unwrap();
-    assert!(outcome.stopped.is_none(), "{:?}", outcome.stopped);
-    records
+    let curve = simulate::curve(&params, MeshSpec::new(20, 2, 8, 0.5, 10.0, 10.0), &protocol, &|_| {}).unwrap();
+    assert!(curve.stopped.is_none(), "{:?}", curve.stopped);
+    curve.records
 }
 
 #[test]
@@ -92,9 +83,8 @@ fn a_run_through_contact_never_inverts_nor_penetrates_and_dissipates_little() {
 
 #[test]
 fn a_run_to_a_crease_writes_contact_secondary_and_pressure() {
-    use fiberfold::studies::simulate::{self, Progress, SimulateStudy};
-    let dir = std::env::temp_dir().join(format!("fiberfold-crease-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+    use fiberfold::studies::simulate::{Progress, SimulateStudy};
+    let dir = scratch("crease");
     let mut protocol = Protocol::new(2.0 * PI / 10.0, 0.05, 0.36).with_crease_path();
     protocol.newton.inertia_at_solution = true;
     let study = SimulateStudy {
@@ -144,8 +134,8 @@ fn a_run_to_a_crease_writes_contact_secondary_and_pressure() {
 
 #[test]
 fn fig7_shows_the_wrinkle_the_contact_and_the_crease() {
-    use fiberfold::studies::simulate::{fig7, FIG7_D};
-    let dir = std::env::temp_dir().join(format!("fiberfold-fig7-{}", std::process::id()));
+    use simulate::{fig7, FIG7_D};
+    let dir = scratch("fig7");
     let params = Parameters {
         beta: FRAC_PI_4,
         ..Parameters::default()

@@ -3,6 +3,9 @@
 //! homogeneous state (eq. 4), dense eigenvalues for the inertia, and the O(h^3) L2 convergence
 //! of Q2 elements.
 
+mod common;
+
+use common::homogeneous_material;
 use fiberfold::fem::boundary::{X, Y};
 use fiberfold::fem::element::shape_functions;
 use fiberfold::fem::linear_solver::multiply;
@@ -11,19 +14,6 @@ use fiberfold::homogeneous::homogeneous_state;
 use fiberfold::material::Bilayer;
 use fiberfold::mesh::{Mesh, MeshSpec};
 use fiberfold::Parameters;
-
-/// Layer and substrate the same neo-Hookean solid (`mu = 1`, `K = 3`, no fibres).
-fn homogeneous_material() -> Bilayer {
-    Bilayer::new(&Parameters {
-        mu_l: 1.0,
-        K_l: 3.0,
-        mu_s: 1.0,
-        K_s: 3.0,
-        phi_m: 1.0,
-        phi_f: 0.0,
-        ..Parameters::default()
-    })
-}
 
 /// A smooth distortion of every node, curving the element edges.
 fn distortion(amplitude: f64) -> impl Fn([f64; 2]) -> [f64; 2] {

@@ -1,8 +1,10 @@
 //! Every example command of README.md is run here (at a small size where it is long) and checked
 //! against one number from an independent source, so the documentation cannot rot.
 
+mod common;
+
+use common::{fiberfold, scratch};
 use std::path::PathBuf;
-use std::process::Command;
 
 /// The `fiberfold ...` lines of README's shell blocks.
 fn readme_commands() -> Vec<String> {
@@ -22,12 +24,6 @@ fn readme_commands() -> Vec<String> {
     commands
 }
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fiberfold-readme-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
-}
-
 /// Runs a README command with its `--out` redirected to a scratch folder and the `(flag, value)`
 /// pairs of `extra` replacing or extending its own (to shrink long runs); returns the output
 /// folder and stdout.
@@ -43,10 +39,7 @@ fn run(command: &str, extra: &[(&str, &str)]) -> (PathBuf, String) {
             None => args.extend([flag.to_string(), value.to_string()]),
         }
     }
-    let out = Command::new(env!("CARGO_BIN_EXE_fiberfold"))
-        .args(&args)
-        .output()
-        .unwrap();
+    let out = fiberfold(&args);
     assert!(
         out.status.success(),
         "{command}: {}",

@@ -3,6 +3,9 @@
 //! results, VTU files read back, inadmissible wavenumbers rejected, and the three onset
 //! estimators on synthetic curves with a known `d_c`.
 
+mod common;
+
+use common::{fiberfold, scratch};
 use fiberfold::material::Bilayer;
 use fiberfold::mesh::{Mesh, MeshSpec};
 use fiberfold::protocol::onset::{a2_fit, max_curvature, steepest};
@@ -11,8 +14,7 @@ use fiberfold::stability::{Method, StabilityAnalysis};
 use fiberfold::studies::simulate::{self, Progress, SimulateStudy};
 use fiberfold::Parameters;
 use std::f64::consts::{FRAC_PI_4, PI};
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::Path;
 
 /// `beta = pi/4`, other parameters from Table 1.
 fn params() -> Parameters {
@@ -30,12 +32,6 @@ fn small_mesh() -> MeshSpec {
 /// `m = 2` half wavelengths across `L = 10` (k = 0.628, near the onset wavenumber 0.61).
 fn small_k() -> f64 {
     2.0 * PI / 10.0
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fiberfold-simulate-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
 }
 
 fn quiet(_: Progress<'_>) {}
@@ -154,11 +150,7 @@ fn the_binary_exits_non_zero_with_the_message_after_a_final_failure() {
         "0.3",
         "--out",
     ];
-    let out = Command::new(env!("CARGO_BIN_EXE_fiberfold"))
-        .args(args)
-        .arg(&dir)
-        .output()
-        .unwrap();
+    let out = fiberfold(&[&args[..], &[dir.to_str().unwrap()]].concat());
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("stopped at d = "), "{stderr}");
@@ -188,13 +180,14 @@ fn inadmissible_wavenumbers_are_rejected_with_exit_code_2() {
         } else {
             &[]
         };
-        let out = Command::new(env!("CARGO_BIN_EXE_fiberfold"))
-            .arg("simulate")
-            .args(seeded)
-            .args([flag, value, "--out"])
-            .arg(&dir)
-            .output()
-            .unwrap();
+        let out = fiberfold(
+            &[
+                &["simulate"][..],
+                seeded,
+                &[flag, value, "--out", dir.to_str().unwrap()],
+            ]
+            .concat(),
+        );
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{stderr}");
         assert!(words.iter().all(|w| stderr.contains(w)), "{stderr}");
@@ -329,11 +322,7 @@ fn bifurcation_command_writes_its_json_mode_and_inertia() {
         "8",
         "--out",
     ];
-    let out = Command::new(env!("CARGO_BIN_EXE_fiberfold"))
-        .args(args)
-        .arg(&dir)
-        .output()
-        .unwrap();
+    let out = fiberfold(&[&args[..], &[dir.to_str().unwrap()]].concat());
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("bifurcation.json")).unwrap()).unwrap();

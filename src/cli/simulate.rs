@@ -322,15 +322,18 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         s.changes.len(),
         s.branch.kind
     );
-    let first_mode = s.changes.first().and_then(|c| c.mode_half_waves);
-    let unseeded = p.imperfection2 == 0.0;
-    if let (Some(m), "periodic", true) = (first_mode, s.branch.kind, unseeded) {
-        println!(
-            "  the first secondary mode has {} waves across the domain: to leave the periodic branch, seed it with \
-             e.g. --imperfection2 0.01 --imperfection2-waves {}",
-            m as f64 / 2.0,
-            m as f64 / 2.0
-        );
+    let first_mode_waves = s
+        .changes
+        .first()
+        .and_then(|c| c.mode_half_waves)
+        .map(|m| m as f64 / 2.0);
+    if let (Some(n2), "periodic") = (first_mode_waves, s.branch.kind) {
+        if p.imperfection2 == 0.0 {
+            println!(
+                "  the first secondary mode has {n2} waves across the domain: to leave the periodic branch, seed it \
+                 with e.g. --imperfection2 0.01 --imperfection2-waves {n2}"
+            );
+        }
     }
     report_files(&summary.files.iter().map(PathBuf::from).collect::<Vec<_>>());
     Ok(())

@@ -176,14 +176,7 @@ impl Newton {
         bc: &Dirichlet,
         added: &dyn AddedEnergy,
     ) -> Result<Option<usize>, NewtonError> {
-        let free = system.free_dofs(bc)?.to_vec();
-        let mut problem = Problem {
-            system,
-            bc,
-            added,
-            free,
-            timings: Timings::default(),
-        };
+        let mut problem = Problem::new(system, bc, added)?;
         let assembled = problem.assemble(u, &[], false, true)?;
         Ok(self.factorize(&assembled, &mut problem.timings).negative_pivots())
     }
@@ -196,14 +189,7 @@ impl Newton {
         added: &dyn AddedEnergy,
     ) -> Result<NewtonReport, NewtonError> {
         let s = self.settings;
-        let free = system.free_dofs(bc)?.to_vec();
-        let mut problem = Problem {
-            system,
-            bc,
-            added,
-            free,
-            timings: Timings::default(),
-        };
+        let mut problem = Problem::new(system, bc, added)?;
         let pending: Vec<f64> = bc.dofs().iter().zip(bc.values()).map(|(&d, &g)| g - u[d]).collect();
         let lifting = pending.iter().any(|&p| p != 0.0);
         let assembled = problem
@@ -382,7 +368,19 @@ struct Problem<'a> {
     timings: Timings,
 }
 
-impl Problem<'_> {
+impl<'a> Problem<'a> {
+    /// The problem of `system` with `bc` prescribed and `added` energy; no time spent yet.
+    fn new(system: &'a mut System, bc: &'a Dirichlet, added: &'a dyn AddedEnergy) -> crate::Result<Self> {
+        let free = system.free_dofs(bc)?.to_vec();
+        Ok(Problem {
+            system,
+            bc,
+            added,
+            free,
+            timings: Timings::default(),
+        })
+    }
+
     /// Residual (and tangent when `with_tangent`) at `u`, lifted by `K_fc pending` when
     /// `lifting`; timed.
     fn assemble(&mut self, u: &[f64], pending: &[f64], lifting: bool, with_tangent: bool) -> crate::Result<Assembled> {

@@ -72,8 +72,11 @@ impl CreaseSnapshots {
 
     /// Keeps `u` where `record` is the nearest state to a target so far.
     pub fn note(&mut self, record: &StepRecord, u: &[f64]) {
-        let augmented = record.augmented.clone().unwrap_or_default();
-        if augmented.in_contact && self.first_contact.is_none() {
+        let (in_contact, contact_length) = record
+            .augmented
+            .as_ref()
+            .map_or((false, 0.0), |a| (a.in_contact, a.contact_length));
+        if in_contact && self.first_contact.is_none() {
             self.first_contact = Some(record.d);
         }
         for (slot, &target) in self.states.iter_mut().zip(&self.targets) {
@@ -85,8 +88,8 @@ impl CreaseSnapshots {
                     d_target: target,
                     d: record.d,
                     amplitude: record.amplitude,
-                    in_contact: augmented.in_contact,
-                    contact_length: augmented.contact_length,
+                    in_contact,
+                    contact_length,
                     max_von_mises: 0.0,
                     u: u.to_vec(),
                 });

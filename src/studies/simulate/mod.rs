@@ -252,31 +252,19 @@ pub struct SimulationSummary {
     pub files: Vec<String>,
 }
 
-/// The mesh of a run as written to JSON.
+/// The mesh of a run as written to JSON: its spec and number of unknowns.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct MeshSummary {
-    pub nx: usize,
-    pub layer_elements: usize,
-    pub substrate_elements: usize,
-    pub top_substrate_thickness: f64,
-    pub length: f64,
-    pub depth: f64,
+    #[serde(flatten)]
+    pub spec: MeshSpec,
     pub unknowns: usize,
-    /// Refinement in X: `[ratio, width, offset, period]` of [`crate::mesh::XRefinement`].
-    pub x_refinement: Option<[f64; 4]>,
 }
 
 impl From<&MeshSpec> for MeshSummary {
-    fn from(s: &MeshSpec) -> Self {
+    fn from(spec: &MeshSpec) -> Self {
         MeshSummary {
-            nx: s.nx,
-            layer_elements: s.layer_elements,
-            substrate_elements: s.substrate_elements,
-            top_substrate_thickness: s.top_substrate_thickness,
-            length: s.length,
-            depth: s.depth,
-            unknowns: s.num_dofs(),
-            x_refinement: s.x_refinement.map(|r| [r.ratio, r.width, r.offset, r.period]),
+            spec: *spec,
+            unknowns: spec.num_dofs(),
         }
     }
 }
@@ -294,7 +282,10 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
     let mut snapshots = Snapshots::new(out, study.vtu_every);
     let mut recorder = Recorder::new(monitor);
     let mut secondary = SecondaryTracker::default();
-    let mut crease = CreaseSnapshots::new(study.protocol.d_max);
+    let mut crease = study
+        .protocol
+        .contact
+        .then(|| CreaseSnapshots::new(study.protocol.d_max));
     let outcome = stages::run(&materials, study.mesh, &study.protocol, &mut |event| {
         if let Event::Step { record, system, u } = &event {
             let columns = [
@@ -309,7 +300,9 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
             table.append(&[&columns[..], &crease_columns(record)].concat())?;
             snapshots.maybe_write(record, system, &materials, u)?;
             secondary.note(record, u);
-            crease.note(record, u);
+            if let Some(crease) = &mut crease {
+                crease.note(record, u);
+            }
         }
         recorder.note(&event);
         Ok(())
@@ -348,7 +341,7 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
     .collect();
     files.extend(fig3(&curve, &onset).save(out, "fig3")?);
     files.extend(secondary_files);
-    if p.contact {
+    if let Some(crease) = crease {
         files.extend(crease.draw(system, &materials, params.beta, out)?.1);
     }
     let summary = SimulationSummary {
