@@ -236,8 +236,11 @@ fn inertia_of_the_tangent_matches_dense_eigenvalues() {
     let mut dense = nalgebra::DMatrix::<f64>::zeros(n, n);
     for j in 0..n {
         for (&i, &v) in k.row_idx_of_col_raw(j).iter().zip(k.val_of_col(j)) {
+            // The lower triangle is stored.
+            assert!(i >= j, "entry ({i}, {j}) above the diagonal");
             triplets.push(Triplet::new(i, j, v));
             dense[(i, j)] = v;
+            dense[(j, i)] = v;
         }
     }
     let eigenvalues = dense.symmetric_eigen().eigenvalues;

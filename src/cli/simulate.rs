@@ -112,8 +112,9 @@ pub struct SimulateArgs {
     #[arg(long, default_value_t = 1e-7, allow_negative_numbers = true)]
     pub min_step: f64,
 
-    /// Newton iterations allowed per step before the step is cut, in [1, 100].
-    #[arg(long, default_value_t = 25)]
+    /// Newton steps with a newly factorised tangent allowed per load step before the step is
+    /// cut, in [1, 100] (steps with the reused factorisation are bounded by twice this).
+    #[arg(long, default_value_t = 8)]
     pub max_newton_iterations: usize,
 
     /// Refine the mesh in X near the troughs of the seeded mode: elements RATIO times smaller

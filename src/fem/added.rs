@@ -4,7 +4,9 @@
 //! A term is a *group* of global unknowns with its energy, gradient and (dense) Hessian. The
 //! assembly treats a group like an element: its block enters the sparsity pattern of `K_ff`,
 //! and the pattern is rebuilt (and the factorisation re-analysed) only when the list of groups
-//! changes, e.g. when the contact search finds a new pair.
+//! changes, e.g. when the contact search finds a new pair. A term on single unknowns (a
+//! damper) is a *diagonal* instead: it adds to the diagonal of `K_ff`, which every pattern holds,
+//! so it costs no groups and never changes the pattern.
 
 /// One group's contribution at a displacement: `E`, `dE/du` and `d2E/du2` (row-major, empty
 /// when the tangent is not requested), over the group's unknowns in their listed order.
@@ -15,6 +17,15 @@ pub struct Block {
     pub hessian: Vec<f64>,
 }
 
+/// A sum of terms of one unknown each, `E = sum_i e_i(u_i)`, over all unknowns: `E`, `dE/du`
+/// and the diagonal `d2E/du_i2`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Diagonal {
+    pub energy: f64,
+    pub gradient: Vec<f64>,
+    pub curvature: Vec<f64>,
+}
+
 /// An energy added to the strain energy.
 pub trait AddedEnergy: Sync {
     /// The global unknowns of every group (fixed until the owner changes them).
@@ -22,6 +33,11 @@ pub trait AddedEnergy: Sync {
 
     /// Group `g`'s contribution at the full displacement `u` (Hessian only if `with_tangent`).
     fn block(&self, g: usize, u: &[f64], with_tangent: bool) -> Block;
+
+    /// The diagonal terms at `u`, if the energy has any.
+    fn diagonal(&self, _u: &[f64]) -> Option<Diagonal> {
+        None
+    }
 }
 
 /// Nothing added: the plain elastic problem.
@@ -65,5 +81,14 @@ impl AddedEnergy for Sum<'_> {
     fn block(&self, g: usize, u: &[f64], with_tangent: bool) -> Block {
         let (part, local) = self.owner[g];
         self.parts[part].block(local, u, with_tangent)
+    }
+
+    fn diagonal(&self, u: &[f64]) -> Option<Diagonal> {
+        self.parts.iter().filter_map(|p| p.diagonal(u)).reduce(|mut sum, term| {
+            sum.energy += term.energy;
+            sum.gradient.iter_mut().zip(&term.gradient).for_each(|(a, b)| *a += b);
+            sum.curvature.iter_mut().zip(&term.curvature).for_each(|(a, b)| *a += b);
+            sum
+        })
     }
 }

@@ -2,8 +2,9 @@
 //!
 //! Prescribed unknowns are eliminated: the residual `r_f = f_int,f(u)` and the tangent
 //! `K_ff = d r_f / d u_f` live on the free unknowns only, which keeps `K_ff` symmetric (and
-//! positive definite wherever the equilibrium is stable). The CSC pattern of `K_ff` (both
-//! triangles) and, for every stored entry, the list of element-matrix entries that sum into it
+//! positive definite wherever the equilibrium is stable). Only its lower triangle is stored
+//! (the factorisation and [`crate::fem::linear_solver::multiply`] read that one). The CSC
+//! pattern of that triangle and, for every stored entry, the list of element-matrix entries that sum into it
 //! are built once per set of prescribed unknowns; each assembly computes the element matrices
 //! in parallel (rayon) straight into their own slices of a reused buffer, and then sums each
 //! stored entry from that list, in parallel too (no scatter, so no races and no sorting).
@@ -41,7 +42,8 @@ struct Pattern {
     groups: Vec<Vec<usize>>,
     slots: Vec<Slot>,
     free: Vec<usize>,
-    /// Element `e` owns `values[offsets[e]..offsets[e + 1]]`: its free-free block, row-major;
+    /// Element `e` owns `values[offsets[e]..offsets[e + 1]]`: its free-free block, row-major,
+    /// the entries on and below the global diagonal (row >= column) only;
     /// group `g` of the added energy follows as block `elements + g`.
     offsets: Vec<usize>,
     symbolic: SymbolicSparseColMat<usize>,
@@ -49,6 +51,8 @@ struct Pattern {
     /// `sources[starts[p]..starts[p + 1]]` (indices into the element value buffer).
     starts: Vec<usize>,
     sources: Vec<u32>,
+    /// Position of the diagonal entry of each free unknown's column.
+    diagonal: Vec<usize>,
 }
 
 /// The assembled nonlinear system at one displacement.
@@ -56,7 +60,7 @@ struct Pattern {
 pub struct Assembled {
     /// Residual on the free unknowns: internal force, plus `K_fc du_c` when lifted.
     pub residual: Vec<f64>,
-    /// Tangent `K_ff` (both triangles), when requested.
+    /// Tangent `K_ff` (lower triangle), when requested.
     pub tangent: Option<SparseColMat<usize, f64>>,
     /// Internal force on each prescribed unknown (the reaction), in the order of `Dirichlet::dofs`.
     pub reactions: Vec<f64>,
@@ -153,8 +157,10 @@ impl System {
 
     /// The free unknowns when `bc` is prescribed, increasing; position = index in the reduced system.
     pub fn free_dofs(&mut self, bc: &Dirichlet) -> Result<&[usize]> {
-        let groups = self.pattern.as_ref().map_or_else(Vec::new, |p| p.groups.clone());
-        Ok(&self.pattern_for(bc, &groups)?.free)
+        if !self.pattern.as_ref().is_some_and(|p| p.constrained == bc.dofs()) {
+            self.pattern_for(bc, &[])?;
+        }
+        Ok(&self.pattern.as_ref().expect("built above").free)
     }
 
     /// Residual (and tangent if `with_tangent`) on the free unknowns at the full displacement `u`.
@@ -235,12 +241,27 @@ impl System {
             }
             added_energy += block.energy;
         }
+        let diagonal = added.diagonal(u);
+        if let Some(diagonal) = &diagonal {
+            for (dof, &g) in diagonal.gradient.iter().enumerate() {
+                match pattern.slots[dof] {
+                    Slot::Free(f) => residual[f] += g,
+                    Slot::Fixed(c) => reactions[c] += g,
+                }
+            }
+            added_energy += diagonal.energy;
+        }
         let tangent = with_tangent.then(|| {
             let mut values = vec![0.0; pattern.starts.len() - 1];
             values.par_iter_mut().with_min_len(4096).enumerate().for_each(|(p, v)| {
                 let sources = &pattern.sources[pattern.starts[p]..pattern.starts[p + 1]];
                 *v = sources.iter().map(|&s| entries[s as usize]).sum();
             });
+            if let Some(diagonal) = &diagonal {
+                for (&position, &dof) in pattern.diagonal.iter().zip(&pattern.free) {
+                    values[position] += diagonal.curvature[dof];
+                }
+            }
             SparseColMat::new(pattern.symbolic.clone(), values)
         });
         self.entries = entries;
@@ -286,10 +307,15 @@ impl System {
             }
         }
         if !chunk.is_empty() {
-            let free = || slots.iter().enumerate().filter(|(_, s)| matches!(s, Slot::Free(_)));
+            let free = || {
+                slots.iter().enumerate().filter_map(|(a, s)| match s {
+                    Slot::Free(f) => Some((a, *f)),
+                    Slot::Fixed(_) => None,
+                })
+            };
             let mut entries = chunk.iter_mut();
-            for (a, _) in free() {
-                for (b, _) in free() {
+            for (a, row) in free() {
+                for (b, _) in free().filter(|&(_, col)| row >= col) {
                     *entries.next().expect("chunk sized by the pattern") = k[a][b];
                 }
             }
@@ -343,12 +369,15 @@ fn group_contribution(
         }
     }
     if !chunk.is_empty() {
-        let free: Vec<usize> = (0..n)
-            .filter(|&i| matches!(pattern.slots[dofs[i]], Slot::Free(_)))
+        let free: Vec<(usize, usize)> = (0..n)
+            .filter_map(|i| match pattern.slots[dofs[i]] {
+                Slot::Free(f) => Some((i, f)),
+                Slot::Fixed(_) => None,
+            })
             .collect();
         let mut entries = chunk.iter_mut();
-        for &a in &free {
-            for &b in &free {
+        for &(a, row) in &free {
+            for &(b, _) in free.iter().filter(|&&(_, col)| row >= col) {
                 *entries.next().expect("chunk sized by the pattern") = block.hessian[a * n + b];
             }
         }
@@ -356,7 +385,8 @@ fn group_contribution(
     (block, lifted)
 }
 
-/// Slots, free list, per-block offsets and the CSC pattern of `K_ff` (elements, then groups).
+/// Slots, free list, per-block offsets and the CSC pattern of the lower triangle of `K_ff`
+/// (elements, then groups).
 fn build_pattern(mesh: &Mesh, constrained: &[usize], groups: &[Vec<usize>], id: usize) -> Pattern {
     let mut slots = vec![Slot::Free(0); mesh.num_dofs()];
     for (c, &dof) in constrained.iter().enumerate() {
@@ -384,13 +414,14 @@ fn build_pattern(mesh: &Mesh, constrained: &[usize], groups: &[Vec<usize>], id: 
             })
             .collect();
         for &row in &local {
-            pairs.extend(local.iter().map(|&col| Pair::new(row, col)));
+            pairs.extend(local.iter().filter(|&&col| row >= col).map(|&col| Pair::new(row, col)));
         }
         offsets.push(pairs.len());
     }
     let (symbolic, _) = SymbolicSparseColMat::try_new_from_indices(free.len(), free.len(), &pairs)
         .expect("pattern indices are in range by construction");
     let (starts, sources) = gather_lists(&symbolic, &pairs);
+    let diagonal = (0..free.len()).map(|f| position(&symbolic, f, f)).collect();
     Pattern {
         id,
         constrained: constrained.to_vec(),
@@ -401,18 +432,22 @@ fn build_pattern(mesh: &Mesh, constrained: &[usize], groups: &[Vec<usize>], id: 
         symbolic,
         starts,
         sources,
+        diagonal,
     }
+}
+
+/// Position of entry `(row, col)` in the CSC arrays of `symbolic` (it must be stored).
+fn position(symbolic: &SymbolicSparseColMat<usize>, row: usize, col: usize) -> usize {
+    let (col_ptr, row_idx) = (symbolic.col_ptr(), symbolic.row_idx());
+    let column = &row_idx[col_ptr[col]..col_ptr[col + 1]];
+    col_ptr[col] + column.binary_search(&row).expect("every pair is in the pattern")
 }
 
 /// For every stored entry of `symbolic`, the indices of the `pairs` that land on it (increasing):
 /// a counting sort of the pairs by their position in the CSC arrays.
 fn gather_lists(symbolic: &SymbolicSparseColMat<usize>, pairs: &[Pair<usize, usize>]) -> (Vec<usize>, Vec<u32>) {
-    let (col_ptr, row_idx) = (symbolic.col_ptr(), symbolic.row_idx());
-    let position = |p: &Pair<usize, usize>| {
-        let column = &row_idx[col_ptr[p.col]..col_ptr[p.col + 1]];
-        col_ptr[p.col] + column.binary_search(&p.row).expect("every pair is in the pattern")
-    };
-    let positions: Vec<usize> = pairs.iter().map(position).collect();
+    let row_idx = symbolic.row_idx();
+    let positions: Vec<usize> = pairs.iter().map(|p| position(symbolic, p.row, p.col)).collect();
     let mut starts = vec![0; row_idx.len() + 1];
     for &p in &positions {
         starts[p + 1] += 1;

@@ -162,8 +162,9 @@ pub fn evaluate<M: Hyperelastic>(
                 response.stress
             }
             None => {
-                state.energy += w * material.energy(&f)?;
-                material.first_piola(&f)?
+                let (energy, stress) = material.energy_and_stress(&f)?;
+                state.energy += w * energy;
+                stress
             }
         };
         for (a, grad) in grads.iter().enumerate() {
@@ -172,12 +173,13 @@ pub fn evaluate<M: Hyperelastic>(
         }
     }
     if let Some(k) = stiffness {
-        symmetrize(k);
+        mirror_upper_triangle(k);
     }
     Ok(state)
 }
 
-/// `K_ai,bk += w G_aJ A_iJkL G_bL` at one Gauss point.
+/// `K_ai,bk += w G_aJ A_iJkL G_bL` at one Gauss point, on and above the diagonal only (`A` has
+/// major symmetry, so `K` is symmetric).
 fn add_tangent(k: &mut ElementMatrix, grads: &[[f64; 2]; NODES], a4: &[[f64; 4]; 4], w: f64) {
     // ag[b][2i+J][k] = w sum_L A_iJkL G_bL.
     let ag: [[[f64; 2]; 4]; NODES] = std::array::from_fn(|b| {
@@ -187,8 +189,9 @@ fn add_tangent(k: &mut ElementMatrix, grads: &[[f64; 2]; NODES], a4: &[[f64; 4];
     });
     for (a, ga) in grads.iter().enumerate() {
         for i in 0..2 {
-            let row = &mut k[2 * a + i];
-            for (b, agb) in ag.iter().enumerate() {
+            let r = 2 * a + i;
+            let row = &mut k[r];
+            for (b, agb) in ag.iter().enumerate().skip(a) {
                 for kk in 0..2 {
                     row[2 * b + kk] += ga[0] * agb[2 * i][kk] + ga[1] * agb[2 * i + 1][kk];
                 }
@@ -197,14 +200,11 @@ fn add_tangent(k: &mut ElementMatrix, grads: &[[f64; 2]; NODES], a4: &[[f64; 4];
     }
 }
 
-/// Replaces `K` by `(K + K^T) / 2`, removing round-off asymmetry of the AD tangent.
-fn symmetrize(k: &mut ElementMatrix) {
+/// Copies the upper triangle of `K` onto the lower one.
+fn mirror_upper_triangle(k: &mut ElementMatrix) {
     for r in 1..DOFS {
-        let (above, below) = k.split_at_mut(r);
-        for (c, upper_row) in above.iter_mut().enumerate() {
-            let mean = 0.5 * (below[0][c] + upper_row[r]);
-            below[0][c] = mean;
-            upper_row[r] = mean;
+        for c in 0..r {
+            k[r][c] = k[c][r];
         }
     }
 }

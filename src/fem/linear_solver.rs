@@ -42,7 +42,7 @@ pub struct SparseLdlt {
 }
 
 impl SparseLdlt {
-    /// Symbolic analysis (AMD ordering, supernodal structure) of a pattern with both triangles.
+    /// Symbolic analysis (AMD ordering, supernodal structure) of the pattern of a lower triangle.
     /// Panics only if memory runs out, like any allocation.
     pub fn new(pattern: SymbolicSparseColMatRef<'_, usize>) -> Self {
         let start = Instant::now();
@@ -83,7 +83,8 @@ impl SparseLdlt {
         self.symbolic.len_val()
     }
 
-    /// `L D L^T` of `a` (same pattern as at construction); falls back to `L B L^T` on a zero pivot.
+    /// `L D L^T` of the symmetric matrix whose lower triangle is `a` (same pattern as at
+    /// construction); falls back to `L B L^T` on a zero pivot.
     pub fn factorize(&mut self, a: SparseColMatRef<'_, usize, f64>) -> Factorisation {
         let start = Instant::now();
         let ldlt = self.symbolic.factorize_numeric_ldlt(
@@ -222,13 +223,21 @@ impl SparseLdlt {
     }
 }
 
-/// `y = A x` for a matrix stored with both triangles.
+/// `y = A x` for a symmetric matrix of which the lower triangle (row >= column) is stored;
+/// entries above the diagonal, if any, are ignored.
 pub fn multiply(a: SparseColMatRef<'_, usize, f64>, x: &[f64]) -> Vec<f64> {
     let mut y = vec![0.0; a.nrows()];
     for (j, &xj) in x.iter().enumerate() {
+        let mut yj = 0.0;
         for (&i, &v) in a.row_idx_of_col_raw(j).iter().zip(a.val_of_col(j)) {
-            y[i] += v * xj;
+            if i > j {
+                y[i] += v * xj;
+                yj += v * x[i];
+            } else if i == j {
+                yj += v * xj;
+            }
         }
+        y[j] += yj;
     }
     y
 }

@@ -8,6 +8,14 @@
 //! (reactions included), or an update `|alpha du|_inf <= utol (1 + |u|_inf)`. Trial points are
 //! assembled without the tangent (first-order AD only); the tangent is assembled at an accepted
 //! point only when another step follows (or its inertia is asked for).
+//!
+//! With `reuse_factorisation`, the last factorisation (of an earlier iterate, or of the last
+//! converged state of the same pattern) is kept as the iteration matrix while it contracts the
+//! residual by at least `contraction` per step (modified Newton): such a step costs one residual
+//! assembly and one solve instead of a tangent assembly and a factorisation. A step that
+//! contracts less, or does not decrease `|r|`, falls back to the consistent tangent at the
+//! current iterate, so the iteration is never worse than full Newton's; the converged state is
+//! the same to the tolerances.
 
 use super::added::{AddedEnergy, NoAddedEnergy};
 use super::assembly::{norm, Assembled, System};
@@ -35,10 +43,20 @@ pub struct NewtonSettings {
     pub solve_tolerance: f64,
     /// Whether to factorise the tangent at the solution to report its inertia.
     pub inertia_at_solution: bool,
+    /// Whether to keep iterating with the last factorisation while it contracts the residual.
+    pub reuse_factorisation: bool,
+    /// Largest ratio `|r_(n+1)| / |r_n|` of a step with a reused factorisation for the next step to
+    /// reuse it too; above it the tangent is refactorised.
+    pub contraction: f64,
+    /// Give up (as not converged) when, after this many tangent steps, `|r|` is still above
+    /// `stall_reduction` times its start: a converging iteration from a good predictor is far
+    /// below by then, and a load step that stalls is cheaper to cut than to grind through.
+    pub stall_steps: usize,
+    pub stall_reduction: f64,
 }
 
 impl Default for NewtonSettings {
-    /// `rtol = 1e-10`, `atol = 1e-12`, `utol = 1e-13`, 30 steps, 12 halvings.
+    /// `rtol = 1e-10`, `atol = 1e-12`, `utol = 1e-13`, 30 steps, 12 halvings, full Newton.
     fn default() -> Self {
         NewtonSettings {
             max_iterations: 30,
@@ -49,6 +67,10 @@ impl Default for NewtonSettings {
             sufficient_decrease: 1e-4,
             solve_tolerance: 1e-8,
             inertia_at_solution: true,
+            reuse_factorisation: false,
+            contraction: 0.25,
+            stall_steps: usize::MAX,
+            stall_reduction: 1e-3,
         }
     }
 }
@@ -75,8 +97,10 @@ pub struct Timings {
 /// A converged solve.
 #[derive(Clone, Debug)]
 pub struct NewtonReport {
-    /// Newton steps taken.
+    /// Newton steps taken (with a reused factorisation or a new one).
     pub iterations: usize,
+    /// Of those, steps with a newly factorised tangent.
+    pub tangent_steps: usize,
     /// `|r_f|` at the start and after every step (lifted while the prescribed values are reached).
     pub residual_history: Vec<f64>,
     /// Internal-force norm `|f|` at the solution (the scale of the relative residual).
@@ -193,23 +217,33 @@ impl Newton {
         let pending: Vec<f64> = bc.dofs().iter().zip(bc.values()).map(|(&d, &g)| g - u[d]).collect();
         let lifting = pending.iter().any(|&p| p != 0.0);
         let assembled = problem
-            .assemble(u, &pending, lifting, true)
+            .assemble(u, &pending, lifting, lifting || !s.reuse_factorisation)
             .map_err(|e| inverted(e, 0))?;
+        let mut reuse = s.reuse_factorisation && !lifting && self.holds(assembled.pattern);
         let mut state = Iterate {
             assembled,
             pending,
             lifting,
         };
         let mut history = vec![state.assembled.residual_norm()];
-        let (mut last_update, mut backtracks) = (f64::INFINITY, 0);
+        let (mut last_update, mut backtracks, mut tangent_steps) = (f64::INFINITY, 0, 0);
         for iteration in 0.. {
             let residual = state.assembled.residual_norm();
             let tolerance = s.residual_tolerance * state.assembled.force_norm() + s.absolute_tolerance;
             let scale = 1.0 + max_abs(u);
             if !state.lifting && (residual <= tolerance || last_update <= s.update_tolerance * scale) {
-                return self.report(problem, u, state.assembled, iteration, history, backtracks);
+                return self.report(
+                    problem,
+                    u,
+                    state.assembled,
+                    (iteration, tangent_steps),
+                    history,
+                    backtracks,
+                );
             }
-            if iteration == s.max_iterations {
+            // Reused steps each contract |r| by `contraction`, so they are few; bound them anyway.
+            let stalled = tangent_steps >= s.stall_steps && residual > s.stall_reduction * history[0];
+            if stalled || tangent_steps == s.max_iterations || iteration == 2 * s.max_iterations {
                 return Err(NewtonError::NotConverged {
                     iterations: iteration,
                     residual,
@@ -217,18 +251,71 @@ impl Newton {
                     residual_history: history,
                 });
             }
+            if reuse {
+                match self.reused_step(&mut problem, u, &state, residual)? {
+                    Some((next, next_u, update, ratio)) => {
+                        last_update = update;
+                        u.copy_from_slice(&next_u);
+                        state = next;
+                        history.push(state.assembled.residual_norm());
+                        reuse = ratio <= s.contraction;
+                    }
+                    None => reuse = false,
+                }
+                continue;
+            }
             if state.assembled.tangent.is_none() {
                 state.assembled = problem.assemble(u, &state.pending, state.lifting, true)?;
             }
             let du = self.newton_step(&state.assembled, &mut problem.timings)?;
+            tangent_steps += 1;
             let (next, next_u, alpha) = self.line_search(&mut problem, u, &state, &du, iteration)?;
             backtracks += backtracks_in(alpha);
             last_update = alpha * max_abs(&du);
             u.copy_from_slice(&next_u);
             state = next;
             history.push(state.assembled.residual_norm());
+            reuse = s.reuse_factorisation && !state.lifting;
         }
         unreachable!("the loop returns")
+    }
+
+    /// Whether a factorisation of a matrix with pattern `pattern` is held.
+    fn holds(&self, pattern: usize) -> bool {
+        self.solver
+            .as_ref()
+            .is_some_and(|(id, solver)| *id == pattern && solver.factorisation().is_some())
+    }
+
+    /// A full step with the held factorisation: the new iterate, its displacement, the update
+    /// and the residual ratio, or `None` when the step does not decrease `|r|` (or inverts an
+    /// element), leaving the iterate as it was.
+    fn reused_step(
+        &mut self,
+        problem: &mut Problem,
+        u: &[f64],
+        state: &Iterate,
+        residual: f64,
+    ) -> Result<Option<(Iterate, Vec<f64>, f64, f64)>, NewtonError> {
+        let (_, solver) = self.solver.as_mut().expect("held, checked by the caller");
+        let mut du: Vec<f64> = state.assembled.residual.iter().map(|r| -r).collect();
+        solver.solve_in_place(&mut du)?;
+        problem.timings.solve += solver.solve_time();
+        problem.timings.solves += 1;
+        let trial_u = problem.step(u, &du, &state.pending, 1.0);
+        match problem.assemble(&trial_u, &state.pending, false, false) {
+            Ok(assembled) if assembled.residual_norm() <= (1.0 - self.settings.sufficient_decrease) * residual => {
+                let ratio = assembled.residual_norm() / residual;
+                let next = Iterate {
+                    assembled,
+                    pending: state.pending.clone(),
+                    lifting: false,
+                };
+                Ok(Some((next, trial_u, max_abs(&du), ratio)))
+            }
+            Ok(_) | Err(Error::NonPositiveJacobian { .. }) => Ok(None),
+            Err(e) => Err(e.into()),
+        }
     }
 
     /// The converged state `u`, with the inertia of its tangent if requested.
@@ -237,7 +324,7 @@ impl Newton {
         mut problem: Problem,
         u: &[f64],
         mut assembled: Assembled,
-        iterations: usize,
+        (iterations, tangent_steps): (usize, usize),
         residual_history: Vec<f64>,
         backtracks: usize,
     ) -> Result<NewtonReport, NewtonError> {
@@ -251,6 +338,7 @@ impl Newton {
         };
         Ok(NewtonReport {
             iterations,
+            tangent_steps,
             residual_history,
             force_norm: assembled.force_norm(),
             energy: assembled.energy,

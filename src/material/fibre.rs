@@ -1,6 +1,6 @@
 //! One family of fibres (eq. 3): `f(I4) = mu_f/4 (I4 - lambda_f^2)^2`, `I4 = N . C N`.
 
-use super::StrainEnergy;
+use super::{Response, StrainEnergy, Tensor2};
 use num_dual::DualNum;
 
 /// A family of fibres along the unit reference direction `direction`.
@@ -33,5 +33,45 @@ impl StrainEnergy for FibreFamily {
         }
         let strain = i4 - lf2;
         strain * strain * (0.25 * self.stiffness)
+    }
+
+    /// `P = mu_f (I4 - lambda_f^2) M` and `A = mu_f (2 M (x) M + (I4 - lambda_f^2) I (x) N N)`,
+    /// with `M = F N (x) N = dI4/dF / 2`.
+    fn plane_response(&self, f: &Tensor2) -> Response {
+        let (energy, stress, m, strain) = self.closed_stress(f);
+        let n = self.direction;
+        let tangent = std::array::from_fn(|p| {
+            std::array::from_fn(|q| {
+                // dM_iJ/dF_kL = delta_ik N_L N_J.
+                let same_row = if p / 2 == q / 2 { n[p % 2] * n[q % 2] } else { 0.0 };
+                self.stiffness * (2.0 * m[p] * m[q] + strain * same_row)
+            })
+        });
+        Response {
+            energy,
+            stress,
+            tangent,
+        }
+    }
+
+    fn plane_stress(&self, f: &Tensor2) -> (f64, Tensor2) {
+        let (energy, stress, _, _) = self.closed_stress(f);
+        (energy, stress)
+    }
+}
+
+impl FibreFamily {
+    /// `W`, `P`, `M = F N (x) N` and `I4 - lambda_f^2` (all zero for a slack tension-only fibre).
+    fn closed_stress(&self, f: &Tensor2) -> (f64, Tensor2, Tensor2, f64) {
+        let [c, s] = self.direction;
+        let (a, b) = (f[0] * c + f[1] * s, f[2] * c + f[3] * s);
+        let lf2 = self.prestretch * self.prestretch;
+        let strain = a * a + b * b - lf2;
+        if self.tension_only && strain < 0.0 {
+            return (0.0, [0.0; 4], [0.0; 4], 0.0);
+        }
+        let m = [a * c, a * s, b * c, b * s];
+        let energy = 0.25 * self.stiffness * strain * strain;
+        (energy, m.map(|x| self.stiffness * strain * x), m, strain)
     }
 }

@@ -1,7 +1,9 @@
 //! Hyperelastic materials in plane strain: one strain-energy function per law, written once and
-//! generic over dual numbers, so that the first Piola-Kirchhoff stress `P = dW/dF` and the
-//! tangent `A = d2W/dF dF` follow by automatic differentiation (`num-dual`). The homogeneous
-//! state, the stability analysis and the finite elements all call this one code path.
+//! generic over dual numbers. The first Piola-Kirchhoff stress `P = dW/dF` and the tangent
+//! `A = d2W/dF dF` of each law are closed forms derived from that energy
+//! ([`StrainEnergy::plane_response`]); automatic differentiation (`num-dual`) of the same energy
+//! is the default for a law without them and the independent check of them in the tests. The
+//! homogeneous state, the stability analysis and the finite elements all call this one code path.
 //!
 //! Conventions: `F` is stored row-major as `[F11, F12, F21, F22]` (index `2 i + J` for `F_iJ`),
 //! with `F33 = 1`; invariants are the 3D ones (`J = det F`, `I1 = tr C + 1`).
@@ -27,6 +29,68 @@ pub type Tensor4 = [[f64; 4]; 4];
 /// variable only so that the out-of-plane stress `sigma_33` follows by differentiation too.
 pub trait StrainEnergy: Send + Sync {
     fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 4], f33: D) -> D;
+
+    /// `W`, `P` and `A` in plane strain (`F33 = 1`) at a gradient with `J > 0`: by second-order
+    /// automatic differentiation of [`StrainEnergy::density`] unless a law overrides it with
+    /// its closed form.
+    fn plane_response(&self, f: &Tensor2) -> Response {
+        differentiated_response(self, f)
+    }
+
+    /// `W` and `P` in plane strain (`F33 = 1`) at a gradient with `J > 0`, without the tangent.
+    fn plane_stress(&self, f: &Tensor2) -> (f64, Tensor2) {
+        differentiated_stress(self, f)
+    }
+}
+
+/// `W`, `P = dW/dF` and `A = d2W/dF dF` of `density` by hyper-dual numbers (`F33 = 1`).
+pub fn differentiated_response<M: StrainEnergy + ?Sized>(m: &M, f: &Tensor2) -> Response {
+    let (w, g, h) = hessian(
+        |x: SVector<Dual2SVec64<4>, 4>| m.density(&[x[0], x[1], x[2], x[3]], Dual2SVec64::from_re(1.0)),
+        &SVector::from(*f),
+    );
+    Response {
+        energy: w,
+        stress: [g[0], g[1], g[2], g[3]],
+        tangent: std::array::from_fn(|a| std::array::from_fn(|b| h[(a, b)])),
+    }
+}
+
+/// `W` and `P = dW/dF` of `density` by dual numbers (`F33 = 1`).
+pub fn differentiated_stress<M: StrainEnergy + ?Sized>(m: &M, f: &Tensor2) -> (f64, Tensor2) {
+    let (w, g) = gradient(
+        |x: SVector<DualSVec64<4>, 4>| m.density(&[x[0], x[1], x[2], x[3]], DualSVec64::from_re(1.0)),
+        &SVector::from(*f),
+    );
+    (w, [g[0], g[1], g[2], g[3]])
+}
+
+/// `dJ/dF`, the cofactor of a plane `F`: `[F22, -F21, -F12, F11]`.
+pub(crate) fn cofactor(f: &Tensor2) -> Tensor2 {
+    [f[3], -f[2], -f[1], f[0]]
+}
+
+impl Response {
+    /// The sum of two responses (a mixture of energies).
+    pub(crate) fn plus(self, other: Response, weight: f64) -> Response {
+        Response {
+            energy: self.energy + weight * other.energy,
+            stress: std::array::from_fn(|a| self.stress[a] + weight * other.stress[a]),
+            tangent: std::array::from_fn(|a| {
+                std::array::from_fn(|b| self.tangent[a][b] + weight * other.tangent[a][b])
+            }),
+        }
+    }
+
+    /// This response times `weight`.
+    pub(crate) fn scaled(self, weight: f64) -> Response {
+        Response {
+            energy: 0.0,
+            stress: [0.0; 4],
+            tangent: [[0.0; 4]; 4],
+        }
+        .plus(self, weight)
+    }
 }
 
 /// Energy, stress and tangent at one deformation.
@@ -66,32 +130,19 @@ pub trait Hyperelastic: StrainEnergy {
 
     /// First Piola-Kirchhoff stress `P = dW/dF`.
     fn first_piola(&self, f: &Tensor2) -> Result<Tensor2> {
+        Ok(self.energy_and_stress(f)?.1)
+    }
+
+    /// `W` and `P = dW/dF` in one pass.
+    fn energy_and_stress(&self, f: &Tensor2) -> Result<(f64, Tensor2)> {
         check_jacobian(f)?;
-        let (_, g) = gradient(
-            |x: SVector<DualSVec64<4>, 4>| self.density(&[x[0], x[1], x[2], x[3]], DualSVec64::from_re(1.0)),
-            &SVector::from(*f),
-        );
-        Ok([g[0], g[1], g[2], g[3]])
+        Ok(self.plane_stress(f))
     }
 
     /// Energy, `P` and the tangent `A = d2W/dF dF` in one pass.
     fn response(&self, f: &Tensor2) -> Result<Response> {
         check_jacobian(f)?;
-        let (w, g, h) = hessian(
-            |x: SVector<Dual2SVec64<4>, 4>| self.density(&[x[0], x[1], x[2], x[3]], Dual2SVec64::from_re(1.0)),
-            &SVector::from(*f),
-        );
-        let mut tangent = [[0.0; 4]; 4];
-        for (a, row) in tangent.iter_mut().enumerate() {
-            for (b, entry) in row.iter_mut().enumerate() {
-                *entry = h[(a, b)];
-            }
-        }
-        Ok(Response {
-            energy: w,
-            stress: [g[0], g[1], g[2], g[3]],
-            tangent,
-        })
+        Ok(self.plane_response(f))
     }
 
     /// Cauchy stress `sigma = P F^T / J`, with `sigma_33 = P_33 / J` from `dW/dF33`.

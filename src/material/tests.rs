@@ -197,3 +197,48 @@ fn tension_only_fibres_are_unloaded_in_compression() {
     assert_eq!(fibres.energy(&[0.8, 0.0, 0.0, 1.2]).unwrap(), 0.0);
     assert!(fibres.energy(&[1.1, 0.0, 0.0, 0.9]).unwrap() > 0.0);
 }
+
+#[test]
+fn closed_forms_equal_automatic_differentiation_of_the_energy() {
+    let mut list = materials();
+    let stiff = Parameters {
+        K_l: 1e6 * Parameters::default().mu_l,
+        K_s: 1e6,
+        ..Parameters::default()
+    };
+    list.push((
+        "nearly incompressible substrate".into(),
+        Bilayer::new(&stiff).substrate_tissue(),
+    ));
+    list.push((
+        "nearly incompressible layer".into(),
+        Bilayer::new(&stiff).layer_tissue(),
+    ));
+    for (name, m) in list {
+        for f in sample_gradients().into_iter().filter(|f| !at_fibre_kink(&m, f)) {
+            let (closed, ad) = (m.plane_response(&f), differentiated_response(&m, &f));
+            let scale = ad.tangent.iter().flatten().fold(1.0f64, |s, x| s.max(x.abs()));
+            assert!(
+                relative_error(closed.energy, ad.energy, ad.energy.abs().max(1.0)) < 1e-13,
+                "{name}: W"
+            );
+            for a in 0..4 {
+                assert!(
+                    relative_error(closed.stress[a], ad.stress[a], scale) < 1e-13,
+                    "{name}: P[{a}]"
+                );
+                for b in 0..4 {
+                    let err = relative_error(closed.tangent[a][b], ad.tangent[a][b], scale);
+                    assert!(
+                        err < 1e-13,
+                        "{name} F={f:?}: A[{a}][{b}] {} vs {}",
+                        closed.tangent[a][b],
+                        ad.tangent[a][b]
+                    );
+                }
+            }
+            let (w, p) = m.plane_stress(&f);
+            assert_eq!((w, p), (closed.energy, closed.stress), "{name}: stress-only path");
+        }
+    }
+}

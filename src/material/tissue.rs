@@ -1,7 +1,7 @@
 //! The two tissues of the model: the layer (cortex, neo-Hookean) and the fibre-reinforced
 //! substrate (white matter, eq. 3 mixture `phi_m W_m + phi_f (f1 + f2)`), built from `Parameters`.
 
-use super::{FibreFamily, NeoHookean, StrainEnergy};
+use super::{FibreFamily, NeoHookean, Response, StrainEnergy, Tensor2};
 use crate::parameters::Parameters;
 use num_dual::DualNum;
 
@@ -19,6 +19,27 @@ impl StrainEnergy for FibreReinforced {
         let fibres = self.fibres[0].density(f, f33) + self.fibres[1].density(f, f33);
         self.matrix.density(f, f33) * self.matrix_fraction + fibres * self.fibre_fraction
     }
+
+    fn plane_response(&self, f: &Tensor2) -> Response {
+        let fibres = self.fibres[0]
+            .plane_response(f)
+            .plus(self.fibres[1].plane_response(f), 1.0);
+        self.matrix
+            .plane_response(f)
+            .scaled(self.matrix_fraction)
+            .plus(fibres, self.fibre_fraction)
+    }
+
+    fn plane_stress(&self, f: &Tensor2) -> (f64, Tensor2) {
+        // Summed in the order of `plane_response`, so that both give the same bits.
+        let (wm, pm) = self.matrix.plane_stress(f);
+        let ((w1, p1), (w2, p2)) = (self.fibres[0].plane_stress(f), self.fibres[1].plane_stress(f));
+        let (m, c) = (self.matrix_fraction, self.fibre_fraction);
+        (
+            m * wm + c * (w1 + w2),
+            std::array::from_fn(|a| m * pm[a] + c * (p1[a] + p2[a])),
+        )
+    }
 }
 
 /// Either tissue, so that code looping over elements of both layers needs one type.
@@ -33,6 +54,20 @@ impl StrainEnergy for Tissue {
         match self {
             Tissue::Layer(m) => m.density(f, f33),
             Tissue::Substrate(m) => m.density(f, f33),
+        }
+    }
+
+    fn plane_response(&self, f: &Tensor2) -> Response {
+        match self {
+            Tissue::Layer(m) => m.plane_response(f),
+            Tissue::Substrate(m) => m.plane_response(f),
+        }
+    }
+
+    fn plane_stress(&self, f: &Tensor2) -> (f64, Tensor2) {
+        match self {
+            Tissue::Layer(m) => m.plane_stress(f),
+            Tissue::Substrate(m) => m.plane_stress(f),
         }
     }
 }

@@ -113,6 +113,7 @@ impl Augmentation {
                     let solved = solve_with_contact(newton, system, u, bc, contact, other)?;
                     let mut report = solved.report;
                     report.iterations = solved.iterations;
+                    report.tangent_steps = solved.tangent_steps;
                     (report, solved.augmentations)
                 }
                 None => (newton.solve_with(system, u, bc, other)?, 1),

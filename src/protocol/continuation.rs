@@ -28,7 +28,7 @@ pub struct StepControl {
     pub grow: f64,
     /// Factor applied after a failure (in (0, 1)).
     pub cut: f64,
-    /// A step converged in at most this many Newton iterations is easy.
+    /// A step converged with at most this many newly factorised tangents is easy.
     pub easy_iterations: usize,
 }
 
@@ -233,7 +233,7 @@ impl Continuation {
                     if self.history.len() > PREDICTOR_POINTS {
                         self.history.pop_front();
                     }
-                    if report.iterations <= c.easy_iterations {
+                    if report.tangent_steps <= c.easy_iterations {
                         self.step = (self.step * c.grow).min(c.max);
                     }
                     started = Instant::now();

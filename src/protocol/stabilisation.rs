@@ -15,7 +15,7 @@
 //! the step is redone.
 
 use crate::error::{Error, Result};
-use crate::fem::added::{AddedEnergy, Block};
+use crate::fem::added::{AddedEnergy, Block, Diagonal};
 use crate::fem::element::{self, DOFS};
 use crate::fem::System;
 use crate::homogeneous::homogeneous_state;
@@ -58,7 +58,6 @@ pub struct Stabilisation {
     materials: Bilayer,
     /// Diagonal `K_ii` of the reference stiffness (all unknowns).
     stiffness: Vec<f64>,
-    groups: Vec<Vec<usize>>,
     eta: f64,
     dissipated: f64,
 }
@@ -80,7 +79,6 @@ impl Stabilisation {
             settings,
             materials: *materials,
             stiffness,
-            groups: (0..mesh.num_nodes()).map(|n| vec![2 * n, 2 * n + 1]).collect(),
             eta: settings.eta,
             dissipated: 0.0,
         })
@@ -97,7 +95,7 @@ impl Stabilisation {
     }
 
     /// The damper of the step from `(d0, u0)` to `d` on `system`'s mesh (zero damping on steps
-    /// of at least `engage_below`, keeping the same groups and so the same pattern).
+    /// of at least `engage_below`).
     pub fn damper(&self, system: &System, d0: f64, u0: &[f64], d: f64) -> Result<Damper<'_>> {
         let mesh = system.mesh();
         let before = homogeneous_displacement(mesh, &homogeneous_state(&self.materials, d0)?);
@@ -108,7 +106,6 @@ impl Stabilisation {
             .map(|(u, (a, b))| u + a - b)
             .collect();
         Ok(Damper {
-            groups: &self.groups,
             stiffness: &self.stiffness,
             reference,
             factor: if d - d0 < self.settings.engage_below {
@@ -141,14 +138,13 @@ impl Stabilisation {
 
 /// The damping energy of one step: `factor / 2 sum_i c_i (u_i - reference_i)^2`, `factor = eta / h`.
 pub struct Damper<'a> {
-    groups: &'a [Vec<usize>],
     stiffness: &'a [f64],
     reference: Vec<f64>,
     factor: f64,
 }
 
 impl Damper<'_> {
-    /// The same groups with zero damping: the undamped tangent on the same pattern.
+    /// The same damper with zero damping.
     pub fn undamped(self) -> Self {
         Damper { factor: 0.0, ..self }
     }
@@ -164,20 +160,31 @@ impl Damper<'_> {
 
 impl AddedEnergy for Damper<'_> {
     fn groups(&self) -> &[Vec<usize>] {
-        self.groups
+        &[]
     }
 
-    fn block(&self, g: usize, u: &[f64], with_tangent: bool) -> Block {
-        let c = [2 * g, 2 * g + 1].map(|i| self.factor * self.stiffness[i]);
-        let v = [2 * g, 2 * g + 1].map(|i| u[i] - self.reference[i]);
-        Block {
-            energy: 0.5 * (c[0] * v[0] * v[0] + c[1] * v[1] * v[1]),
-            gradient: vec![c[0] * v[0], c[1] * v[1]],
-            hessian: if with_tangent {
-                vec![c[0], 0.0, 0.0, c[1]]
-            } else {
-                Vec::new()
-            },
+    fn block(&self, g: usize, _: &[f64], _: bool) -> Block {
+        unreachable!("a damper has no group {g}, only diagonal terms")
+    }
+
+    fn diagonal(&self, u: &[f64]) -> Option<Diagonal> {
+        if self.factor == 0.0 {
+            return None;
         }
+        let curvature: Vec<f64> = self.stiffness.iter().map(|c| self.factor * c).collect();
+        let gradient: Vec<f64> = (0..u.len())
+            .map(|i| curvature[i] * (u[i] - self.reference[i]))
+            .collect();
+        let energy = 0.5
+            * gradient
+                .iter()
+                .zip(u.iter().zip(&self.reference))
+                .map(|(g, (x, r))| g * (x - r))
+                .sum::<f64>();
+        Some(Diagonal {
+            energy,
+            gradient,
+            curvature,
+        })
     }
 }

@@ -16,6 +16,8 @@ pub struct ContactSolve {
     pub report: NewtonReport,
     /// Newton iterations over all solves.
     pub iterations: usize,
+    /// Of those, the steps with a newly factorised tangent.
+    pub tangent_steps: usize,
     /// Newton solves (one per multiplier update).
     pub augmentations: usize,
     /// Largest penetration of the accepted state.
@@ -50,10 +52,11 @@ fn augmented_lagrangian(
     other: &dyn AddedEnergy,
 ) -> Result<ContactSolve, NewtonError> {
     contact.search(u);
-    let (mut iterations, mut penetration) = (0, f64::INFINITY);
+    let (mut iterations, mut tangent_steps, mut penetration) = (0, 0, f64::INFINITY);
     for augmentation in 1..=contact.settings.max_augmentations {
         let report = newton.solve_with(system, u, bc, &Sum::new(vec![&*contact, other]))?;
         iterations += report.iterations;
+        tangent_steps += report.tangent_steps;
         let loaded = contact.loaded_pairs(u);
         contact.search(u);
         let unchanged = contact.loaded_pairs(u) == loaded;
@@ -63,6 +66,7 @@ fn augmented_lagrangian(
             return Ok(ContactSolve {
                 report,
                 iterations,
+                tangent_steps,
                 augmentations: augmentation,
                 penetration,
             });
