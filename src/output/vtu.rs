@@ -1,5 +1,8 @@
-//! VTK XML unstructured grids (`.vtu`, ASCII) of 9-node quadrilateral meshes, and ParaView
+//! VTK XML unstructured grids (`.vtu`) of 9-node quadrilateral meshes, and ParaView
 //! collections (`.pvd`) that list them against a "time" (here the end-shortening `d`).
+//!
+//! Arrays are written inline in VTK's `binary` format: base64 of a `UInt64` byte count followed
+//! by the little-endian values (exact, and about a third of the size and time of ASCII).
 //!
 //! Cells are `VTK_BIQUADRATIC_QUAD` (type 28): four corners counter-clockwise, the four edge
 //! midpoints (edges 0-1, 1-2, 2-3, 3-0), then the centre. Points are written in 3D with `z = 0`.
@@ -96,7 +99,7 @@ fn write_grid(
     writeln!(out, r#"<?xml version="1.0"?>"#)?;
     writeln!(
         out,
-        r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian">"#
+        r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">"#
     )?;
     writeln!(out, "<UnstructuredGrid>")?;
     writeln!(
@@ -109,22 +112,21 @@ fn write_grid(
     let coordinates: Vec<f64> = points.iter().flat_map(|&[x, y]| [x, y, 0.0]).collect();
     write_floats(out, "Points", 3, &coordinates)?;
     writeln!(out, "</Points>\n<Cells>")?;
-    writeln!(out, r#"<DataArray type="Int64" Name="connectivity" format="ascii">"#)?;
-    for cell in cells {
-        let line: Vec<String> = TO_VTK.iter().map(|&local| cell[local].to_string()).collect();
-        writeln!(out, "{}", line.join(" "))?;
-    }
-    writeln!(out, "</DataArray>")?;
-    writeln!(out, r#"<DataArray type="Int64" Name="offsets" format="ascii">"#)?;
-    for c in 1..=cells.len() {
-        writeln!(out, "{}", 9 * c)?;
-    }
-    writeln!(out, "</DataArray>")?;
-    writeln!(out, r#"<DataArray type="UInt8" Name="types" format="ascii">"#)?;
-    for _ in cells {
-        writeln!(out, "{VTK_BIQUADRATIC_QUAD}")?;
-    }
-    writeln!(out, "</DataArray>\n</Cells>")?;
+    let connectivity: Vec<i64> = cells
+        .iter()
+        .flat_map(|cell| TO_VTK.map(|local| cell[local] as i64))
+        .collect();
+    write_array(
+        out,
+        "Int64",
+        "connectivity",
+        1,
+        &bytes_of(&connectivity, i64::to_le_bytes),
+    )?;
+    let offsets: Vec<i64> = (1..=cells.len() as i64).map(|c| 9 * c).collect();
+    write_array(out, "Int64", "offsets", 1, &bytes_of(&offsets, i64::to_le_bytes))?;
+    write_array(out, "UInt8", "types", 1, &vec![VTK_BIQUADRATIC_QUAD; cells.len()])?;
+    writeln!(out, "</Cells>")?;
     for (tag, arrays) in [("PointData", point_data), ("CellData", cell_data)] {
         writeln!(out, "<{tag}>")?;
         for array in arrays {
@@ -135,16 +137,27 @@ fn write_grid(
     writeln!(out, "</Piece>\n</UnstructuredGrid>\n</VTKFile>")
 }
 
-/// One `Float64` data array, one entity per line.
+/// The little-endian bytes of `values`.
+fn bytes_of<T: Copy, const N: usize>(values: &[T], to_bytes: fn(T) -> [u8; N]) -> Vec<u8> {
+    values.iter().flat_map(|&v| to_bytes(v)).collect()
+}
+
+/// One `Float64` data array.
 fn write_floats(out: &mut impl Write, name: &str, components: usize, values: &[f64]) -> std::io::Result<()> {
+    write_array(out, "Float64", name, components, &bytes_of(values, f64::to_le_bytes))
+}
+
+/// One data array in VTK's inline `binary` format: base64 of the `UInt64` length and the bytes.
+fn write_array(out: &mut impl Write, kind: &str, name: &str, components: usize, bytes: &[u8]) -> std::io::Result<()> {
+    use base64::Engine;
+    let mut payload = Vec::with_capacity(8 + bytes.len());
+    payload.extend_from_slice(&(bytes.len() as u64).to_le_bytes());
+    payload.extend_from_slice(bytes);
     writeln!(
         out,
-        r#"<DataArray type="Float64" Name="{name}" NumberOfComponents="{components}" format="ascii">"#
+        r#"<DataArray type="{kind}" Name="{name}" NumberOfComponents="{components}" format="binary">"#
     )?;
-    for entity in values.chunks(components) {
-        let line: Vec<String> = entity.iter().map(|v| format!("{v:.10e}")).collect();
-        writeln!(out, "{}", line.join(" "))?;
-    }
+    writeln!(out, "{}", base64::engine::general_purpose::STANDARD.encode(&payload))?;
     writeln!(out, "</DataArray>")
 }
 
