@@ -157,7 +157,7 @@ impl System {
 
     /// The free unknowns when `bc` is prescribed, increasing; position = index in the reduced system.
     pub fn free_dofs(&mut self, bc: &Dirichlet) -> Result<&[usize]> {
-        if !self.pattern.as_ref().is_some_and(|p| p.constrained == bc.dofs()) {
+        if self.pattern.as_ref().is_none_or(|p| p.constrained != bc.dofs()) {
             self.pattern_for(bc, &[])?;
         }
         Ok(&self.pattern.as_ref().expect("built above").free)

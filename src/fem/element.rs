@@ -203,8 +203,9 @@ fn add_tangent(k: &mut ElementMatrix, grads: &[[f64; 2]; NODES], a4: &[[f64; 4];
 /// Copies the upper triangle of `K` onto the lower one.
 fn mirror_upper_triangle(k: &mut ElementMatrix) {
     for r in 1..DOFS {
-        for c in 0..r {
-            k[r][c] = k[c][r];
+        let (above, below) = k.split_at_mut(r);
+        for (entry, upper_row) in below[0].iter_mut().zip(above.iter()) {
+            *entry = upper_row[r];
         }
     }
 }

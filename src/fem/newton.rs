@@ -296,7 +296,7 @@ impl Newton {
         u: &[f64],
         state: &Iterate,
         residual: f64,
-    ) -> Result<Option<(Iterate, Vec<f64>, f64, f64)>, NewtonError> {
+    ) -> Result<Option<ReusedStep>, NewtonError> {
         let (_, solver) = self.solver.as_mut().expect("held, checked by the caller");
         let mut du: Vec<f64> = state.assembled.residual.iter().map(|r| -r).collect();
         solver.solve_in_place(&mut du)?;
@@ -432,6 +432,10 @@ impl Newton {
         solver
     }
 }
+
+/// A step with the held factorisation: the new iterate, its displacement, `|du|_inf` and the
+/// residual ratio.
+type ReusedStep = (Iterate, Vec<f64>, f64, f64);
 
 /// One Newton iterate: its assembly, and how far the prescribed unknowns still have to move.
 struct Iterate {
