@@ -199,9 +199,12 @@ fn inadmissible_wavenumbers_are_rejected_with_exit_code_2() {
     }
 }
 
+/// A data array read back: name, components, values.
+type NamedArray = (String, usize, Vec<f64>);
+
 /// Reads a `.vtu` file with vtkio (an independent reader): point and cell counts, the
 /// connectivity, and every named array with its number of components.
-fn read_vtu(path: &Path) -> (usize, usize, Vec<u64>, Vec<(String, usize, Vec<f64>)>) {
+fn read_vtu(path: &Path) -> (usize, usize, Vec<u64>, Vec<NamedArray>) {
     use vtkio::model::{Attribute, DataSet, ElementType, Piece, VertexNumbers};
     let vtk = vtkio::Vtk::import(path).unwrap_or_else(|e| panic!("{}: {e:?}", path.display()));
     let DataSet::UnstructuredGrid { pieces, .. } = vtk.data else {
