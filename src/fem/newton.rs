@@ -164,6 +164,11 @@ impl Newton {
         Newton { settings, solver: None }
     }
 
+    /// Frees the held factorisation and its analysis (the next solve starts afresh).
+    pub fn release_factorisation(&mut self) {
+        self.solver = None;
+    }
+
     /// The linear solver of the last pattern (its last factorisation and timings).
     pub fn linear_solver(&self) -> Option<&SparseLdlt> {
         self.solver.as_ref().map(|(_, s)| s)

@@ -203,6 +203,12 @@ impl Continuation {
         &self.history.back().expect("never empty").1
     }
 
+    /// Frees the factorisation Newton keeps between steps (before post-processing a finished
+    /// path, so that two factors are never held at once).
+    pub fn release_factorisation(&mut self) {
+        self.newton.release_factorisation();
+    }
+
     /// The system being solved.
     pub fn system(&self) -> &System {
         &self.system

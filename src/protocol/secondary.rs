@@ -46,15 +46,22 @@ pub fn inertia_changes(records: &[StepRecord]) -> Vec<InertiaChange> {
 /// The eigenpair of the elastic tangent at the state `u` (end-shortening `d`) whose eigenvalue
 /// is nearest zero: inverse iteration, the mode on all unknowns (zero where prescribed) scaled to
 /// a largest top-surface `|u_y|` of 1.
-pub fn mode_nearest_zero(system: &mut System, u: &[f64], d: f64, iterations: usize) -> Result<(Vec<f64>, f64)> {
+/// `solver` keeps the symbolic analysis between calls on the same system.
+pub fn mode_nearest_zero(
+    system: &mut System,
+    u: &[f64],
+    d: f64,
+    iterations: usize,
+    solver: &mut Option<SparseLdlt>,
+) -> Result<(Vec<f64>, f64)> {
     let bc = model_conditions(system.mesh(), d)?;
     let k = system
         .assemble(u, &bc, None, true)?
         .tangent
         .expect("assembled with the tangent");
-    let mut solver = SparseLdlt::new(k.symbolic());
+    let solver = solver.get_or_insert_with(|| SparseLdlt::new(k.symbolic()));
     solver.factorize(k.as_ref());
-    let (x, eigenvalue) = inverse_iteration(&mut solver, k.as_ref(), iterations, 1e-10)?;
+    let (x, eigenvalue) = inverse_iteration(solver, k.as_ref(), iterations, 1e-10)?;
     let mut mode = vec![0.0; system.num_dofs()];
     for (&dof, &v) in system.free_dofs(&bc)?.iter().zip(&x) {
         mode[dof] = v;

@@ -101,7 +101,7 @@ impl Protocol {
     }
 }
 
-/// Newton's settings for load steps: at most 8 tangent iterations, and 4 when they have not
+/// Newton's settings for load steps: at most 8 tangent iterations, and 3 when they have not
 /// reduced the residual 1000-fold (a step that needs more is cut rather than ground through), the last factorisation reused while it contracts the
 /// residual, and no inertia at the solution (one factorisation less per step).
 pub fn simulation_newton() -> NewtonSettings {
@@ -109,7 +109,7 @@ pub fn simulation_newton() -> NewtonSettings {
         max_iterations: 8,
         inertia_at_solution: false,
         reuse_factorisation: true,
-        stall_steps: 4,
+        stall_steps: 3,
         ..NewtonSettings::default()
     }
 }

@@ -286,7 +286,7 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
         .protocol
         .contact
         .then(|| CreaseSnapshots::new(study.protocol.d_max));
-    let outcome = stages::run(&materials, study.mesh, &study.protocol, &mut |event| {
+    let mut outcome = stages::run(&materials, study.mesh, &study.protocol, &mut |event| {
         if let Event::Step { record, system, u } = &event {
             let columns = [
                 record.d,
@@ -307,6 +307,7 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
         recorder.note(&event);
         Ok(())
     })?;
+    outcome.continuation.release_factorisation();
     let continuation = &outcome.continuation;
     let (system, u, d_reached) = (continuation.system(), continuation.displacement(), continuation.d());
     snapshots.write_final(recorder.records.last(), d_reached, system, &materials, u)?;

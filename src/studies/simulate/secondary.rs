@@ -96,8 +96,9 @@ impl SecondaryTracker {
             })
             .collect();
         let mut system = System::new(mesh.clone(), materials)?;
+        let mut solver = None;
         for (i, ((d, u), change)) in self.states.iter().zip(changes.iter_mut()).enumerate() {
-            let (mode, eigenvalue) = mode_nearest_zero(&mut system, u, *d, INVERSE_ITERATIONS)?;
+            let (mode, eigenvalue) = mode_nearest_zero(&mut system, u, *d, INVERSE_ITERATIONS, &mut solver)?;
             let path = out.join(format!("secondary_mode_{i}.vtu"));
             let array = DataArray::plane_vectors("mode", mode.chunks(2).map(|c| [c[0], c[1]]));
             write_state(&path, &system, materials, u, vec![array])?;
