@@ -9,8 +9,9 @@ use fiberfold::Result;
 pub enum BenchTarget {
     /// Linear stability: one d_c(k), one onset, the Fig. 4b sweep.
     Stability,
-    /// Finite elements: the beta = pi/4, N = 4.5 curve to d = 0.25 on coarse and fine meshes,
-    /// split per Newton iteration into assembly / factorisation / solve, with peak memory.
+    /// Finite elements: per-call kernel times (tangent and residual assembly, LDLT, solve), then
+    /// the beta = pi/4, N = 4.5 curve to d = 0.25 on coarse and fine meshes, split per Newton
+    /// iteration into assembly / factorisation / solve, with peak memory.
     Fe,
 }
 
@@ -58,6 +59,8 @@ pub fn run(args: &BenchArgs) -> Result<()> {
                 setup.d_max,
                 meshes.len()
             );
+            println!("per-call kernels at the homogeneous state of d = 0.1 (medians of 5):");
+            print!("{}", bench_fe::kernels(&setup.params, &meshes)?);
             let bench = bench_fe::run(&setup, &meshes, &|_| {})?;
             print!("{bench}");
         }

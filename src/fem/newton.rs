@@ -49,8 +49,9 @@ pub struct NewtonSettings {
     /// reuse it too; above it the tangent is refactorised.
     pub contraction: f64,
     /// Give up (as not converged) when, after this many tangent steps, `|r|` is still above
-    /// `stall_reduction` times its start: a converging iteration from a good predictor is far
-    /// below by then, and a load step that stalls is cheaper to cut than to grind through.
+    /// both `stall_reduction` times its start and the geometric mean of its start and the
+    /// tolerance: a converging iteration from a good predictor is far below by then, and a load
+    /// step that stalls is cheaper to cut than to grind through.
     pub stall_steps: usize,
     pub stall_reduction: f64,
 }
@@ -247,7 +248,10 @@ impl Newton {
                 );
             }
             // Reused steps each contract |r| by `contraction`, so they are few; bound them anyway.
-            let stalled = tangent_steps >= s.stall_steps && residual > s.stall_reduction * history[0];
+            // Stalled: short of both a `stall_reduction` decrease and half the decrease (in
+            // orders of magnitude) that convergence needs.
+            let halfway = (history[0] * tolerance).sqrt();
+            let stalled = tangent_steps >= s.stall_steps && residual > halfway.max(s.stall_reduction * history[0]);
             if stalled || tangent_steps == s.max_iterations || iteration == 2 * s.max_iterations {
                 return Err(NewtonError::NotConverged {
                     iterations: iteration,

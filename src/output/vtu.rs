@@ -2,7 +2,7 @@
 //! collections (`.pvd`) that list them against a "time" (here the end-shortening `d`).
 //!
 //! Arrays are written inline in VTK's `binary` format: base64 of a `UInt64` byte count followed
-//! by the little-endian values (exact, and about a third of the size and time of ASCII).
+//! by the little-endian values: exact, no float formatting, and a fifth smaller than ASCII.
 //!
 //! Cells are `VTK_BIQUADRATIC_QUAD` (type 28): four corners counter-clockwise, the four edge
 //! midpoints (edges 0-1, 1-2, 2-3, 3-0), then the centre. Points are written in 3D with `z = 0`.

@@ -109,7 +109,7 @@ pub fn simulation_newton() -> NewtonSettings {
         max_iterations: 8,
         inertia_at_solution: false,
         reuse_factorisation: true,
-        stall_steps: 3,
+        stall_steps: 5,
         ..NewtonSettings::default()
     }
 }

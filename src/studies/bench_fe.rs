@@ -168,3 +168,99 @@ impl FeBench {
         }
     }
 }
+
+/// Per-call cost of the solver's kernels on one mesh, at the homogeneous state of `d = 0.1`
+/// (medians of 5 calls).
+#[derive(Clone, Debug, Serialize)]
+pub struct KernelRow {
+    pub mesh: String,
+    pub free_unknowns: usize,
+    /// Stored entries of the lower triangle of `K_ff` and of the factor.
+    pub tangent_entries: usize,
+    pub factor_entries: usize,
+    pub tangent_assembly_ms: f64,
+    pub residual_assembly_ms: f64,
+    pub factorisation_ms: f64,
+    pub solve_ms: f64,
+}
+
+/// The kernel table.
+#[derive(Clone, Debug, Serialize)]
+pub struct Kernels {
+    pub rows: Vec<KernelRow>,
+}
+
+/// Times the kernels on each mesh.
+pub fn kernels(params: &Parameters, meshes: &[(&str, MeshSpec)]) -> Result<Kernels> {
+    use crate::fem::{model_conditions, SparseLdlt, System};
+    use crate::homogeneous::homogeneous_state;
+    use crate::material::Bilayer;
+    use crate::protocol::bifurcation::homogeneous_displacement;
+    use std::time::Instant;
+    let median_ms = |mut f: Box<dyn FnMut() -> Result<()> + '_>| -> Result<f64> {
+        let mut times = Vec::new();
+        for _ in 0..5 {
+            let start = Instant::now();
+            f()?;
+            times.push(1e3 * start.elapsed().as_secs_f64());
+        }
+        times.sort_by(f64::total_cmp);
+        Ok(times[2])
+    };
+    let materials = Bilayer::new(params);
+    let mut rows = Vec::new();
+    for &(name, spec) in meshes {
+        let mut system = System::new(crate::mesh::Mesh::new(spec)?, &materials)?;
+        let d = 0.1;
+        let bc = model_conditions(system.mesh(), d)?;
+        let u = homogeneous_displacement(system.mesh(), &homogeneous_state(&materials, d)?);
+        let assembled = system.assemble(&u, &bc, None, true)?;
+        let k = assembled.tangent.expect("assembled with the tangent");
+        let tangent_assembly_ms = median_ms(Box::new(|| system.assemble(&u, &bc, None, true).map(|_| ())))?;
+        let residual_assembly_ms = median_ms(Box::new(|| system.assemble(&u, &bc, None, false).map(|_| ())))?;
+        let mut solver = SparseLdlt::new(k.symbolic());
+        let factorisation_ms = median_ms(Box::new(|| {
+            solver.factorize(k.as_ref());
+            Ok(())
+        }))?;
+        let mut x = assembled.residual.clone();
+        let solve_ms = median_ms(Box::new(|| {
+            x.copy_from_slice(&assembled.residual);
+            solver.solve_in_place(&mut x)
+        }))?;
+        rows.push(KernelRow {
+            mesh: name.to_string(),
+            free_unknowns: k.nrows(),
+            tangent_entries: k.compute_nnz(),
+            factor_entries: solver.factor_size(),
+            tangent_assembly_ms,
+            residual_assembly_ms,
+            factorisation_ms,
+            solve_ms,
+        });
+    }
+    Ok(Kernels { rows })
+}
+
+impl fmt::Display for Kernels {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "| mesh | free unknowns | nnz(K) lower | factor entries | tangent + residual assembly ms | residual only ms | LDLT ms | solve ms | assembly / LDLT |")?;
+        writeln!(f, "|---|---|---|---|---|---|---|---|---|")?;
+        for r in &self.rows {
+            writeln!(
+                f,
+                "| {} | {} | {} | {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.0} % |",
+                r.mesh,
+                r.free_unknowns,
+                r.tangent_entries,
+                r.factor_entries,
+                r.tangent_assembly_ms,
+                r.residual_assembly_ms,
+                r.factorisation_ms,
+                r.solve_ms,
+                100.0 * r.tangent_assembly_ms / r.factorisation_ms
+            )?;
+        }
+        Ok(())
+    }
+}
