@@ -180,6 +180,45 @@ fn newton_converges_quadratically() {
 }
 
 #[test]
+fn reused_factorisation_reaches_the_full_newton_solution_with_fewer_factorisations() {
+    let p = Parameters {
+        beta: 0.3,
+        ..Parameters::default()
+    };
+    let mesh = Mesh::new(MeshSpec::new(6, 2, 4, 0.5, 6.0, 6.0))
+        .unwrap()
+        .perturbed(|[x, y]| [0.0, 0.05 * (std::f64::consts::PI * x / 3.0).cos() * (1.0 + y / 6.0)]);
+    // A path of load steps from the same start, by full Newton and by Newton reusing the last
+    // factorisation (the one at the previous solution, as in a continuation).
+    let path = |reuse: bool| {
+        let mut system = System::new(mesh.clone(), &Bilayer::new(&p)).unwrap();
+        let mut newton = Newton::new(NewtonSettings {
+            reuse_factorisation: reuse,
+            ..NewtonSettings::default()
+        });
+        let mut u = vec![0.0; mesh.num_dofs()];
+        let mut factorisations = 0;
+        for step in 1..=6 {
+            let d = 0.02 * step as f64;
+            let report = newton
+                .solve(&mut system, &mut u, &model_conditions(&mesh, d).unwrap())
+                .unwrap();
+            assert_eq!(report.negative_pivots, Some(0), "d = {d}");
+            factorisations += report.timings.factorisations;
+        }
+        (u, factorisations)
+    };
+    let ((full, full_count), (reused, reused_count)) = (path(false), path(true));
+    let scale = full.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let difference = full.iter().zip(&reused).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    println!(
+        "factorisations: full {full_count}, reused {reused_count}; |u_full - u_reused| = {difference:e} of {scale:e}"
+    );
+    assert!(difference <= 1e-9 * scale, "{difference:e}");
+    assert!(reused_count < full_count, "{reused_count} vs {full_count}");
+}
+
+#[test]
 fn perfect_mesh_reproduces_the_homogeneous_state() {
     let mesh = Mesh::new(MeshSpec::new(4, 1, 2, 1.0, 4.0, 3.0)).unwrap();
     let depth = mesh.spec().depth;
