@@ -2,7 +2,8 @@
 //!
 //! Each step tries `d + h`: the predictor extrapolates the displacement through the last (up
 //! to four) converged states (cubic Lagrange polynomial in `d`; the prescribed unknowns are set
-//! exactly; from a single state, Newton's lifted first step is the tangent predictor), then
+//! exactly; from a single state, along a given slope `du/dd` if there is one, otherwise
+//! Newton's lifted first step is the tangent predictor), then
 //! Newton's method corrects it. A step that converges in at most `easy_iterations` grows
 //! `h` by `grow`; a failure (no convergence, line search, `J <= 0` anywhere) discards the trial
 //! and cuts `h` by `cut`. A failure at the minimum step stops the continuation.
@@ -163,6 +164,8 @@ pub struct Continuation {
     history: VecDeque<(f64, Vec<f64>)>,
     /// Contact and stabilisation, if any.
     augmentation: Option<Augmentation>,
+    /// `du/dd` for the predictor while only one state is known.
+    slope: Option<Vec<f64>>,
 }
 
 /// How many converged states the predictor extrapolates through (cubic).
@@ -179,12 +182,21 @@ impl Continuation {
             control,
             history: VecDeque::from([(d, u)]),
             augmentation: None,
+            slope: None,
         })
     }
 
     /// The same continuation with contact and stabilisation.
     pub fn with_augmentation(mut self, augmentation: Augmentation) -> Self {
         self.augmentation = Some(augmentation);
+        self
+    }
+
+    /// The same continuation predicting its first step along `du/dd = slope` (all unknowns),
+    /// e.g. that of the homogeneous path: then the surface moves with the compressed domain
+    /// from the start, instead of lagging the moved boundary as the lifted step does.
+    pub fn with_first_slope(mut self, slope: Vec<f64>) -> Self {
+        self.slope = Some(slope);
         self
     }
 
@@ -270,7 +282,7 @@ impl Continuation {
     fn attempt(&mut self, d: f64) -> Result<(NewtonReport, Vec<f64>, Option<AugmentedRecord>)> {
         let bc = model_conditions(self.system.mesh(), d)?;
         let mut u = self.predict(d);
-        if self.history.len() > 1 {
+        if self.history.len() > 1 || self.slope.is_some() {
             for (&dof, &value) in bc.dofs().iter().zip(bc.values()) {
                 u[dof] = value;
             }
@@ -284,8 +296,12 @@ impl Continuation {
         Ok((report, u, None))
     }
 
-    /// Lagrange extrapolation through the stored states, evaluated at `d`.
+    /// Lagrange extrapolation through the stored states, evaluated at `d` (along the first
+    /// slope from a single state).
     fn predict(&self, d: f64) -> Vec<f64> {
+        if let (Some(slope), [(d0, u0)]) = (&self.slope, self.history.as_slices().0) {
+            return u0.iter().zip(slope).map(|(u, s)| u + (d - d0) * s).collect();
+        }
         let nodes: Vec<f64> = self.history.iter().map(|(di, _)| *di).collect();
         let mut u = vec![0.0; self.displacement().len()];
         for (i, (_, ui)) in self.history.iter().enumerate() {

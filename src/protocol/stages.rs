@@ -9,7 +9,9 @@ use super::imperfection::{mode_number, wavenumber_of_waves, Imperfection};
 use super::stabilisation::StabilisationSettings;
 use super::surface::amplitude;
 use crate::error::{Error, Result};
+use super::bifurcation::homogeneous_displacement;
 use crate::fem::{model_conditions, Newton, NewtonSettings, System};
+use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
 use crate::mesh::{Mesh, MeshSpec};
 use crate::parameters::validate_compression;
@@ -190,7 +192,14 @@ pub fn run(
     let augmentation = (protocol.contact || protocol.stabilisation.is_some())
         .then(|| Augmentation::new(&system, materials, protocol.contact, protocol.stabilisation))
         .transpose()?;
-    let mut continuation = Continuation::new(system, newton, protocol.control, d0, u)?;
+    // The first step is predicted along the homogeneous path's du/dd (central difference).
+    let homogeneous = |d: f64| -> Result<Vec<f64>> {
+        Ok(homogeneous_displacement(system.mesh(), &homogeneous_state(materials, d)?))
+    };
+    let h = 1e-3;
+    let (ahead, behind) = (homogeneous(d0 + h)?, homogeneous(d0 - h)?);
+    let slope = ahead.iter().zip(&behind).map(|(a, b)| (a - b) / (2.0 * h)).collect();
+    let mut continuation = Continuation::new(system, newton, protocol.control, d0, u)?.with_first_slope(slope);
     if let Some(augmentation) = augmentation {
         continuation = continuation.with_augmentation(augmentation);
     }
