@@ -46,6 +46,10 @@ pub enum Error {
     #[error("{0}")]
     Solver(String),
 
+    /// The caller asked the computation to stop (e.g. Ctrl-C in Python): says where it was.
+    #[error("interrupted: {0}")]
+    Interrupted(String),
+
     /// Rendering a plot.
     #[error("plot {path}: {message}")]
     Plot { path: String, message: String },

@@ -115,6 +115,16 @@ impl MeshSpec {
         }
     }
 
+    /// The preset `coarse`, `fine` or `extra` by name.
+    pub fn preset(name: &str) -> Result<Self> {
+        match name {
+            "coarse" => Ok(Self::coarse()),
+            "fine" => Ok(Self::fine()),
+            "extra" => Ok(Self::extra()),
+            other => Err(Error::invalid("mesh", other, "coarse, fine or extra")),
+        }
+    }
+
     /// 100 / 2 / 25 elements, `h0 = 0.5` (bottom element about 5): 22,110 unknowns.
     pub fn coarse() -> Self {
         Self::new(100, 2, 25, 0.5, 50.0, 50.0)

@@ -52,7 +52,7 @@ fn crease_run(d_max: f64) -> Vec<StepRecord> {
         ..StepControl::default()
     };
     protocol.newton.max_iterations = 40;
-    let curve = simulate::curve(&params, MeshSpec::new(20, 2, 8, 0.5, 10.0, 10.0), &protocol, &|_| {}).unwrap();
+    let curve = simulate::curve(&params, MeshSpec::new(20, 2, 8, 0.5, 10.0, 10.0), &protocol, &|_| Ok(())).unwrap();
     assert!(curve.stopped.is_none(), "{:?}", curve.stopped);
     curve.records
 }
@@ -96,7 +96,7 @@ fn a_run_to_a_crease_writes_contact_secondary_and_pressure() {
         beta: FRAC_PI_4,
         ..Parameters::default()
     };
-    let summary = simulate::run(&params, &study, &dir, &|_: Progress<'_>| {}).unwrap();
+    let summary = simulate::run(&params, &study, &dir, &|_: Progress<'_>| Ok(())).unwrap();
     let contact: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("contact.json")).unwrap()).unwrap();
     let first = contact["d_first_contact"].as_f64().unwrap();

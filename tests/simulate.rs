@@ -34,7 +34,9 @@ fn small_k() -> f64 {
     2.0 * PI / 10.0
 }
 
-fn quiet(_: Progress<'_>) {}
+fn quiet(_: Progress<'_>) -> fiberfold::Result<()> {
+    Ok(())
+}
 
 #[test]
 fn perfect_system_bifurcation_matches_the_linear_theory_on_a_small_mesh() {

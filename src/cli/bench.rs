@@ -59,7 +59,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
                 setup.d_max,
                 meshes.len()
             );
-            let bench = bench_fe::run(&setup, &meshes, &|_| {})?;
+            let bench = bench_fe::run(&setup, &meshes, &|_| Ok(()))?;
             print!("{bench}");
             // After the curves, so that their peak-memory column is theirs alone.
             println!("per-call kernels at the homogeneous state of d = 0.1 (medians of 5):");

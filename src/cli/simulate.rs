@@ -2,9 +2,9 @@
 
 use super::common::{report_files, ParamArgs};
 use clap::{Args, ValueEnum};
-use fiberfold::mesh::{MeshSpec, XRefinement};
-use fiberfold::protocol::{mode_number, wavenumber_of_waves, Protocol, StabilisationSettings, StepControl};
-use fiberfold::studies::simulate::{self, Progress, SimulateStudy};
+use fiberfold::mesh::MeshSpec;
+use fiberfold::protocol::mode_number;
+use fiberfold::studies::simulate::{self, Progress, SimulateOptions, SimulateStudy};
 use fiberfold::{Error, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
@@ -161,57 +161,27 @@ pub struct SimulateArgs {
 }
 
 impl SimulateArgs {
-    /// The validated study.
+    /// The validated study, built by the library from the flags.
     fn study(&self) -> Result<SimulateStudy> {
-        let mut mesh = self.mesh.resolve()?;
-        let k = match (self.waves, self.k) {
-            (Some(waves), _) => wavenumber_of_waves(waves, mesh.length)?,
-            (None, Some(k)) => mode_number(k, mesh.length)? as f64 * std::f64::consts::PI / mesh.length,
-            (None, None) => return Err(Error::invalid("waves", "none", "--waves N or --k K")),
-        };
-        if let Some(ratio) = self.refine_troughs {
-            // The troughs of A_init cos(k X) (A_init > 0): X = (2 j + 1) pi / k.
-            mesh = mesh.refined(XRefinement {
-                ratio,
-                width: self.refine_width,
-                offset: std::f64::consts::PI / k,
-                period: 2.0 * std::f64::consts::PI / k,
-            });
-            mesh.validate()?;
-        }
-        if !(1..=100).contains(&self.max_newton_iterations) {
-            return Err(Error::invalid(
-                "max-newton-iterations",
-                self.max_newton_iterations,
-                "[1, 100]",
-            ));
-        }
-        let mut protocol = Protocol::new(k, self.imperfection, self.d_max);
-        protocol.control = StepControl {
-            initial: self.max_step,
-            max: self.max_step,
-            min: self.min_step,
-            ..StepControl::default()
-        };
-        protocol.newton.max_iterations = self.max_newton_iterations;
-        protocol.newton.inertia_at_solution = !self.no_inertia;
-        protocol.imperfection2 = self.imperfection2;
-        protocol.imperfection2_waves = self.imperfection2_waves;
-        protocol.contact = !self.no_contact;
-        if !(self.eta.is_finite() && self.eta >= 0.0) {
-            return Err(Error::invalid("eta", self.eta, "[0, inf)"));
-        }
-        protocol.stabilisation = (self.eta > 0.0).then(|| StabilisationSettings {
+        SimulateOptions {
+            mesh: self.mesh.resolve()?,
+            waves: self.waves,
+            k: self.k,
+            d_max: self.d_max,
+            imperfection: self.imperfection,
+            max_step: self.max_step,
+            min_step: self.min_step,
+            max_newton_iterations: self.max_newton_iterations,
+            refine_troughs: self.refine_troughs,
+            refine_width: self.refine_width,
+            imperfection2: self.imperfection2,
+            imperfection2_waves: self.imperfection2_waves,
+            contact: !self.no_contact,
             eta: self.eta,
-            ..StabilisationSettings::default()
-        });
-        let study = SimulateStudy {
-            mesh,
-            protocol,
+            inertia: !self.no_inertia,
             vtu_every: self.vtu_every,
-        };
-        study.validate()?;
-        Ok(study)
+        }
+        .study()
     }
 }
 
@@ -233,7 +203,8 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
             .expect("static template")
             .progress_chars("=> "),
     );
-    let monitor = |progress: Progress<'_>| match progress {
+    let monitor = |progress: Progress<'_>| {
+        match progress {
         Progress::Stage(text) => bar.suspend(|| println!("{text}")),
         Progress::Step(r) => {
             let residuals: Vec<String> = r.residual_history.iter().map(|x| format!("{x:.1e}")).collect();
@@ -264,6 +235,8 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         Progress::Cut(c) => {
             bar.suspend(|| println!("  cut: d = {:.6} (step {:.1e}) failed: {}", c.d, c.step, c.reason))
         }
+        }
+        Ok(())
     };
     let result = simulate::run(&params, &study, &args.out, &monitor);
     bar.finish_and_clear();

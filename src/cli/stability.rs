@@ -134,6 +134,7 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
         to: args.to,
         points: args.points,
         series: args.series.as_deref().map(parse_series).transpose()?,
+        values: None,
         method: args.method.method(),
     };
     println!(

@@ -17,6 +17,11 @@ pub const VTK_BIQUADRATIC_QUAD: u8 = 28;
 /// VTK position `i` holds our local node `TO_VTK[i]` (local node `a + 3 b` sits at `(a - 1, b - 1)`).
 const TO_VTK: [usize; 9] = [0, 2, 8, 6, 1, 5, 7, 3, 4];
 
+/// A Q2 cell's nodes (local order of [`crate::mesh`]) in VTK's order.
+pub fn vtk_cell(cell: &[usize; 9]) -> [usize; 9] {
+    TO_VTK.map(|local| cell[local])
+}
+
 /// A named array of point or cell data: `values` holds `components` numbers per entity.
 #[derive(Clone, Debug)]
 pub struct DataArray {
@@ -114,7 +119,7 @@ fn write_grid(
     writeln!(out, "</Points>\n<Cells>")?;
     let connectivity: Vec<i64> = cells
         .iter()
-        .flat_map(|cell| TO_VTK.map(|local| cell[local] as i64))
+        .flat_map(|cell| vtk_cell(cell).map(|n| n as i64))
         .collect();
     write_array(
         out,

@@ -59,6 +59,26 @@ impl HomogeneousStudy {
     }
 }
 
+/// One row of `homogeneous.csv`, in the order of [`CSV_HEADER`].
+pub fn columns(r: &HomogeneousRow) -> [f64; 12] {
+    let s = &r.state;
+    let (l, m) = (&r.layer_stress, &r.substrate_stress);
+    [
+        s.d,
+        s.lambda1,
+        s.lambda2_layer,
+        s.lambda2_substrate,
+        s.lambda1 * s.lambda2_layer,
+        s.lambda1 * s.lambda2_substrate,
+        l[0],
+        l[2],
+        l[3],
+        m[0],
+        m[2],
+        m[3],
+    ]
+}
+
 /// Computes the table, writes `homogeneous.csv`, `homogeneous.json`, `fig2.png`, `fig2.svg`.
 pub fn run(params: &Parameters, study: &HomogeneousStudy, out: &Path, tick: Tick) -> Result<Vec<PathBuf>> {
     params.validate()?;
@@ -77,22 +97,7 @@ pub fn run(params: &Parameters, study: &HomogeneousStudy, out: &Path, tick: Tick
     let csv = out.join("homogeneous.csv");
     let mut table = CsvWriter::create(&csv, &CSV_HEADER)?;
     for r in &rows {
-        let s = &r.state;
-        let (l, m) = (&r.layer_stress, &r.substrate_stress);
-        table.append(&[
-            s.d,
-            s.lambda1,
-            s.lambda2_layer,
-            s.lambda2_substrate,
-            s.lambda1 * s.lambda2_layer,
-            s.lambda1 * s.lambda2_substrate,
-            l[0],
-            l[2],
-            l[3],
-            m[0],
-            m[2],
-            m[3],
-        ])?;
+        table.append(&columns(r))?;
     }
     let mut files = vec![csv];
     files.extend(fig2(params, &rows).save(out, "fig2")?);

@@ -119,33 +119,41 @@ pub fn dispersion(params: &Parameters, study: &DispersionStudy, out: &Path, tick
     Ok(files)
 }
 
-#[derive(Serialize)]
-struct OnsetSummary<'a> {
-    k0: f64,
-    d_c: f64,
-    lambda1_c: f64,
-    d_ellipticity_loss: Option<f64>,
-    wavelength: f64,
-    method: String,
-    parameters: &'a Parameters,
+/// The content of `onset.json`.
+#[derive(Clone, Debug, Serialize)]
+pub struct OnsetSummary {
+    pub k0: f64,
+    pub d_c: f64,
+    pub lambda1_c: f64,
+    pub d_ellipticity_loss: Option<f64>,
+    pub wavelength: f64,
+    pub method: String,
+    pub parameters: Parameters,
+}
+
+impl OnsetSummary {
+    /// The onset of `params` by `method`.
+    pub fn new(params: &Parameters, method: Method) -> Result<Self> {
+        let onset = StabilityAnalysis::new(params, method)?.onset()?;
+        Ok(OnsetSummary {
+            k0: onset.k0,
+            d_c: onset.d_c,
+            lambda1_c: onset.lambda1_c,
+            d_ellipticity_loss: onset.d_ellipticity_loss,
+            wavelength: 2.0 * std::f64::consts::PI / onset.k0,
+            method: format!("{method:?}"),
+            parameters: params.clone(),
+        })
+    }
 }
 
 /// Writes `onset.json`: `k0`, `d_c`, `lambda1_c`, `d_ellipticity_loss` and the parameters.
-pub fn onset(params: &Parameters, method: Method, out: &Path) -> Result<(Onset, PathBuf)> {
-    let onset = StabilityAnalysis::new(params, method)?.onset()?;
+pub fn onset(params: &Parameters, method: Method, out: &Path) -> Result<(OnsetSummary, PathBuf)> {
+    let summary = OnsetSummary::new(params, method)?;
     ensure_dir(out)?;
     let path = out.join("onset.json");
-    let summary = OnsetSummary {
-        k0: onset.k0,
-        d_c: onset.d_c,
-        lambda1_c: onset.lambda1_c,
-        d_ellipticity_loss: onset.d_ellipticity_loss,
-        wavelength: 2.0 * std::f64::consts::PI / onset.k0,
-        method: format!("{method:?}"),
-        parameters: params,
-    };
     write_json(&path, &summary)?;
-    Ok((onset, path))
+    Ok((summary, path))
 }
 
 /// A sweep of one numeric parameter, optionally repeated for several values of another.
@@ -157,6 +165,8 @@ pub struct SweepStudy {
     pub points: usize,
     /// `(key, values)`: one curve per value.
     pub series: Option<(String, Vec<f64>)>,
+    /// The swept values themselves, instead of `points` equally spaced from `from` to `to`.
+    pub values: Option<Vec<f64>>,
     pub method: Method,
 }
 
@@ -183,7 +193,6 @@ pub struct SweepPoint {
 impl SweepStudy {
     /// Parameter sets for every point, all validated before any work starts.
     fn parameter_sets(&self, base: &Parameters) -> Result<Vec<(Option<f64>, f64, Parameters)>> {
-        validate_points("points", self.points, 1)?;
         let numeric = |key: &str| {
             if key == "tension_only" || !PARAMETER_NAMES.contains(&key) {
                 Err(Error::invalid(
@@ -196,11 +205,23 @@ impl SweepStudy {
             }
         };
         numeric(&self.param)?;
-        for (name, v) in [("from", self.from), ("to", self.to)] {
-            if !v.is_finite() {
-                return Err(Error::invalid(name, v, "a finite number"));
+        let values = match &self.values {
+            Some(values) => {
+                if values.is_empty() {
+                    return Err(Error::invalid("values", "[]", "at least one value"));
+                }
+                values.clone()
             }
-        }
+            None => {
+                validate_points("points", self.points, 1)?;
+                for (name, v) in [("from", self.from), ("to", self.to)] {
+                    if !v.is_finite() {
+                        return Err(Error::invalid(name, v, "a finite number"));
+                    }
+                }
+                linspace(self.from, self.to, self.points)
+            }
+        };
         let series: Vec<Option<f64>> = match &self.series {
             Some((key, values)) => {
                 numeric(key)?;
@@ -210,7 +231,7 @@ impl SweepStudy {
         };
         let mut sets = Vec::new();
         for s in series {
-            for value in linspace(self.from, self.to, self.points) {
+            for &value in &values {
                 let mut p = base.clone();
                 if let (Some(v), Some((key, _))) = (s, &self.series) {
                     *p.number_mut(key)? = v;
@@ -252,7 +273,8 @@ impl SweepStudy {
 
     /// Number of onsets to compute (for progress bars).
     pub fn onsets(&self) -> usize {
-        self.points * self.series.as_ref().map_or(1, |(_, v)| v.len())
+        let points = self.values.as_ref().map_or(self.points, Vec::len);
+        points * self.series.as_ref().map_or(1, |(_, v)| v.len())
     }
 }
 

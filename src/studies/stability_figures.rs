@@ -53,6 +53,7 @@ pub fn onset_against_angle(
         to: FRAC_PI_2,
         points: angles,
         series: Some(("mu_f".into(), stiffnesses.to_vec())),
+        values: None,
         method: Method::Exact,
     }
     .compute(params, tick)

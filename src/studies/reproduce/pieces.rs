@@ -171,7 +171,7 @@ fn run_fig3(params: &Parameters, options: &ReproduceOptions, dir: &Path, _: Tick
     let (p, mesh) = fe_case(params, options);
     let k = wavenumber_of_waves(5.0, mesh.length)?;
     let study = SimulateStudy::new(mesh, Protocol::new(k, 0.05, 0.21));
-    let summary = simulate::run(&p, &study, dir, &|_| {})?;
+    let summary = simulate::run(&p, &study, dir, &|_| Ok(()))?;
     let onset = &summary.onset;
     let command = "fiberfold simulate --set beta=0.785398 --waves 5 --mesh fine --d-max 0.21";
     let mut claims = Vec::new();

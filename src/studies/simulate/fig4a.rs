@@ -89,7 +89,7 @@ fn run_case(params: &Parameters, options: &Fig4aOptions, beta: f64, waves: f64) 
     let params = Parameters { beta, ..params.clone() };
     let k = wavenumber_of_waves(waves, options.mesh.length)?;
     let protocol = Protocol::new(k, options.imperfection, options.d_max);
-    let quiet = |_: Progress<'_>| {};
+    let quiet = |_: Progress<'_>| Ok(());
     let curve = curve(&params, options.mesh, &protocol, &quiet)?;
     let onset = OnsetReport::new(&params, k, options.mesh.length, &curve)?;
     Ok(Fig4aRow {

@@ -9,6 +9,8 @@ mod crease;
 mod fig3;
 mod fig4a;
 mod fig7;
+mod options;
+mod solve;
 mod secondary;
 mod state_vtu;
 
@@ -17,6 +19,8 @@ pub use fig3::fig3;
 pub use fig4a::{fig4a, Fig4aOptions, Fig4aRow};
 pub use fig7::{fig7, CreaseSnapshots, Fig7Facts, Fig7State, FIG7_D};
 pub use secondary::{SecondaryReport, SecondaryTracker};
+pub use options::SimulateOptions;
+pub use solve::{solve, Solution, StateFields};
 pub use state_vtu::write_state;
 
 use crate::error::{Error, Result};
@@ -54,8 +58,28 @@ pub enum Progress<'a> {
     Cut(&'a Cut),
 }
 
-/// Receives [`Progress`] (prints, drives a progress bar, or ignores it).
-pub type Monitor<'a> = &'a (dyn Fn(Progress<'_>) + Sync);
+/// Every column of `amplitude.csv`.
+pub fn amplitude_header() -> Vec<&'static str> {
+    AMPLITUDE_HEADER.iter().chain(&CREASE_COLUMNS).copied().collect()
+}
+
+/// One accepted step as a row of `amplitude.csv` (in the order of [`amplitude_header`]).
+pub fn amplitude_row(record: &StepRecord) -> Vec<f64> {
+    let columns = [
+        record.d,
+        record.amplitude,
+        record.strain_energy,
+        record.iterations as f64,
+        *record.residual_history.last().expect("non-empty"),
+        record.min_jacobian,
+        record.seconds,
+    ];
+    [&columns[..], &crease_columns(record)].concat()
+}
+
+/// Receives [`Progress`] (prints, drives a progress bar, or ignores it); an error it returns
+/// (e.g. [`Error::Interrupted`]) stops the run as a solver failure would, keeping the path.
+pub type Monitor<'a> = &'a (dyn Fn(Progress<'_>) -> Result<()> + Sync);
 
 /// One simulation: mesh, protocol and how often to write a VTU snapshot.
 #[derive(Clone, Copy, Debug)]
@@ -119,16 +143,16 @@ impl<'m> Recorder<'m> {
         }
     }
 
-    fn note(&mut self, event: &Event<'_>) {
+    fn note(&mut self, event: &Event<'_>) -> Result<()> {
         match event {
             Event::Stage(text) => (self.monitor)(Progress::Stage(text)),
             Event::Step { record, .. } => {
-                (self.monitor)(Progress::Step(record));
                 self.records.push((*record).clone());
+                (self.monitor)(Progress::Step(record))
             }
             Event::Cut(cut) => {
-                (self.monitor)(Progress::Cut(cut));
                 self.cuts.push((*cut).clone());
+                (self.monitor)(Progress::Cut(cut))
             }
         }
     }
@@ -148,8 +172,7 @@ impl<'m> Recorder<'m> {
 pub fn curve(params: &Parameters, spec: MeshSpec, protocol: &Protocol, monitor: Monitor) -> Result<Curve> {
     let mut recorder = Recorder::new(monitor);
     let outcome = stages::run(&Bilayer::new(params), spec, protocol, &mut |event| {
-        recorder.note(&event);
-        Ok(())
+        recorder.note(&event)
     })?;
     Ok(recorder.into_curve(outcome.stopped))
 }
@@ -277,8 +300,7 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
     crate::output::ensure_dir(out)?;
     let start = Instant::now();
     let materials = Bilayer::new(params);
-    let header: Vec<&str> = AMPLITUDE_HEADER.iter().chain(&CREASE_COLUMNS).copied().collect();
-    let mut table = CsvWriter::create(&out.join("amplitude.csv"), &header)?;
+    let mut table = CsvWriter::create(&out.join("amplitude.csv"), &amplitude_header())?;
     let mut snapshots = Snapshots::new(out, study.vtu_every);
     let mut recorder = Recorder::new(monitor);
     let mut secondary = SecondaryTracker::default();
@@ -288,24 +310,14 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
         .then(|| CreaseSnapshots::new(study.protocol.d_max));
     let mut outcome = stages::run(&materials, study.mesh, &study.protocol, &mut |event| {
         if let Event::Step { record, system, u } = &event {
-            let columns = [
-                record.d,
-                record.amplitude,
-                record.strain_energy,
-                record.iterations as f64,
-                *record.residual_history.last().expect("non-empty"),
-                record.min_jacobian,
-                record.seconds,
-            ];
-            table.append(&[&columns[..], &crease_columns(record)].concat())?;
+            table.append(&amplitude_row(record))?;
             snapshots.maybe_write(record, system, &materials, u)?;
             secondary.note(record, u);
             if let Some(crease) = &mut crease {
                 crease.note(record, u);
             }
         }
-        recorder.note(&event);
-        Ok(())
+        recorder.note(&event)
     })?;
     outcome.continuation.release_factorisation();
     let continuation = &outcome.continuation;
@@ -366,6 +378,10 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
     };
     write_json(&out.join("simulate.json"), &summary)?;
     match curve.stopped {
+        Some(Error::Interrupted(_)) => Err(Error::Interrupted(format!(
+            "at d = {d_reached:.6}; the path so far is in {}",
+            out.display()
+        ))),
         Some(e) => Err(Error::Solver(format!(
             "{e}; the path up to d = {d_reached:.6} is in {}",
             out.display()

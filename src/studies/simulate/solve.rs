@@ -1,0 +1,67 @@
+//! A run kept in memory instead of written to files (the Python package): the path, its
+//! summaries and the fields of the last state, from the same protocol as [`super::run`].
+
+use super::{ContactReport, Curve, Monitor, OnsetReport, Recorder, SimulateStudy};
+use crate::error::Result;
+use crate::fem::fields::{cell_fields, CellFields};
+use crate::material::Bilayer;
+use crate::output::vtu::vtk_cell;
+use crate::parameters::Parameters;
+use crate::protocol::secondary::{inertia_changes, InertiaChange};
+use crate::protocol::stages;
+
+/// A mesh state ready for a viewer: reference points, VTK-ordered 9-node cells, the nodal
+/// displacement and the element-centre fields of the VTU files.
+#[derive(Clone, Debug)]
+pub struct StateFields {
+    pub points: Vec<[f64; 2]>,
+    pub cells: Vec<[usize; 9]>,
+    /// `[u_x, u_y]` per point.
+    pub displacement: Vec<[f64; 2]>,
+    pub cell: CellFields,
+}
+
+/// What `simulate` computes, without files.
+pub struct Solution {
+    /// Accepted steps, cuts, and why the path stopped early (if it did).
+    pub curve: Curve,
+    pub onset: OnsetReport,
+    pub contact: ContactReport,
+    /// Every change of the tangent's inertia (secondary bifurcations).
+    pub inertia_changes: Vec<InertiaChange>,
+    /// The last converged state.
+    pub state: StateFields,
+}
+
+/// Runs `study` as `simulate` does and keeps everything in memory. A failure in stages 1-2 is
+/// an error; a stop in stage 3 (solver failure, or the monitor's error) is kept in
+/// `curve.stopped` with the path up to it.
+pub fn solve(params: &Parameters, study: &SimulateStudy, monitor: Monitor) -> Result<Solution> {
+    params.validate()?;
+    study.validate()?;
+    let materials = Bilayer::new(params);
+    let mut recorder = Recorder::new(monitor);
+    let outcome = stages::run(&materials, study.mesh, &study.protocol, &mut |event| {
+        recorder.note(&event)
+    })?;
+    let continuation = &outcome.continuation;
+    let (system, u) = (continuation.system(), continuation.displacement());
+    let mesh = system.mesh();
+    let state = StateFields {
+        points: mesh.coordinates().to_vec(),
+        cells: mesh.elements().iter().map(vtk_cell).collect(),
+        displacement: u.chunks(2).map(|c| [c[0], c[1]]).collect(),
+        cell: cell_fields(system, &materials, u)?,
+    };
+    let curve = recorder.into_curve(outcome.stopped);
+    let onset = OnsetReport::new(params, study.protocol.k, study.mesh.length, &curve)?;
+    let contact = ContactReport::new(&curve.records);
+    let inertia_changes = inertia_changes(&curve.records);
+    Ok(Solution {
+        curve,
+        onset,
+        contact,
+        inertia_changes,
+        state,
+    })
+}
