@@ -52,7 +52,13 @@ fn crease_run(d_max: f64) -> Vec<StepRecord> {
         ..StepControl::default()
     };
     protocol.newton.max_iterations = 40;
-    let curve = simulate::curve(&params, MeshSpec::new(20, 2, 8, 0.5, 10.0, 10.0), &protocol, &|_| Ok(())).unwrap();
+    let curve = simulate::curve(
+        &params,
+        MeshSpec::new(20, 2, 8, 0.5, 10.0, 10.0),
+        &protocol,
+        &|_| Ok(()),
+    )
+    .unwrap();
     assert!(curve.stopped.is_none(), "{:?}", curve.stopped);
     curve.records
 }

@@ -205,36 +205,36 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
     );
     let monitor = |progress: Progress<'_>| {
         match progress {
-        Progress::Stage(text) => bar.suspend(|| println!("{text}")),
-        Progress::Step(r) => {
-            let residuals: Vec<String> = r.residual_history.iter().map(|x| format!("{x:.1e}")).collect();
-            let inertia = r.negative_pivots.map_or(String::new(), |n| format!("  {n} negative"));
-            let augmented = r.augmented.as_ref().map_or(String::new(), |a| {
-                let contact = if a.in_contact {
-                    format!("  contact {:.3} pen {:.1e}", a.contact_length, a.penetration)
-                } else {
-                    String::new()
-                };
-                format!("{contact}  dissipated {:.1e}", a.stabilisation_energy_fraction)
-            });
-            bar.suspend(|| {
-                println!(
-                    "d = {:.6}  step {:.1e}  A = {:.6}  {} it  |r| {}  min J {:.4}{inertia}{augmented}  {:.2} s",
-                    r.d,
-                    r.step,
-                    r.amplitude,
-                    r.iterations,
-                    residuals.join(" "),
-                    r.min_jacobian,
-                    r.seconds
-                )
-            });
-            bar.set_position((1000.0 * r.d / p.d_max) as u64);
-            bar.set_message(format!("d = {:.4} of {}", r.d, p.d_max));
-        }
-        Progress::Cut(c) => {
-            bar.suspend(|| println!("  cut: d = {:.6} (step {:.1e}) failed: {}", c.d, c.step, c.reason))
-        }
+            Progress::Stage(text) => bar.suspend(|| println!("{text}")),
+            Progress::Step(r) => {
+                let residuals: Vec<String> = r.residual_history.iter().map(|x| format!("{x:.1e}")).collect();
+                let inertia = r.negative_pivots.map_or(String::new(), |n| format!("  {n} negative"));
+                let augmented = r.augmented.as_ref().map_or(String::new(), |a| {
+                    let contact = if a.in_contact {
+                        format!("  contact {:.3} pen {:.1e}", a.contact_length, a.penetration)
+                    } else {
+                        String::new()
+                    };
+                    format!("{contact}  dissipated {:.1e}", a.stabilisation_energy_fraction)
+                });
+                bar.suspend(|| {
+                    println!(
+                        "d = {:.6}  step {:.1e}  A = {:.6}  {} it  |r| {}  min J {:.4}{inertia}{augmented}  {:.2} s",
+                        r.d,
+                        r.step,
+                        r.amplitude,
+                        r.iterations,
+                        residuals.join(" "),
+                        r.min_jacobian,
+                        r.seconds
+                    )
+                });
+                bar.set_position((1000.0 * r.d / p.d_max) as u64);
+                bar.set_message(format!("d = {:.4} of {}", r.d, p.d_max));
+            }
+            Progress::Cut(c) => {
+                bar.suspend(|| println!("  cut: d = {:.6} (step {:.1e}) failed: {}", c.d, c.step, c.reason))
+            }
         }
         Ok(())
     };

@@ -117,10 +117,7 @@ fn write_grid(
     let coordinates: Vec<f64> = points.iter().flat_map(|&[x, y]| [x, y, 0.0]).collect();
     write_floats(out, "Points", 3, &coordinates)?;
     writeln!(out, "</Points>\n<Cells>")?;
-    let connectivity: Vec<i64> = cells
-        .iter()
-        .flat_map(|cell| vtk_cell(cell).map(|n| n as i64))
-        .collect();
+    let connectivity: Vec<i64> = cells.iter().flat_map(|cell| vtk_cell(cell).map(|n| n as i64)).collect();
     write_array(
         out,
         "Int64",

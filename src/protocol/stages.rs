@@ -4,12 +4,12 @@
 //! (3) displacement control to `d_max` ([`Continuation`]). `A_init = 0` runs the perfect system.
 
 use super::augmentation::Augmentation;
+use super::bifurcation::homogeneous_displacement;
 use super::continuation::{Continuation, Event, StepControl, StepRecord};
 use super::imperfection::{mode_number, wavenumber_of_waves, Imperfection};
 use super::stabilisation::StabilisationSettings;
 use super::surface::amplitude;
 use crate::error::{Error, Result};
-use super::bifurcation::homogeneous_displacement;
 use crate::fem::{model_conditions, Newton, NewtonSettings, System};
 use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
@@ -194,7 +194,10 @@ pub fn run(
         .transpose()?;
     // The first step is predicted along the homogeneous path's du/dd (central difference).
     let homogeneous = |d: f64| -> Result<Vec<f64>> {
-        Ok(homogeneous_displacement(system.mesh(), &homogeneous_state(materials, d)?))
+        Ok(homogeneous_displacement(
+            system.mesh(),
+            &homogeneous_state(materials, d)?,
+        ))
     };
     let h = 1e-3;
     let (ahead, behind) = (homogeneous(d0 + h)?, homogeneous(d0 - h)?);

@@ -10,16 +10,16 @@ mod fig3;
 mod fig4a;
 mod fig7;
 mod options;
-mod solve;
 mod secondary;
+mod solve;
 mod state_vtu;
 
 pub use crease::{crease_columns, ContactReport, CREASE_COLUMNS};
 pub use fig3::fig3;
 pub use fig4a::{fig4a, Fig4aOptions, Fig4aRow};
 pub use fig7::{fig7, CreaseSnapshots, Fig7Facts, Fig7State, FIG7_D};
-pub use secondary::{SecondaryReport, SecondaryTracker};
 pub use options::SimulateOptions;
+pub use secondary::{SecondaryReport, SecondaryTracker};
 pub use solve::{solve, Solution, StateFields};
 pub use state_vtu::write_state;
 

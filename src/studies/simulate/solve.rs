@@ -5,13 +5,15 @@ use super::{ContactReport, Curve, Monitor, OnsetReport, Recorder, SimulateStudy}
 use crate::error::Result;
 use crate::fem::fields::{cell_fields, CellFields};
 use crate::material::Bilayer;
+#[cfg(doc)]
 use crate::output::vtu::vtk_cell;
 use crate::parameters::Parameters;
 use crate::protocol::secondary::{inertia_changes, InertiaChange};
 use crate::protocol::stages;
 
-/// A mesh state ready for a viewer: reference points, VTK-ordered 9-node cells, the nodal
-/// displacement and the element-centre fields of the VTU files.
+/// A mesh state ready for a viewer: reference points, 9-node cells (the local node order of
+/// [`crate::mesh`]; [`vtk_cell`] gives VTK's), the nodal displacement and the element-centre
+/// fields of the VTU files.
 #[derive(Clone, Debug)]
 pub struct StateFields {
     pub points: Vec<[f64; 2]>,
@@ -49,7 +51,7 @@ pub fn solve(params: &Parameters, study: &SimulateStudy, monitor: Monitor) -> Re
     let mesh = system.mesh();
     let state = StateFields {
         points: mesh.coordinates().to_vec(),
-        cells: mesh.elements().iter().map(vtk_cell).collect(),
+        cells: mesh.elements().to_vec(),
         displacement: u.chunks(2).map(|c| [c[0], c[1]]).collect(),
         cell: cell_fields(system, &materials, u)?,
     };

@@ -1,0 +1,204 @@
+"""fiberfold: wrinkling, creasing and folding of a stiff layer on a fibre-reinforced substrate.
+
+The same Rust library as the ``fiberfold`` command line, with numpy arrays in and out. Names,
+keys and units are the CLI's: lengths in units of the layer thickness H, moduli in units of the
+substrate shear modulus mu_s, ``d = 1 - lambda_1`` the end-shortening, ``k`` the referential
+wavenumber, ``beta`` the fibre angle in radians. ``phi_f`` weights *each* of the two fibre
+families (eq. 3 of the paper).
+
+Long calls (``simulate``, ``sweep``, ``bifurcation``) release the GIL, accept a progress
+callback, and stop on Ctrl-C with ``KeyboardInterrupt``. A solver failure raises
+:class:`SolverError`; bad input raises ``ValueError`` (wrong value, naming the parameter and its
+allowed range) or ``TypeError`` (wrong type).
+"""
+
+from __future__ import annotations
+
+import json
+import tempfile
+import types
+from typing import Any, Callable, Dict, Iterable, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from ._fiberfold import Parameters, SolverError, State
+from . import _fiberfold
+
+__all__ = [
+    "Parameters",
+    "State",
+    "SolverError",
+    "Onset",
+    "Simulation",
+    "homogeneous",
+    "dispersion",
+    "onset",
+    "sweep",
+    "simulate",
+    "bifurcation",
+]
+
+ArrayLike = Union[Sequence[float], np.ndarray, float]
+
+
+def _check_parameters(params: Any) -> Parameters:
+    if not isinstance(params, Parameters):
+        raise TypeError(f"params must be fiberfold.Parameters, not {type(params).__name__}")
+    return params
+
+
+class Onset(types.SimpleNamespace):
+    """The onset of wrinkling: the keys of ``onset.json`` as attributes (``k0``, ``d_c``,
+    ``lambda1_c``, ``d_ellipticity_loss``, ``wavelength``, ``method``, ``parameters``)."""
+
+    def as_dict(self) -> Dict[str, Any]:
+        return dict(vars(self))
+
+
+def homogeneous(params: Parameters, d: ArrayLike) -> Dict[str, np.ndarray]:
+    """The homogeneous state at each end-shortening ``d`` (each in [0, 1)): the columns of
+    ``homogeneous.csv`` (``d``, ``lambda1``, ``lambda2_layer``, ``lambda2_substrate``,
+    ``J_layer``, ``J_substrate``, Cauchy stresses ``sigma11/22/33_layer`` and ``_substrate`` in
+    units of mu_s), each a float64 array of the length of ``d``."""
+    return _fiberfold.homogeneous(_check_parameters(params), np.atleast_1d(np.asarray(d, dtype=float)))
+
+
+def dispersion(params: Parameters, k: ArrayLike, method: str = "exact") -> Dict[str, np.ndarray]:
+    """The critical compression ``d_c(k)`` of the linear theory at each wavenumber ``k > 0``:
+    ``k``, ``d_c``, ``lambda1_c`` where a bifurcation exists, and ``k_without_root`` where none
+    does before d = 0.95 or the loss of ellipticity. ``method``: ``"exact"`` (Stroh) or
+    ``"discrete"`` (finite elements in Y)."""
+    return _fiberfold.dispersion(_check_parameters(params), np.atleast_1d(np.asarray(k, dtype=float)), method)
+
+
+def onset(params: Parameters, method: str = "exact") -> Onset:
+    """The onset of wrinkling: the minimum over k of ``d_c(k)`` (``k0``, ``d_c``, ...)."""
+    return Onset(**json.loads(_fiberfold.onset(_check_parameters(params), method)))
+
+
+def sweep(
+    params: Parameters,
+    name: str,
+    values: ArrayLike,
+    series: Optional[Tuple[str, Sequence[float]]] = None,
+    method: str = "exact",
+) -> Dict[str, np.ndarray]:
+    """The onset along ``values`` of the numeric parameter ``name`` (for each value of
+    ``series = (other_name, [v1, v2, ...])`` if given): arrays ``series`` (NaN without a
+    series), ``value``, ``k0``, ``d_c`` (NaN where no onset exists), as in ``sweep.csv``."""
+    if not isinstance(name, str):
+        raise TypeError(f"name must be a str, not {type(name).__name__}")
+    if series is not None:
+        key, levels = series
+        series = (str(key), [float(v) for v in levels])
+    return _fiberfold.sweep(
+        _check_parameters(params), name, np.atleast_1d(np.asarray(values, dtype=float)), series, method
+    )
+
+
+class Simulation:
+    """A finite-element run (``fiberfold simulate``) kept in memory.
+
+    Attributes:
+        amplitude: the columns of ``amplitude.csv`` (``d``, ``A``, ``strain_energy``,
+            ``newton_iterations``, ``residual``, ``min_J``, ``step_seconds``, ``in_contact``,
+            ``contact_length``, ``penetration``, ``stabilisation_energy_fraction``), one float64
+            array each, one entry per accepted state.
+        onset: the content of ``onset.json`` (the three estimates and the linear theory).
+        contact: the content of ``contact.json``.
+        secondary: every change of the tangent's inertia (``d_before``, ``d_after``,
+            ``negative_before``, ``negative_after``).
+        state: the last converged state (:class:`State`: ``points``, ``cells``, ``point_data``,
+            ``cell_data``, ``write_vtu(path)``), ready for pyvista or meshio.
+        k, unknowns, d_max, d_reached, completed, accepted_steps, cuts: facts of the run.
+        stopped: why the path ended before ``d_max`` (None if it did not).
+    """
+
+    def __init__(self, columns: Dict[str, np.ndarray], summary: Dict[str, Any], state: State, stopped: Optional[str]):
+        self.amplitude = columns
+        self.state = state
+        self.stopped = stopped
+        self.onset = summary.pop("onset")
+        self.contact = summary.pop("contact")
+        self.secondary = summary.pop("secondary")
+        for key, value in summary.items():
+            setattr(self, key, value)
+
+    def to_meshio(self) -> Any:
+        """The last state as a ``meshio.Mesh`` (needs meshio): cells of type ``quad9``."""
+        import meshio  # optional dependency
+
+        cell_data = {name: [values] for name, values in self.state.cell_data.items()}
+        return meshio.Mesh(
+            self.state.points,
+            [("quad9", self.state.cells)],
+            point_data=dict(self.state.point_data),
+            cell_data=cell_data,
+        )
+
+    def __repr__(self) -> str:
+        return (
+            f"Simulation(d_reached={self.d_reached}, accepted_steps={self.accepted_steps}, "
+            f"completed={self.completed}, unknowns={self.unknowns})"
+        )
+
+
+def simulate(
+    params: Parameters,
+    waves: Optional[float] = None,
+    *,
+    k: Optional[float] = None,
+    mesh: str = "coarse",
+    nx: Optional[int] = None,
+    layer_elements: Optional[int] = None,
+    substrate_elements: Optional[int] = None,
+    h0: Optional[float] = None,
+    d_max: float = 0.3,
+    imperfection: float = 0.05,
+    max_step: float = 0.005,
+    min_step: float = 1e-7,
+    max_newton_iterations: int = 8,
+    refine_troughs: Optional[float] = None,
+    refine_width: float = 1.0,
+    imperfection2: float = 0.0,
+    imperfection2_waves: float = 0.5,
+    contact: bool = True,
+    eta: float = 1e-6,
+    inertia: bool = True,
+    progress: Optional[Callable[[Dict[str, Any]], None]] = None,
+) -> Simulation:
+    """The paper's finite-element protocol, exactly as ``fiberfold simulate`` with the same
+    options (see ``fiberfold simulate --help`` for each; the defaults are the CLI's).
+
+    ``waves`` is the number N of seeded waves across the half domain (2N an integer), or give
+    ``k = m pi / 50``. ``mesh`` is ``"coarse"``, ``"fine"`` or ``"extra"``, modified by ``nx``,
+    ``layer_elements``, ``substrate_elements`` and ``h0``. ``progress`` is called with a dict
+    (``event``: ``"stage"``, ``"step"`` or ``"cut"``; ``d``, ``A``, ``message``...) after every
+    stage, accepted state and cut. Raises :class:`SolverError` (with ``result``, the path so
+    far) if the path stops before ``d_max``.
+    """
+    if progress is not None and not callable(progress):
+        raise TypeError("progress must be callable")
+    columns, summary, state, stopped = _fiberfold.simulate_run(
+        _check_parameters(params), mesh, nx, layer_elements, substrate_elements, h0, waves, k, d_max,
+        imperfection, max_step, min_step, max_newton_iterations, refine_troughs, refine_width,
+        imperfection2, imperfection2_waves, contact, eta, inertia, progress,
+    )
+    result = Simulation(columns, json.loads(summary), state, stopped)
+    if stopped is not None:
+        error = SolverError(f"{stopped}; the path up to d = {result.d_reached:.6f} is in the exception's `result`")
+        error.result = result
+        raise error
+    return result
+
+
+def bifurcation(params: Parameters, mesh: str = "coarse", out: Optional[str] = None) -> Dict[str, Any]:
+    """The exact bifurcation of the discretised perfect system (``fiberfold bifurcation``):
+    the content of ``bifurcation.json`` (``d_bifurcation``, ``k_mode``, the linear theory's
+    minimum, ...). Its files (mode VTU and figure) go to ``out``, or to a temporary folder that
+    is removed."""
+    params = _check_parameters(params)
+    if out is not None:
+        return json.loads(_fiberfold.bifurcation_run(params, str(out), mesh))
+    with tempfile.TemporaryDirectory() as folder:
+        return json.loads(_fiberfold.bifurcation_run(params, folder, mesh))

@@ -1,0 +1,78 @@
+"""Type stubs of the native module (the public API is in ``fiberfold/__init__.py``)."""
+
+from os import PathLike
+from typing import Any, Callable, Dict, List, Optional, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+class SolverError(RuntimeError):
+    result: Any
+
+class Parameters:
+    """Table 1's parameters (lengths in H, moduli in mu_s, beta in radians); keyword overrides
+    are validated (``ValueError`` naming the parameter and range, ``TypeError`` for a
+    non-number)."""
+
+    mu_l: float
+    K_l: float
+    mu_s: float
+    K_s: float
+    phi_m: float
+    phi_f: float
+    mu_f: float
+    lambda_f: float
+    beta: float
+    tension_only: bool
+    def __init__(self, **overrides: Union[float, int, bool]) -> None: ...
+    @staticmethod
+    def from_toml(path: Union[str, PathLike[str]]) -> Parameters: ...
+    def to_toml(self) -> str: ...
+    def replace(self, **overrides: Union[float, int, bool]) -> Parameters: ...
+    def to_dict(self) -> Dict[str, Union[float, bool]]: ...
+
+class State:
+    @property
+    def points(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def cells(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def point_data(self) -> Dict[str, npt.NDArray[np.float64]]: ...
+    @property
+    def cell_data(self) -> Dict[str, npt.NDArray[np.float64]]: ...
+    def write_vtu(self, path: Union[str, PathLike[str]]) -> None: ...
+
+def homogeneous(params: Parameters, d: npt.ArrayLike) -> Dict[str, npt.NDArray[np.float64]]: ...
+def dispersion(params: Parameters, k: npt.ArrayLike, method_name: str = ...) -> Dict[str, npt.NDArray[np.float64]]: ...
+def onset(params: Parameters, method_name: str = ...) -> str: ...
+def sweep(
+    params: Parameters,
+    name: str,
+    values: npt.ArrayLike,
+    series: Optional[Tuple[str, List[float]]] = ...,
+    method_name: str = ...,
+) -> Dict[str, npt.NDArray[np.float64]]: ...
+def simulate_run(
+    params: Parameters,
+    mesh: str,
+    nx: Optional[int],
+    layer_elements: Optional[int],
+    substrate_elements: Optional[int],
+    h0: Optional[float],
+    waves: Optional[float],
+    k: Optional[float],
+    d_max: float,
+    imperfection: float,
+    max_step: float,
+    min_step: float,
+    max_newton_iterations: int,
+    refine_troughs: Optional[float],
+    refine_width: float,
+    imperfection2: float,
+    imperfection2_waves: float,
+    contact: bool,
+    eta: float,
+    inertia: bool,
+    progress: Optional[Callable[[Dict[str, Any]], None]],
+) -> Tuple[Dict[str, npt.NDArray[np.float64]], str, State, Optional[str]]: ...
+def bifurcation_run(params: Parameters, out: str, mesh: str = ...) -> str: ...

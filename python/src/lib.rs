@@ -1,0 +1,521 @@
+//! `fiberfold._fiberfold`: the Python face of the fiberfold library. Every function calls the
+//! library as the CLI does (same names, keys, units and defaults); nothing is computed here.
+//! Long calls release the GIL, report to an optional progress callback and stop within a step
+//! on Ctrl-C (`KeyboardInterrupt`). The public, typed API is `fiberfold/__init__.py`.
+
+use fiberfold::homogeneous::HomogeneousRow;
+use fiberfold::material::Bilayer;
+use fiberfold::mesh::MeshSpec;
+use fiberfold::output::vtu::{vtk_cell, write_vtu, DataArray};
+use fiberfold::parameters::{validate_compression, Parameters, PARAMETER_NAMES};
+use fiberfold::stability::discrete::DiscreteOptions;
+use fiberfold::stability::{Method, StabilityAnalysis};
+use fiberfold::studies::homogeneous::{columns, CSV_HEADER};
+use fiberfold::studies::simulate::{self, amplitude_header, amplitude_row, Progress, SimulateOptions, StateFields};
+use fiberfold::studies::stability::{DispersionCurve, OnsetSummary, SweepStudy};
+use fiberfold::Error;
+use numpy::ndarray::Array2;
+use numpy::{AllowTypeChange, IntoPyArray, PyArrayLike1};
+use pyo3::create_exception;
+use pyo3::exceptions::{PyKeyboardInterrupt, PyOSError, PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt};
+use std::path::PathBuf;
+use std::sync::Mutex;
+
+create_exception!(
+    _fiberfold,
+    SolverError,
+    PyRuntimeError,
+    "A nonlinear solve or a load path that failed; `result` holds what was computed before."
+);
+
+/// A library error as the matching Python exception (bad input: `ValueError`).
+fn to_py(error: Error) -> PyErr {
+    match error {
+        e if e.is_user_input() => PyValueError::new_err(e.to_string()),
+        Error::Interrupted(m) => PyKeyboardInterrupt::new_err(m),
+        e @ Error::Io { .. } => PyOSError::new_err(e.to_string()),
+        e => SolverError::new_err(e.to_string()),
+    }
+}
+
+/// The material and geometric parameters of Table 1 (`fiberfold params`).
+#[pyclass(module = "fiberfold", name = "Parameters")]
+#[derive(Clone)]
+struct PyParameters {
+    inner: Parameters,
+}
+
+/// Sets `key` of `p` from a Python value: a number (not a bool) for the moduli, fractions and
+/// angle, a bool for `tension_only`.
+fn set_parameter(p: &mut Parameters, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
+    if key == "tension_only" {
+        if !value.is_instance_of::<PyBool>() {
+            return Err(PyTypeError::new_err(format!(
+                "`tension_only` must be a bool, not {}",
+                value.get_type().name()?
+            )));
+        }
+        p.tension_only = value.extract()?;
+        return Ok(());
+    }
+    let numeric =
+        (value.is_instance_of::<PyFloat>() || value.is_instance_of::<PyInt>()) && !value.is_instance_of::<PyBool>();
+    if !numeric {
+        // Unknown names are a ValueError naming the known ones, whatever the value.
+        p.number(key).map_err(to_py)?;
+        return Err(PyTypeError::new_err(format!(
+            "`{key}` must be a number (float or int), not {}",
+            value.get_type().name()?
+        )));
+    }
+    *p.number_mut(key).map_err(to_py)? = value.extract()?;
+    Ok(())
+}
+
+#[pymethods]
+impl PyParameters {
+    #[new]
+    #[pyo3(signature = (**overrides))]
+    fn new(overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let mut inner = Parameters::default();
+        if let Some(overrides) = overrides {
+            for (key, value) in overrides.iter() {
+                set_parameter(&mut inner, &key.extract::<String>()?, &value)?;
+            }
+        }
+        inner.validate().map_err(to_py)?;
+        Ok(PyParameters { inner })
+    }
+
+    #[staticmethod]
+    fn from_toml(path: PathBuf) -> PyResult<Self> {
+        let inner = Parameters::from_toml_file(&path).map_err(to_py)?;
+        inner.validate().map_err(to_py)?;
+        Ok(PyParameters { inner })
+    }
+
+    fn to_toml(&self) -> String {
+        self.inner.to_toml()
+    }
+
+    /// A copy with some values replaced (validated).
+    #[pyo3(signature = (**overrides))]
+    fn replace(&self, overrides: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let mut inner = self.inner.clone();
+        if let Some(overrides) = overrides {
+            for (key, value) in overrides.iter() {
+                set_parameter(&mut inner, &key.extract::<String>()?, &value)?;
+            }
+        }
+        inner.validate().map_err(to_py)?;
+        Ok(PyParameters { inner })
+    }
+
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let dict = PyDict::new(py);
+        for name in PARAMETER_NAMES {
+            if name == "tension_only" {
+                dict.set_item(name, self.inner.tension_only)?;
+            } else {
+                dict.set_item(name, self.inner.number(name).map_err(to_py)?)?;
+            }
+        }
+        Ok(dict)
+    }
+
+    fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        if name == "tension_only" {
+            return Ok(PyBool::new(py, self.inner.tension_only).to_owned().into_any());
+        }
+        match self.inner.number(name) {
+            Ok(v) => Ok(PyFloat::new(py, v).into_any()),
+            Err(_) => Err(pyo3::exceptions::PyAttributeError::new_err(format!(
+                "Parameters has no attribute `{name}`"
+            ))),
+        }
+    }
+
+    fn __eq__(&self, other: &Self) -> bool {
+        self.inner == other.inner
+    }
+
+    fn __repr__(&self) -> String {
+        let fields: Vec<String> = PARAMETER_NAMES
+            .iter()
+            .map(|&name| match name {
+                "tension_only" => format!(
+                    "tension_only={}",
+                    if self.inner.tension_only { "True" } else { "False" }
+                ),
+                _ => format!("{name}={}", self.inner.number(name).unwrap_or(f64::NAN)),
+            })
+            .collect();
+        format!("Parameters({})", fields.join(", "))
+    }
+}
+
+fn method(name: &str) -> PyResult<Method> {
+    match name {
+        "exact" => Ok(Method::Exact),
+        "discrete" => Ok(Method::Discrete(DiscreteOptions::default())),
+        other => Err(PyValueError::new_err(format!(
+            "invalid value {other} for `method`: allowed range is exact or discrete"
+        ))),
+    }
+}
+
+/// The homogeneous state at each `d`: the columns of `homogeneous.csv`.
+#[pyfunction]
+fn homogeneous<'py>(
+    py: Python<'py>,
+    params: &PyParameters,
+    d: PyArrayLike1<'py, f64, AllowTypeChange>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let ds = d.as_array().to_vec();
+    let materials = Bilayer::new(&params.inner);
+    let rows = py
+        .detach(|| {
+            ds.iter()
+                .map(|&d| {
+                    validate_compression("d", d)?;
+                    HomogeneousRow::new(&materials, d).map(|r| columns(&r))
+                })
+                .collect::<Result<Vec<_>, Error>>()
+        })
+        .map_err(to_py)?;
+    let dict = PyDict::new(py);
+    for (c, name) in CSV_HEADER.iter().enumerate() {
+        let column: Vec<f64> = rows.iter().map(|r| r[c]).collect();
+        dict.set_item(*name, column.into_pyarray(py))?;
+    }
+    Ok(dict)
+}
+
+/// `d_c(k)` at each `k` (continued from one to the next): `k`, `d_c`, `lambda1_c` where a root
+/// exists, and `k_without_root`, as in `dispersion.csv` / `dispersion.json`.
+#[pyfunction]
+#[pyo3(signature = (params, k, method_name = "exact"))]
+fn dispersion<'py>(
+    py: Python<'py>,
+    params: &PyParameters,
+    k: PyArrayLike1<'py, f64, AllowTypeChange>,
+    method_name: &str,
+) -> PyResult<Bound<'py, PyDict>> {
+    let ks = k.as_array().to_vec();
+    if let Some(bad) = ks.iter().find(|k| !(k.is_finite() && **k > 0.0)) {
+        return Err(PyValueError::new_err(format!(
+            "invalid value {bad} for `k`: allowed range is (0, inf)"
+        )));
+    }
+    let method = method(method_name)?;
+    let p = params.inner.clone();
+    let curve = py
+        .detach(|| {
+            let analysis = StabilityAnalysis::new(&p, method)?;
+            DispersionCurve::compute(&analysis, &ks, &|| {})
+        })
+        .map_err(to_py)?;
+    let dict = PyDict::new(py);
+    let (k, d): (Vec<f64>, Vec<f64>) = curve.points.iter().copied().unzip();
+    let lambda: Vec<f64> = d.iter().map(|d| 1.0 - d).collect();
+    dict.set_item("k", k.into_pyarray(py))?;
+    dict.set_item("d_c", d.into_pyarray(py))?;
+    dict.set_item("lambda1_c", lambda.into_pyarray(py))?;
+    dict.set_item("k_without_root", curve.no_root.into_pyarray(py))?;
+    Ok(dict)
+}
+
+/// The onset: the content of `onset.json`, as JSON text.
+#[pyfunction]
+#[pyo3(signature = (params, method_name = "exact"))]
+fn onset(py: Python<'_>, params: &PyParameters, method_name: &str) -> PyResult<String> {
+    let method = method(method_name)?;
+    let p = params.inner.clone();
+    let summary = py.detach(|| OnsetSummary::new(&p, method)).map_err(to_py)?;
+    serde_json::to_string(&summary).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+}
+
+/// The onset along `values` of `name` (and for each value of `series`): `series`, `value`,
+/// `k0`, `d_c` (NaN where no onset exists), as in `sweep.csv`.
+#[pyfunction]
+#[pyo3(signature = (params, name, values, series = None, method_name = "exact"))]
+fn sweep<'py>(
+    py: Python<'py>,
+    params: &PyParameters,
+    name: String,
+    values: PyArrayLike1<'py, f64, AllowTypeChange>,
+    series: Option<(String, Vec<f64>)>,
+    method_name: &str,
+) -> PyResult<Bound<'py, PyDict>> {
+    let study = SweepStudy {
+        param: name,
+        from: 0.0,
+        to: 0.0,
+        points: 0,
+        series,
+        values: Some(values.as_array().to_vec()),
+        method: method(method_name)?,
+    };
+    let p = params.inner.clone();
+    let points = py.detach(|| study.compute(&p, &|| {})).map_err(to_py)?;
+    let pick =
+        |f: &dyn Fn(&fiberfold::studies::stability::SweepPoint) -> f64| -> Vec<f64> { points.iter().map(f).collect() };
+    let dict = PyDict::new(py);
+    dict.set_item("series", pick(&|p| p.series.unwrap_or(f64::NAN)).into_pyarray(py))?;
+    dict.set_item("value", pick(&|p| p.value).into_pyarray(py))?;
+    dict.set_item("k0", pick(&|p| p.onset.map_or(f64::NAN, |o| o.k0)).into_pyarray(py))?;
+    dict.set_item("d_c", pick(&|p| p.onset.map_or(f64::NAN, |o| o.d_c)).into_pyarray(py))?;
+    Ok(dict)
+}
+
+/// The last state of a run: reference points (z = 0), VTK-ordered 9-node cells, point and
+/// cell fields, as numpy arrays; `write_vtu` writes it as the CLI's snapshots.
+#[pyclass(module = "fiberfold", name = "State")]
+struct PyState {
+    fields: StateFields,
+}
+
+#[pymethods]
+impl PyState {
+    /// `(n, 3)` reference coordinates (z = 0).
+    #[getter]
+    fn points<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray2<f64>> {
+        let flat: Vec<f64> = self.fields.points.iter().flat_map(|&[x, y]| [x, y, 0.0]).collect();
+        Array2::from_shape_vec((self.fields.points.len(), 3), flat)
+            .expect("3 per point")
+            .into_pyarray(py)
+    }
+
+    /// `(m, 9)` node indices per cell, in VTK's order for `VTK_BIQUADRATIC_QUAD` (type 28).
+    #[getter]
+    fn cells<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray2<i64>> {
+        let flat: Vec<i64> = self
+            .fields
+            .cells
+            .iter()
+            .flat_map(|c| vtk_cell(c).map(|n| n as i64))
+            .collect();
+        Array2::from_shape_vec((self.fields.cells.len(), 9), flat)
+            .expect("9 per cell")
+            .into_pyarray(py)
+    }
+
+    /// `{"displacement": (n, 3)}`.
+    #[getter]
+    fn point_data<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let dict = PyDict::new(py);
+        for array in self.point_arrays() {
+            dict.set_item(&array.name, shaped(py, &array))?;
+        }
+        Ok(dict)
+    }
+
+    /// `J`, `cauchy_stress` (6 components: XX, YY, ZZ, XY, YZ, XZ), `von_mises`,
+    /// `fibre_stretch_1`, `fibre_stretch_2`, `layer` at the element centres.
+    #[getter]
+    fn cell_data<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let dict = PyDict::new(py);
+        for array in self.cell_arrays() {
+            dict.set_item(&array.name, shaped(py, &array))?;
+        }
+        Ok(dict)
+    }
+
+    /// Writes the state as a `.vtu` file (the CLI's snapshot format).
+    fn write_vtu(&self, path: PathBuf) -> PyResult<()> {
+        let f = &self.fields;
+        write_vtu(&path, &f.points, &f.cells, &self.point_arrays(), &self.cell_arrays()).map_err(to_py)
+    }
+}
+
+impl PyState {
+    fn point_arrays(&self) -> Vec<DataArray> {
+        vec![DataArray::plane_vectors(
+            "displacement",
+            self.fields.displacement.iter().copied(),
+        )]
+    }
+
+    fn cell_arrays(&self) -> Vec<DataArray> {
+        let c = &self.fields.cell;
+        vec![
+            DataArray::scalars("J", c.jacobian.clone()),
+            DataArray::symmetric_tensors("cauchy_stress", &c.cauchy),
+            DataArray::scalars("von_mises", c.von_mises.clone()),
+            DataArray::scalars("fibre_stretch_1", c.fibre_stretch[0].clone()),
+            DataArray::scalars("fibre_stretch_2", c.fibre_stretch[1].clone()),
+            DataArray::scalars("layer", c.layer.clone()),
+        ]
+    }
+}
+
+/// A data array as a numpy array: `(n,)` for scalars, `(n, components)` otherwise.
+fn shaped<'py>(py: Python<'py>, array: &DataArray) -> Bound<'py, PyAny> {
+    if array.components == 1 {
+        array.values.clone().into_pyarray(py).into_any()
+    } else {
+        let rows = array.values.len() / array.components;
+        Array2::from_shape_vec((rows, array.components), array.values.clone())
+            .expect("whole entities")
+            .into_pyarray(py)
+            .into_any()
+    }
+}
+
+/// Runs `simulate` in memory. Returns `(columns, summary_json, state, stopped)`: the
+/// `amplitude.csv` columns as arrays, a JSON text with `onset`, `contact`, `secondary` and run
+/// facts, the last state, and why the path stopped early (None if it reached `d_max`).
+#[pyfunction]
+#[pyo3(signature = (params, mesh, nx, layer_elements, substrate_elements, h0, waves, k, d_max, imperfection,
+    max_step, min_step, max_newton_iterations, refine_troughs, refine_width, imperfection2, imperfection2_waves,
+    contact, eta, inertia, progress))]
+#[allow(clippy::too_many_arguments)]
+fn simulate_run<'py>(
+    py: Python<'py>,
+    params: &PyParameters,
+    mesh: &str,
+    nx: Option<usize>,
+    layer_elements: Option<usize>,
+    substrate_elements: Option<usize>,
+    h0: Option<f64>,
+    waves: Option<f64>,
+    k: Option<f64>,
+    d_max: f64,
+    imperfection: f64,
+    max_step: f64,
+    min_step: f64,
+    max_newton_iterations: usize,
+    refine_troughs: Option<f64>,
+    refine_width: f64,
+    imperfection2: f64,
+    imperfection2_waves: f64,
+    contact: bool,
+    eta: f64,
+    inertia: bool,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<(Bound<'py, PyDict>, String, PyState, Option<String>)> {
+    let mut spec = MeshSpec::preset(mesh).map_err(to_py)?;
+    spec.nx = nx.unwrap_or(spec.nx);
+    spec.layer_elements = layer_elements.unwrap_or(spec.layer_elements);
+    spec.substrate_elements = substrate_elements.unwrap_or(spec.substrate_elements);
+    spec.top_substrate_thickness = h0.unwrap_or(spec.top_substrate_thickness);
+    let options = SimulateOptions {
+        mesh: spec,
+        waves,
+        k,
+        d_max,
+        imperfection,
+        max_step,
+        min_step,
+        max_newton_iterations,
+        refine_troughs,
+        refine_width,
+        imperfection2,
+        imperfection2_waves,
+        contact,
+        eta,
+        inertia,
+        ..SimulateOptions::default()
+    };
+    let study = options.study().map_err(to_py)?;
+    let p = params.inner.clone();
+    // The callback's or Ctrl-C's exception, raised once the library has stopped.
+    let raised: Mutex<Option<PyErr>> = Mutex::new(None);
+    let monitor = |event: Progress<'_>| -> fiberfold::Result<()> {
+        Python::attach(|py| {
+            let result = (|| -> PyResult<()> {
+                if let Some(callback) = &progress {
+                    let info = PyDict::new(py);
+                    match event {
+                        Progress::Stage(text) => {
+                            info.set_item("event", "stage")?;
+                            info.set_item("message", text)?;
+                        }
+                        Progress::Step(r) => {
+                            info.set_item("event", "step")?;
+                            info.set_item("d", r.d)?;
+                            info.set_item("A", r.amplitude)?;
+                            info.set_item("newton_iterations", r.iterations)?;
+                        }
+                        Progress::Cut(c) => {
+                            info.set_item("event", "cut")?;
+                            info.set_item("d", c.d)?;
+                            info.set_item("message", &c.reason)?;
+                        }
+                    }
+                    callback.call1(py, (info,))?;
+                }
+                py.check_signals()
+            })();
+            result.map_err(|e| {
+                let message = e.to_string();
+                *raised.lock().expect("not poisoned") = Some(e);
+                Error::Interrupted(message)
+            })
+        })
+    };
+    let solution = py.detach(|| simulate::solve(&p, &study, &monitor));
+    if let Some(e) = raised.lock().expect("not poisoned").take() {
+        return Err(e);
+    }
+    let solution = solution.map_err(to_py)?;
+    let header = amplitude_header();
+    let rows: Vec<Vec<f64>> = solution.curve.records.iter().map(amplitude_row).collect();
+    let columns = PyDict::new(py);
+    for (c, name) in header.iter().enumerate() {
+        let column: Vec<f64> = rows.iter().map(|r| r[c]).collect();
+        columns.set_item(*name, column.into_pyarray(py))?;
+    }
+    let d_reached = solution.curve.records.last().map_or(0.0, |r| r.d);
+    let summary = serde_json::json!({
+        "k": study.protocol.k,
+        "unknowns": study.mesh.num_dofs(),
+        "d_max": study.protocol.d_max,
+        "d_reached": d_reached,
+        "completed": solution.curve.stopped.is_none(),
+        "accepted_steps": solution.curve.records.len(),
+        "cuts": solution.curve.cuts.len(),
+        "onset": solution.onset,
+        "contact": solution.contact,
+        "secondary": solution.inertia_changes,
+    });
+    let stopped = solution.curve.stopped.as_ref().map(|e| e.to_string());
+    Ok((
+        columns,
+        summary.to_string(),
+        PyState { fields: solution.state },
+        stopped,
+    ))
+}
+
+/// The exact bifurcation of the discretised perfect system (`fiberfold bifurcation`), written
+/// into `out`; returns `bifurcation.json` as JSON text.
+#[pyfunction]
+#[pyo3(signature = (params, out, mesh = "coarse"))]
+fn bifurcation_run(py: Python<'_>, params: &PyParameters, out: PathBuf, mesh: &str) -> PyResult<String> {
+    use fiberfold::studies::bifurcation::{run, BifurcationStudy};
+    let study = BifurcationStudy {
+        mesh: MeshSpec::preset(mesh).map_err(to_py)?,
+        settings: Default::default(),
+    };
+    let p = params.inner.clone();
+    let report = py.detach(|| run(&p, &study, &out)).map_err(to_py)?;
+    serde_json::to_string(&report).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+}
+
+/// The native module.
+#[pymodule]
+fn _fiberfold(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyParameters>()?;
+    m.add_class::<PyState>()?;
+    m.add("SolverError", m.py().get_type::<SolverError>())?;
+    m.add_function(wrap_pyfunction!(homogeneous, m)?)?;
+    m.add_function(wrap_pyfunction!(dispersion, m)?)?;
+    m.add_function(wrap_pyfunction!(onset, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate_run, m)?)?;
+    m.add_function(wrap_pyfunction!(bifurcation_run, m)?)?;
+    Ok(())
+}

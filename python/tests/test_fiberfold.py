@@ -1,0 +1,193 @@
+"""Tests of the Python package against independent values, the CLI, and its error contract."""
+
+import csv
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import fiberfold
+
+ROOT = Path(__file__).resolve().parents[2]
+TINY = dict(nx=20, layer_elements=1, substrate_elements=6)
+
+
+def cli_binary() -> Path:
+    """The CLI built from the same library (`cargo build --release` or `cargo test --release`)."""
+    path = Path(os.environ.get("FIBERFOLD_BIN", ROOT / "target" / "release" / "fiberfold"))
+    if not path.is_file():
+        pytest.fail(f"no fiberfold binary at {path}: run `cargo build --release` first or set FIBERFOLD_BIN")
+    return path
+
+
+def test_biot_surface_instability_of_a_nearly_incompressible_half_space():
+    # No contrast, no fibres, K = 10^4 mu: Biot's lambda = 0.5437 at every k.
+    p = fiberfold.Parameters(mu_l=1.0, K_l=1e4, K_s=1e4, phi_m=1.0, phi_f=0.0)
+    result = fiberfold.dispersion(p, [0.3, 1.0, 2.5])
+    assert result["lambda1_c"].shape == (3,)
+    assert np.allclose(result["lambda1_c"], 0.5437, atol=2e-4)
+    assert result["k_without_root"].size == 0
+
+
+def test_onset_without_fibre_stiffness_matches_the_paper():
+    o = fiberfold.onset(fiberfold.Parameters(mu_f=0.0))
+    assert abs(o.k0 - 0.5515) < 1e-4
+    assert set(o.as_dict()) >= {"k0", "d_c", "lambda1_c", "d_ellipticity_loss", "wavelength", "method", "parameters"}
+    assert o.lambda1_c == pytest.approx(1.0 - o.d_c, abs=1e-15)
+
+
+def test_homogeneous_state_is_stress_free_at_rest_and_has_the_csv_columns():
+    h = fiberfold.homogeneous(fiberfold.Parameters(), np.array([0.0, 0.1, 0.2]))
+    assert list(h) == [
+        "d", "lambda1", "lambda2_layer", "lambda2_substrate", "J_layer", "J_substrate",
+        "sigma11_layer", "sigma22_layer", "sigma33_layer",
+        "sigma11_substrate", "sigma22_substrate", "sigma33_substrate",
+    ]
+    assert all(v.dtype == np.float64 and v.shape == (3,) for v in h.values())
+    assert np.allclose(h["lambda1"], [1.0, 0.9, 0.8])
+    assert abs(h["sigma11_layer"][0]) < 1e-12
+    # Uniaxial compression: sigma22 = 0 in both layers (free top surface).
+    assert np.allclose(h["sigma22_layer"], 0.0, atol=1e-9)
+
+
+def test_sweep_matches_single_onsets():
+    p = fiberfold.Parameters()
+    s = fiberfold.sweep(p, "beta", [0.0, 0.7], series=("mu_f", [1.0, 10.0]))
+    assert s["value"].tolist() == [0.0, 0.7, 0.0, 0.7]
+    assert s["series"].tolist() == [1.0, 1.0, 10.0, 10.0]
+    single = fiberfold.onset(p.replace(beta=0.7, mu_f=10.0))
+    assert s["k0"][3] == pytest.approx(single.k0, rel=1e-6)
+    assert s["d_c"][3] == pytest.approx(single.d_c, rel=1e-6)
+
+
+def test_parameters_round_trip_through_toml(tmp_path):
+    p = fiberfold.Parameters(beta=0.5, mu_f=20.0, tension_only=True)
+    path = tmp_path / "p.toml"
+    path.write_text(p.to_toml())
+    assert fiberfold.Parameters.from_toml(path) == p
+    assert p.beta == 0.5 and p.tension_only is True
+    assert p.to_dict()["mu_f"] == 20.0
+
+
+def test_simulate_gives_the_cli_curve(tmp_path):
+    p = fiberfold.Parameters(beta=0.785398)
+    result = fiberfold.simulate(p, 4.5, d_max=0.05, **TINY)
+    out = tmp_path / "cli"
+    subprocess.run(
+        [str(cli_binary()), "simulate", "--set", "beta=0.785398", "--waves", "4.5", "--nx", "20",
+         "--layer-elements", "1", "--substrate-elements", "6", "--d-max", "0.05", "--out", str(out)],
+        check=True, capture_output=True,
+    )
+    with open(out / "amplitude.csv") as f:
+        rows = list(csv.DictReader(f))
+    assert list(result.amplitude) == list(rows[0])
+    for column in ["d", "A", "strain_energy", "min_J", "residual"]:
+        cli = np.array([float(r[column]) for r in rows])
+        ours = result.amplitude[column]
+        assert ours.shape == cli.shape
+        assert np.allclose(ours, cli, rtol=1e-12, atol=1e-15), column
+
+
+def test_simulate_arrays_have_the_documented_shapes():
+    events = []
+    result = fiberfold.simulate(fiberfold.Parameters(), 4.5, d_max=0.02, progress=events.append, **TINY)
+    n = len(result.amplitude["d"])
+    assert n == result.accepted_steps and n > 0
+    assert all(v.dtype == np.float64 and v.shape == (n,) for v in result.amplitude.values())
+    state = result.state
+    points, cells = state.points, state.cells
+    assert points.dtype == np.float64 and points.shape[1] == 3 and np.all(points[:, 2] == 0.0)
+    assert cells.dtype == np.int64 and cells.shape[1] == 9 and cells.max() < len(points)
+    assert state.point_data["displacement"].shape == (len(points), 3)
+    assert state.cell_data["cauchy_stress"].shape == (len(cells), 6)
+    assert state.cell_data["J"].shape == (len(cells),)
+    assert np.all(state.cell_data["J"] > 0)
+    assert result.completed and result.stopped is None
+    assert {e["event"] for e in events} >= {"stage", "step"}
+    assert result.onset["k"] == pytest.approx(result.k)
+
+
+def test_state_writes_a_vtu(tmp_path):
+    result = fiberfold.simulate(fiberfold.Parameters(), 4.5, d_max=0.01, **TINY)
+    path = tmp_path / "final.vtu"
+    result.state.write_vtu(path)
+    text = path.read_text()
+    assert 'NumberOfPoints="%d"' % len(result.state.points) in text
+
+
+def test_bad_values_raise_value_error_naming_the_parameter():
+    with pytest.raises(ValueError, match="mu_l"):
+        fiberfold.Parameters(mu_l=-1.0)
+    with pytest.raises(ValueError, match="phi_f"):
+        fiberfold.Parameters(phi_f=float("nan"))
+    with pytest.raises(ValueError, match="unknown parameter `muu`"):
+        fiberfold.Parameters(muu=1.0)
+    with pytest.raises(ValueError, match="`d`"):
+        fiberfold.homogeneous(fiberfold.Parameters(), [0.1, 1.5])
+    with pytest.raises(ValueError, match="`k`"):
+        fiberfold.dispersion(fiberfold.Parameters(), [-1.0])
+    with pytest.raises(ValueError, match="waves"):
+        fiberfold.simulate(fiberfold.Parameters(), 4.3, d_max=0.02, **TINY)
+    with pytest.raises(ValueError, match="mesh"):
+        fiberfold.simulate(fiberfold.Parameters(), 4.5, mesh="huge")
+    with pytest.raises(ValueError, match="method"):
+        fiberfold.onset(fiberfold.Parameters(), method="guess")
+
+
+def test_wrong_types_raise_type_error():
+    with pytest.raises(TypeError):
+        fiberfold.Parameters(mu_l="ten")
+    with pytest.raises(TypeError):
+        fiberfold.Parameters(beta=True)
+    with pytest.raises(TypeError):
+        fiberfold.Parameters(tension_only=1)
+    with pytest.raises(TypeError):
+        fiberfold.onset({"mu_l": 10})
+    with pytest.raises(TypeError):
+        fiberfold.simulate(fiberfold.Parameters(), "four")
+    with pytest.raises(TypeError):
+        fiberfold.sweep(fiberfold.Parameters(), 3, [1.0])
+
+
+def test_solver_failure_carries_the_path_so_far():
+    # Steps of 0.1 that may not be cut: the path stops early.
+    with pytest.raises(fiberfold.SolverError) as caught:
+        fiberfold.simulate(fiberfold.Parameters(), 4.5, d_max=0.6, max_step=0.1, min_step=0.1, **TINY)
+    result = caught.value.result
+    assert 0.005 <= result.d_reached < 0.6
+    assert len(result.amplitude["d"]) >= 1 and not result.completed
+    assert np.all(np.isfinite(result.amplitude["A"]))
+
+
+def test_an_exception_in_the_progress_callback_stops_the_run():
+    def stop(event):
+        if event["event"] == "step":
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        fiberfold.simulate(fiberfold.Parameters(), 4.5, d_max=0.3, **TINY, progress=stop)
+
+
+def test_ctrl_c_interrupts_a_long_run_within_a_second():
+    timer = threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            fiberfold.simulate(fiberfold.Parameters(), 4.5, mesh="coarse", d_max=0.9)
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 2.0
+
+
+def test_example_study_runs(tmp_path):
+    script = ROOT / "examples" / "python_study.py"
+    done = subprocess.run([sys.executable, str(script), str(tmp_path)], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert "onset against beta" in done.stdout
