@@ -191,3 +191,16 @@ def test_example_study_runs(tmp_path):
     done = subprocess.run([sys.executable, str(script), str(tmp_path)], capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     assert "onset against beta" in done.stdout
+
+
+def test_onset_of_a_soft_layer_is_the_long_wave_limit():
+    o = fiberfold.onset(fiberfold.Parameters(mu_l=1.5, K_l=4.5))
+    assert o.minimum == "long_wave" and o.k0 == 0.0 and o.wavelength is None
+    assert fiberfold.onset(fiberfold.Parameters()).minimum == "interior"
+
+
+def test_bifurcation_of_the_discretised_perfect_system_meets_the_linear_theory():
+    # Without fibres, coarse mesh: the FE bifurcation within 1e-3 of min_m d_c(m pi / 50).
+    r = fiberfold.bifurcation(fiberfold.Parameters(phi_m=1.0, phi_f=0.0), mesh="coarse")
+    assert abs(r["d_bifurcation"] / r["d_linear_theory_min"] - 1.0) < 1e-3
+    assert r["k_mode"] > 0

@@ -2,7 +2,7 @@
 
 use super::common::{progress, report_files, ParamArgs};
 use clap::{Args, ValueEnum};
-use fiberfold::stability::{discrete::DiscreteOptions, Method};
+use fiberfold::stability::{discrete::DiscreteOptions, Method, Minimum};
 use fiberfold::studies::stability::{self, parse_series, DispersionStudy, SweepStudy};
 use fiberfold::Result;
 use std::path::PathBuf;
@@ -81,15 +81,19 @@ pub struct OnsetArgs {
 pub fn onset(args: &OnsetArgs) -> Result<()> {
     let params = args.params.resolve()?;
     println!(
-        "onset of wrinkling: minimum of d_c(k) over k in [0.02, 5] ({:?})",
+        "onset of wrinkling: minimum of d_c(k) over k in [0.02, 5], followed to 1e-4 or 10 if it lies at an end ({:?})",
         args.method
     );
     let (onset, path) = stability::onset(&params, args.method.method(), &args.out)?;
-    println!(
-        "  k0 = {:.6}  (wavelength {:.4} H)",
-        onset.k0,
-        2.0 * std::f64::consts::PI / onset.k0
-    );
+    match (onset.minimum, onset.wavelength) {
+        (_, Some(wavelength)) => println!("  k0 = {:.6}  (wavelength {wavelength:.4} H)", onset.k0),
+        (Minimum::LongWave, _) => println!(
+            "  no finite k0: d_c(k) decreases all the way to k -> 0 (long_wave): the substrate's own surface instability comes first"
+        ),
+        _ => println!(
+            "  no finite k0: d_c(k) decreases all the way to k -> infinity (short_wave): the layer's own surface instability comes first"
+        ),
+    }
     println!("  d_c = {:.6}  (lambda1_c = {:.6})", onset.d_c, onset.lambda1_c);
     match onset.d_ellipticity_loss {
         Some(d) => println!("  strong ellipticity is lost at d = {d:.6}; beyond it wrinkling results are meaningless"),

@@ -52,11 +52,46 @@ impl CsvWriter {
         self.write_line(&line.join(","))
     }
 
+    /// Appends one row of text, numbers and empty fields (numbers must be finite).
+    pub fn append_cells(&mut self, cells: &[Cell<'_>]) -> Result<()> {
+        assert_eq!(
+            cells.len(),
+            self.columns,
+            "row width does not match the header of {}",
+            self.path.display()
+        );
+        let mut fields = Vec::with_capacity(cells.len());
+        for (i, cell) in cells.iter().enumerate() {
+            fields.push(match *cell {
+                Cell::Text(t) => t.to_string(),
+                Cell::Empty => String::new(),
+                Cell::Number(x) if x.is_finite() => format_number(x),
+                Cell::Number(_) => {
+                    return Err(Error::NonFinite(format!(
+                        "column {} of a row for {}",
+                        i + 1,
+                        self.path.display()
+                    )))
+                }
+            });
+        }
+        self.write_line(&fields.join(","))
+    }
+
     fn write_line(&mut self, line: &str) -> Result<()> {
         writeln!(self.out, "{line}")
             .and_then(|_| self.out.flush())
             .map_err(|e| Error::io(&self.path, e))
     }
+}
+
+/// One field of a CSV row.
+#[derive(Clone, Copy, Debug)]
+pub enum Cell<'a> {
+    Text(&'a str),
+    Number(f64),
+    /// A value that does not exist (e.g. `k0` of a long-wave limit).
+    Empty,
 }
 
 /// Shortest round-trip text of a number, scientific when very small or large.

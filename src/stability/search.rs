@@ -20,10 +20,36 @@ const D_START: f64 = 1e-6;
 /// Tolerance of `d_c` in `d`.
 const D_TOLERANCE: f64 = 1e-13;
 
+/// Where the smallest `d_c(k)` lies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Minimum {
+    /// At a finite `k0 > 0`: wrinkles of wavelength `2 pi / k0`.
+    Interior,
+    /// `d_c(k)` decreases all the way to `k -> 0`: the layer is too soft to set a wavelength and
+    /// the substrate's own surface instability comes first (`k0 = 0`, `d_c` its limit).
+    LongWave,
+    /// `d_c(k)` decreases all the way to `k -> inf`: the layer's own surface instability comes
+    /// first, at wavelengths much shorter than `H` (`k0 = inf`, `d_c` its limit).
+    ShortWave,
+}
+
+/// Wavenumbers probed for the long-wave limit (down to `K_LONG`) and the short-wave limit (up
+/// to `K_SHORT`, where `kH` is large enough for the layer to act as a half-space and the exact
+/// method is still well conditioned); a minimum still at either end is reported as the limit.
+const K_LONG: f64 = 1e-4;
+const K_SHORT: f64 = 10.0;
+/// Probes per decade beyond the grid.
+const PROBES_PER_DECADE: f64 = 4.0;
+/// A rise of `d_c` beyond the grid smaller than this is the round-off of a curve that has
+/// levelled off at its limit, not a minimum.
+const RISE_TOLERANCE: f64 = 1e-6;
+
 /// The onset of wrinkling: the minimum of `d_c(k)`.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct Onset {
-    /// Onset wavenumber (referential, units 1/H).
+    /// Onset wavenumber (referential, units 1/H): 0 for a long-wave and infinite (`null` in
+    /// JSON) for a short-wave minimum.
     pub k0: f64,
     /// Critical compression at `k0`.
     pub d_c: f64,
@@ -31,6 +57,15 @@ pub struct Onset {
     pub lambda1_c: f64,
     /// Compression at which either layer loses strong ellipticity (None if not before 0.95).
     pub d_ellipticity_loss: Option<f64>,
+    /// Whether the minimum is interior or a limit.
+    pub minimum: Minimum,
+}
+
+impl Onset {
+    /// The wavelength `2 pi / k0` of an interior minimum.
+    pub fn wavelength(&self) -> Option<f64> {
+        (self.minimum == Minimum::Interior).then(|| 2.0 * std::f64::consts::PI / self.k0)
+    }
 }
 
 /// The stability analysis of one parameter set.
@@ -196,8 +231,10 @@ impl StabilityAnalysis {
         Ok(Some((lo, hi)))
     }
 
-    /// The onset: `k0` minimising `d_c(k)` over `k_range`, found on a logarithmic grid and
-    /// refined by Brent's minimisation.
+    /// The onset: `k0` minimising `d_c(k)`, found on a logarithmic grid over `k_range` and
+    /// refined by Brent's minimisation. A minimum at an end of the grid is followed beyond it
+    /// (down to `K_LONG`, up to `K_SHORT`): it is either an interior minimum there or the
+    /// long- or short-wave limit ([`Minimum`]).
     pub fn onset(&self) -> Result<Onset> {
         let (k_lo, k_hi) = self.k_range;
         const GRID: usize = 13;
@@ -225,7 +262,17 @@ impl StabilityAnalysis {
                 upper: self.d_limit,
             });
         }
-        let (a, b) = (ks[best.saturating_sub(1)], ks[(best + 1).min(GRID - 1)]);
+        let (a, b) = match best {
+            0 => match self.follow((ks[0], curve[0]), ks[1], K_LONG)? {
+                Beyond::Bracket(a, b) => (a, b),
+                Beyond::Limit(d_c) => return Ok(self.limit(0.0, d_c, Minimum::LongWave)),
+            },
+            b if b == GRID - 1 => match self.follow((ks[GRID - 1], curve[GRID - 1]), ks[GRID - 2], K_SHORT)? {
+                Beyond::Bracket(a, b) => (a, b),
+                Beyond::Limit(d_c) => return Ok(self.limit(f64::INFINITY, d_c, Minimum::ShortWave)),
+            },
+            _ => (ks[best - 1], ks[best + 1]),
+        };
         let hint = std::cell::Cell::new(curve[best]);
         let (k0, d_c) = brent_minimize(
             |k| {
@@ -242,14 +289,65 @@ impl StabilityAnalysis {
             d_c,
             lambda1_c: 1.0 - d_c,
             d_ellipticity_loss: self.d_ellipticity_loss,
+            minimum: Minimum::Interior,
         })
     }
+
+    /// Follows a decreasing `d_c(k)` from the grid's end `(k, d)` (whose neighbour inside the
+    /// grid is `previous`) towards `end`, by about `PROBES_PER_DECADE` probes per decade: a
+    /// bracket of the first rise, or the limit `d_c(end)`.
+    fn follow(&self, (mut k, mut d): (f64, f64), mut previous: f64, end: f64) -> Result<Beyond> {
+        let factor = (end / k).powf(1.0 / ((end / k).log10().abs() * PROBES_PER_DECADE).ceil().max(1.0));
+        while (end - k).abs() > 1e-12 * end {
+            let next = if (k * factor - end) * (k - end) <= 0.0 {
+                end
+            } else {
+                k * factor
+            };
+            let d_next = match self.critical_compression_near(next, Some(d).filter(|d| d.is_finite())) {
+                Err(Error::NoRoot { .. }) => f64::INFINITY,
+                other => other?,
+            };
+            if d_next > d + RISE_TOLERANCE {
+                let (a, b) = (previous.min(next), previous.max(next));
+                return Ok(Beyond::Bracket(a, b));
+            }
+            if d_next < d {
+                (previous, k, d) = (k, next, d_next);
+            } else {
+                (previous, k) = (k, next);
+            }
+        }
+        Ok(Beyond::Limit(d))
+    }
+
+    /// The onset of a limit (long or short waves).
+    fn limit(&self, k0: f64, d_c: f64, minimum: Minimum) -> Onset {
+        Onset {
+            k0,
+            d_c,
+            lambda1_c: 1.0 - d_c,
+            d_ellipticity_loss: self.d_ellipticity_loss,
+            minimum,
+        }
+    }
+}
+
+/// What lies beyond an end of the onset grid.
+enum Beyond {
+    /// `d_c` rises again between these wavenumbers: an interior minimum.
+    Bracket(f64, f64),
+    /// `d_c` decreases up to the last probe: its value there.
+    Limit(f64),
 }
 
 impl StabilityAnalysis {
     /// The onset, continued from a nearby parameter set's onset `previous`: Brent's minimisation
     /// on `k0 (1 +- 15 %)`; falls back to [`Self::onset`] if the minimum is not inside.
     pub fn onset_near(&self, previous: &Onset) -> Result<Onset> {
+        if previous.minimum != Minimum::Interior {
+            return self.onset();
+        }
         let (a, b) = (previous.k0 * 0.85, previous.k0 * 1.15);
         let hint = std::cell::Cell::new(previous.d_c);
         let minimum = brent_minimize(
@@ -268,6 +366,7 @@ impl StabilityAnalysis {
                 d_c,
                 lambda1_c: 1.0 - d_c,
                 d_ellipticity_loss: self.d_ellipticity_loss,
+                minimum: Minimum::Interior,
             }),
             _ => self.onset(),
         }

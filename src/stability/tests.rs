@@ -251,3 +251,50 @@ fn wrinkling_beyond_the_loss_of_ellipticity_is_refused() {
         other => panic!("expected no root before d = {limit}, got {other:?}"),
     }
 }
+
+/// The onset of a layer no stiffer than the substrate is the long-wave limit, the substrate's
+/// own surface instability: the same value whatever the (soft) layer, as `kH -> 0` makes the
+/// layer irrelevant.
+#[test]
+fn a_soft_layer_has_no_interior_minimum_and_the_substrate_limit() {
+    let onset_of = |mu_l: f64| {
+        let p = Parameters {
+            mu_l,
+            K_l: 3.0 * mu_l,
+            ..Parameters::default()
+        };
+        StabilityAnalysis::new(&p, Method::Exact).unwrap().onset().unwrap()
+    };
+    let (a, b) = (onset_of(1.2), onset_of(1.5));
+    for o in [&a, &b] {
+        assert_eq!(o.minimum, Minimum::LongWave, "{o:?}");
+        assert_eq!(o.k0, 0.0);
+        assert_eq!(o.wavelength(), None);
+    }
+    assert!((a.d_c - b.d_c).abs() < 1e-5, "{} vs {}", a.d_c, b.d_c);
+    // The stiff layer of Table 1 sets a wavelength.
+    let table1 = StabilityAnalysis::new(&Parameters::default(), Method::Exact)
+        .unwrap()
+        .onset()
+        .unwrap();
+    assert_eq!(table1.minimum, Minimum::Interior);
+    assert!(table1.d_c < a.d_c);
+}
+
+/// A soft, nearly incompressible layer on a compressible substrate: the layer's own surface
+/// instability at short waves, i.e. Biot's lambda = 0.5437 of the layer material.
+#[test]
+fn a_soft_nearly_incompressible_layer_buckles_at_short_waves_at_biot() {
+    let p = Parameters {
+        mu_l: 0.5,
+        K_l: 500.0,
+        phi_m: 1.0,
+        phi_f: 0.0,
+        ..Parameters::default()
+    };
+    let onset = StabilityAnalysis::new(&p, Method::Exact).unwrap().onset().unwrap();
+    assert_eq!(onset.minimum, Minimum::ShortWave, "{onset:?}");
+    assert!(onset.k0.is_infinite());
+    // K/mu = 1000: within 2e-4 of the incompressible 0.5437.
+    assert!((onset.lambda1_c - 0.5437).abs() < 2e-4, "{}", onset.lambda1_c);
+}

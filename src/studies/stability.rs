@@ -2,9 +2,10 @@
 
 use super::{linspace, validate_points, Tick};
 use crate::error::{Error, Result};
+use crate::output::table::Cell;
 use crate::output::{ensure_dir, plot::save_panels, write_json, CsvWriter, Figure, LineStyle, Series};
 use crate::parameters::{Parameters, PARAMETER_NAMES};
-use crate::stability::{Method, Onset, StabilityAnalysis};
+use crate::stability::{Method, Minimum, Onset, StabilityAnalysis};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -97,12 +98,24 @@ pub fn dispersion(params: &Parameters, study: &DispersionStudy, out: &Path, tick
         "d_c",
     )
     .with(Series::new("d_c(k)", curve.points.clone(), LineStyle::Solid, 0))
-    .with(Series::new(
-        format!("k0 = {:.4}, d_c = {:.4}", onset.k0, onset.d_c),
-        vec![(onset.k0, onset.d_c)],
-        LineStyle::Crosses,
-        1,
-    ));
+    .with(match onset.minimum {
+        Minimum::Interior => Series::new(
+            format!("k0 = {:.4}, d_c = {:.4}", onset.k0, onset.d_c),
+            vec![(onset.k0, onset.d_c)],
+            LineStyle::Crosses,
+            1,
+        ),
+        limit => Series::new(
+            format!(
+                "no interior minimum: d_c -> {:.4} as k -> {}",
+                onset.d_c,
+                if limit == Minimum::LongWave { "0" } else { "inf" }
+            ),
+            vec![(study.k_min, onset.d_c), (study.k_max, onset.d_c)],
+            LineStyle::Dashed,
+            1,
+        ),
+    });
     let mut files = vec![csv];
     files.extend(figure.save(out, "dispersion")?);
     let json = out.join("dispersion.json");
@@ -126,7 +139,11 @@ pub struct OnsetSummary {
     pub d_c: f64,
     pub lambda1_c: f64,
     pub d_ellipticity_loss: Option<f64>,
-    pub wavelength: f64,
+    /// `2 pi / k0` of an interior minimum (null for a long- or short-wave limit).
+    pub wavelength: Option<f64>,
+    /// `interior`, `long_wave` (`k0 = 0`, `d_c` the `k -> 0` limit: the substrate's own surface
+    /// instability) or `short_wave` (`k0` infinite, null: the layer's own).
+    pub minimum: Minimum,
     pub method: String,
     pub parameters: Parameters,
 }
@@ -140,7 +157,8 @@ impl OnsetSummary {
             d_c: onset.d_c,
             lambda1_c: onset.lambda1_c,
             d_ellipticity_loss: onset.d_ellipticity_loss,
-            wavelength: 2.0 * std::f64::consts::PI / onset.k0,
+            wavelength: onset.wavelength(),
+            minimum: onset.minimum,
             method: format!("{method:?}"),
             parameters: params.clone(),
         })
@@ -287,19 +305,32 @@ struct SweepSummary<'a> {
     points: &'a [SweepPoint],
 }
 
-/// Writes `sweep.csv` (`series,value,k0,d_c`), `sweep.json` and `sweep.png/svg`.
+/// Writes `sweep.csv` (`series,value,k0,d_c,minimum`; `k0` empty where the minimum is a
+/// long- or short-wave limit), `sweep.json` and `sweep.png/svg` (limits marked by crosses).
 pub fn sweep(params: &Parameters, study: &SweepStudy, out: &Path, tick: Tick) -> Result<Vec<PathBuf>> {
     let points = study.compute(params, tick)?;
     ensure_dir(out)?;
     let csv = out.join("sweep.csv");
-    let mut table = CsvWriter::create(&csv, &["series", "value", "k0", "d_c"])?;
+    let mut table = CsvWriter::create(&csv, &["series", "value", "k0", "d_c", "minimum"])?;
     let label = |s: Option<f64>| match (&study.series, s) {
         (Some((key, _)), Some(v)) => format!("{key}={v}"),
         _ => "base".to_string(),
     };
     for p in &points {
         if let Some(o) = &p.onset {
-            table.append_labelled(Some(&label(p.series)), &[p.value, o.k0, o.d_c])?;
+            let k0 = if o.minimum == Minimum::Interior {
+                Cell::Number(o.k0)
+            } else {
+                Cell::Empty
+            };
+            let minimum = serde_json::to_value(o.minimum).expect("a plain enum");
+            table.append_cells(&[
+                Cell::Text(&label(p.series)),
+                Cell::Number(p.value),
+                k0,
+                Cell::Number(o.d_c),
+                Cell::Text(minimum.as_str().expect("serialised as a string")),
+            ])?;
         }
     }
     let mut k_panel = Figure::new("Onset wavenumber", study.param.as_str(), "k0");
@@ -307,19 +338,26 @@ pub fn sweep(params: &Parameters, study: &SweepStudy, out: &Path, tick: Tick) ->
     let mut series_values: Vec<Option<f64>> = points.iter().map(|p| p.series).collect();
     series_values.dedup();
     for (i, s) in series_values.iter().enumerate() {
-        let of = |pick: fn(&Onset) -> f64| -> Vec<(f64, f64)> {
+        let of = |pick: fn(&Onset) -> f64, interior: bool| -> Vec<(f64, f64)> {
             points
                 .iter()
                 .filter(|p| p.series == *s)
-                .filter_map(|p| p.onset.as_ref().map(|o| (p.value, pick(o))))
+                .filter_map(|p| p.onset.as_ref().map(|o| (p.value, o)))
+                .filter(|(_, o)| (o.minimum == Minimum::Interior) == interior)
+                .map(|(v, o)| (v, pick(o)))
                 .collect()
         };
         k_panel
             .series
-            .push(Series::new(label(*s), of(|o| o.k0), LineStyle::Solid, i));
+            .push(Series::new(label(*s), of(|o| o.k0, true), LineStyle::Solid, i));
         d_panel
             .series
-            .push(Series::new(label(*s), of(|o| o.d_c), LineStyle::Solid, i));
+            .push(Series::new(label(*s), of(|o| o.d_c, true), LineStyle::Solid, i));
+        let limits = of(|o| o.d_c, false);
+        if !limits.is_empty() {
+            let name = format!("{}: no interior minimum (limit k -> 0 or inf)", label(*s));
+            d_panel.series.push(Series::new(name, limits, LineStyle::Crosses, i));
+        }
     }
     let mut files = vec![csv];
     files.extend(save_panels(&[k_panel, d_panel], out, "sweep")?);

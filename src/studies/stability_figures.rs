@@ -97,7 +97,11 @@ pub fn fig4b(params: &Parameters, resolution: &Resolution, out: &Path, tick: Tic
     for (i, &mu_f) in FIBRE_STIFFNESSES.iter().enumerate() {
         let curve: Vec<(f64, f64)> = series_of(&points, mu_f, |o| o.k0);
         for p in points.iter().filter(|p| p.series == Some(mu_f)) {
-            if let Some(o) = &p.onset {
+            if let Some(o) = p
+                .onset
+                .as_ref()
+                .filter(|o| o.minimum == crate::stability::Minimum::Interior)
+            {
                 csv.append(&[mu_f, p.value, o.k0, o.d_c])?;
             }
         }
@@ -155,7 +159,9 @@ fn series_of(points: &[SweepPoint], series: f64, pick: fn(&crate::stability::Ons
     points
         .iter()
         .filter(|p| p.series == Some(series))
-        .filter_map(|p| p.onset.as_ref().map(|o| (p.value, pick(o))))
+        .filter_map(|p| p.onset.as_ref().map(|o| (p.value, o)))
+        .filter(|(_, o)| o.minimum == crate::stability::Minimum::Interior)
+        .map(|(v, o)| (v, pick(o)))
         .collect()
 }
 
