@@ -107,6 +107,14 @@ impl MeshSpec {
         self
     }
 
+    /// Width of the widest element column (in X).
+    pub fn widest_column(&self) -> f64 {
+        self.element_columns()
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .fold(0.0, f64::max)
+    }
+
     /// X of the element boundaries, from 0 to `L`.
     fn element_columns(&self) -> Vec<f64> {
         match self.x_refinement {

@@ -231,3 +231,54 @@ fn sweep_over_a_parameter_with_series() {
         &["series"],
     );
 }
+
+#[test]
+fn a_mesh_that_cannot_carry_the_seeded_wave_is_refused() {
+    let dir = scratch("unresolved");
+    let out = dir.to_str().unwrap();
+    // 4 waves over 50 H: wavelength 12.5 H needs 16 elements at 4 per wavelength.
+    rejected(
+        &["simulate", "--waves", "4", "--nx", "1", "--d-max", "0.01", "--out", out],
+        &["`nx`", ">= 16", "4 Q2 elements per wavelength 12.5000 H"],
+    );
+    rejected(
+        &[
+            "simulate",
+            "--waves",
+            "4",
+            "--nx",
+            "20",
+            "--refine-troughs",
+            "8",
+            "--d-max",
+            "0.01",
+            "--out",
+            out,
+        ],
+        &["`refine-troughs`", "below 3.1250 H"],
+    );
+    rejected(
+        &[
+            "simulate",
+            "--waves",
+            "4",
+            "--nx",
+            "16",
+            "--imperfection2",
+            "0.01",
+            "--imperfection2-waves",
+            "8",
+            "--d-max",
+            "0.01",
+            "--out",
+            out,
+        ],
+        &["`nx`", ">= 32", "imperfection2-waves"],
+    );
+    assert!(!dir.join("amplitude.csv").exists(), "nothing is written for bad input");
+    // Exactly 4 per wavelength runs.
+    let ok = fiberfold(&[
+        "simulate", "--waves", "4", "--nx", "16", "--d-max", "0.01", "--out", out,
+    ]);
+    assert!(ok.status.success(), "{}", String::from_utf8_lossy(&ok.stderr));
+}

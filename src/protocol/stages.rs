@@ -15,6 +15,7 @@ use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
 use crate::mesh::{Mesh, MeshSpec};
 use crate::parameters::validate_compression;
+use std::f64::consts::PI;
 use std::time::Instant;
 
 /// End-shortening of stage 1.
@@ -73,16 +74,21 @@ impl Protocol {
         self
     }
 
-    /// Checks `k` against the domain of `spec`, `A_init` in `[0, 1)` and `d_max` in `(0.005, 1)`.
+    /// Checks `k` against the domain of `spec`, `A_init` in `[0, 1)`, `d_max` in `(0.005, 1)`,
+    /// and that the mesh resolves the seeded waves ([`MIN_ELEMENTS_PER_WAVELENGTH`]).
     pub fn validate(&self, spec: &MeshSpec) -> Result<()> {
         mode_number(self.k, spec.length)?;
-        wavenumber_of_waves(self.imperfection2_waves, spec.length).map_err(|_| {
+        let k2 = wavenumber_of_waves(self.imperfection2_waves, spec.length).map_err(|_| {
             Error::invalid(
                 "imperfection2-waves",
                 self.imperfection2_waves,
                 "N2 with 2 N2 a positive integer",
             )
         })?;
+        resolves(spec, "waves", 2.0 * PI / self.k)?;
+        if self.imperfection2 > 0.0 {
+            resolves(spec, "imperfection2-waves", 2.0 * PI / k2)?;
+        }
         for (name, value) in [
             ("imperfection", self.imperfection),
             ("imperfection2", self.imperfection2),
@@ -100,6 +106,35 @@ impl Protocol {
             ));
         }
         self.control.validate()
+    }
+}
+
+/// Fewest Q2 elements per wavelength of a seeded wave (8 node spacings, a Q2 element spans
+/// two): below it the mesh cannot carry the mode, and the run would report a meaningless `A`.
+pub const MIN_ELEMENTS_PER_WAVELENGTH: f64 = 4.0;
+
+/// An error naming what to change when the widest element of `spec` is wider than a quarter of
+/// `wavelength` (the wave named `what`): `--nx` on a uniform mesh, `--refine-troughs` when the
+/// refinement coarsens the elements between troughs.
+fn resolves(spec: &MeshSpec, what: &str, wavelength: f64) -> Result<()> {
+    let widest = spec.widest_column();
+    if wavelength / widest >= MIN_ELEMENTS_PER_WAVELENGTH * (1.0 - 1e-9) {
+        return Ok(());
+    }
+    let needed = (MIN_ELEMENTS_PER_WAVELENGTH * spec.length / wavelength - 1e-9).ceil();
+    let rule = format!(
+        "at least {MIN_ELEMENTS_PER_WAVELENGTH} Q2 elements per wavelength {wavelength:.4} H of the seeded {what}"
+    );
+    match spec.x_refinement {
+        Some(r) if spec.nx as f64 >= needed => Err(Error::invalid(
+            "refine-troughs",
+            r.ratio,
+            &format!(
+                "a ratio that keeps every element below {:.4} H wide ({rule}; the widest is {widest:.4} H)",
+                wavelength / MIN_ELEMENTS_PER_WAVELENGTH
+            ),
+        )),
+        _ => Err(Error::invalid("nx", spec.nx, &format!(">= {needed} ({rule})"))),
     }
 }
 
