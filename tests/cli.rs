@@ -282,3 +282,34 @@ fn a_mesh_that_cannot_carry_the_seeded_wave_is_refused() {
     ]);
     assert!(ok.status.success(), "{}", String::from_utf8_lossy(&ok.stderr));
 }
+
+#[test]
+fn a_mesh_that_cannot_fit_in_memory_is_refused_at_once() {
+    let dir = scratch("huge");
+    let out = dir.to_str().unwrap();
+    let start = std::time::Instant::now();
+    let message = rejected(
+        &[
+            "simulate", "--waves", "4", "--nx", "100000", "--d-max", "0.01", "--out", out,
+        ],
+        &["`mesh`", "22000110 unknowns", "MB of memory available", "--force"],
+    );
+    rejected(
+        &[
+            "simulate",
+            "--waves",
+            "4",
+            "--layer-elements",
+            "100000",
+            "--substrate-elements",
+            "100000",
+            "--d-max",
+            "0.01",
+            "--out",
+            out,
+        ],
+        &["`mesh`", "unknowns", "MB"],
+    );
+    assert!(start.elapsed().as_secs_f64() < 5.0, "refused without assembling");
+    assert_eq!(message.lines().count(), 1, "one line: {message}");
+}

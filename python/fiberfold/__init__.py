@@ -165,6 +165,7 @@ def simulate(
     contact: bool = True,
     eta: float = 1e-6,
     inertia: bool = True,
+    force: bool = False,
     progress: Optional[Callable[[Dict[str, Any]], None]] = None,
 ) -> Simulation:
     """The paper's finite-element protocol, exactly as ``fiberfold simulate`` with the same
@@ -182,7 +183,7 @@ def simulate(
     columns, summary, state, stopped = _fiberfold.simulate_run(
         _check_parameters(params), mesh, nx, layer_elements, substrate_elements, h0, waves, k, d_max,
         imperfection, max_step, min_step, max_newton_iterations, refine_troughs, refine_width,
-        imperfection2, imperfection2_waves, contact, eta, inertia, progress,
+        imperfection2, imperfection2_waves, contact, eta, inertia, force, progress,
     )
     result = Simulation(columns, json.loads(summary), state, stopped)
     if stopped is not None:

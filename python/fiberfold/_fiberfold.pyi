@@ -73,6 +73,7 @@ def simulate_run(
     contact: bool,
     eta: float,
     inertia: bool,
+    force: bool,
     progress: Optional[Callable[[Dict[str, Any]], None]],
 ) -> Tuple[Dict[str, npt.NDArray[np.float64]], str, State, Optional[str]]: ...
 def bifurcation_run(params: Parameters, out: str, mesh: str = ...) -> str: ...

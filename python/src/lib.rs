@@ -370,7 +370,7 @@ fn shaped<'py>(py: Python<'py>, array: &DataArray) -> Bound<'py, PyAny> {
 #[pyfunction]
 #[pyo3(signature = (params, mesh, nx, layer_elements, substrate_elements, h0, waves, k, d_max, imperfection,
     max_step, min_step, max_newton_iterations, refine_troughs, refine_width, imperfection2, imperfection2_waves,
-    contact, eta, inertia, progress))]
+    contact, eta, inertia, force, progress))]
 #[allow(clippy::too_many_arguments)]
 fn simulate_run<'py>(
     py: Python<'py>,
@@ -394,6 +394,7 @@ fn simulate_run<'py>(
     contact: bool,
     eta: f64,
     inertia: bool,
+    force: bool,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<(Bound<'py, PyDict>, String, PyState, Option<String>)> {
     let mut spec = MeshSpec::preset(mesh).map_err(to_py)?;
@@ -417,6 +418,7 @@ fn simulate_run<'py>(
         contact,
         eta,
         inertia,
+        force,
         ..SimulateOptions::default()
     };
     let study = options.study().map_err(to_py)?;

@@ -2,6 +2,7 @@
 
 use super::common::{report_files, ParamArgs};
 use clap::{Args, ValueEnum};
+use fiberfold::fem::memory::{available_bytes, MemoryEstimate};
 use fiberfold::mesh::MeshSpec;
 use fiberfold::protocol::mode_number;
 use fiberfold::studies::simulate::{self, Progress, SimulateOptions, SimulateStudy};
@@ -155,6 +156,10 @@ pub struct SimulateArgs {
     #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
     pub vtu_every: f64,
 
+    /// Run even when the memory estimate (printed in the header) exceeds the memory available.
+    #[arg(long)]
+    pub force: bool,
+
     /// Output folder.
     #[arg(long, value_name = "DIR", default_value = "results/simulate")]
     pub out: PathBuf,
@@ -180,6 +185,7 @@ impl SimulateArgs {
             eta: self.eta,
             inertia: !self.no_inertia,
             vtu_every: self.vtu_every,
+            force: self.force,
         }
         .study()
     }
@@ -196,6 +202,14 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         p.imperfection,
         p.d_max,
         study.mesh.num_dofs()
+    );
+    let memory = MemoryEstimate::of(&study.mesh);
+    println!(
+        "memory estimate: {:.0} MB ({:.2e} stored tangent entries, {:.2e} factor entries){}",
+        memory.bytes / 1e6,
+        memory.tangent_entries,
+        memory.factor_entries,
+        available_bytes().map_or(String::new(), |a| format!("; {:.0} MB available", a / 1e6))
     );
     let bar = ProgressBar::new(1000);
     bar.set_style(

@@ -3,6 +3,7 @@
 
 use super::SimulateStudy;
 use crate::error::{Error, Result};
+use crate::fem::memory::{available_bytes, MemoryEstimate};
 use crate::mesh::{MeshSpec, XRefinement};
 use crate::protocol::{mode_number, wavenumber_of_waves, Protocol, StabilisationSettings, StepControl};
 use std::f64::consts::PI;
@@ -30,6 +31,8 @@ pub struct SimulateOptions {
     /// Track the inertia of the tangent at every accepted state.
     pub inertia: bool,
     pub vtu_every: f64,
+    /// Run even when the memory estimate exceeds the memory available.
+    pub force: bool,
 }
 
 impl Default for SimulateOptions {
@@ -52,6 +55,7 @@ impl Default for SimulateOptions {
             eta: 1e-6,
             inertia: true,
             vtu_every: 0.01,
+            force: false,
         }
     }
 }
@@ -108,6 +112,9 @@ impl SimulateOptions {
             vtu_every: self.vtu_every,
         };
         study.validate()?;
+        if !self.force {
+            MemoryEstimate::of(&study.mesh).check(available_bytes())?;
+        }
         Ok(study)
     }
 }
