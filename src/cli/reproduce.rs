@@ -54,6 +54,7 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
         }
         pieces.retain(|p| args.only.iter().any(|n| n == p.name));
     }
+    let _lock = fiberfold::output::lock::OutputLock::acquire(&args.out)?;
     let mode = if args.quick { "quick" } else { "full" };
     println!(
         "reproducing {} pieces into {} ({mode}, {jobs} at a time); finished pieces are reused",

@@ -11,8 +11,9 @@
 //!
 //! With `reuse_factorisation`, the last factorisation (of an earlier iterate, or of the last
 //! converged state of the same pattern) is kept as the iteration matrix while it contracts the
-//! residual by at least `contraction` per step (modified Newton): such a step costs one residual
-//! assembly and one solve instead of a tangent assembly and a factorisation. A step that
+//! residual by at least `contraction` per step and is positive definite (modified Newton): such
+//! a step costs one residual assembly and one solve instead of a tangent assembly and a
+//! factorisation. A step that
 //! contracts less, or does not decrease `|r|`, falls back to the consistent tangent at the
 //! current iterate, so the iteration is never worse than full Newton's; the converged state is
 //! the same to the tolerances.
@@ -284,16 +285,18 @@ impl Newton {
             u.copy_from_slice(&next_u);
             state = next;
             history.push(state.assembled.residual_norm());
-            reuse = s.reuse_factorisation && !state.lifting;
+            reuse = s.reuse_factorisation && !state.lifting && self.holds(state.assembled.pattern);
         }
         unreachable!("the loop returns")
     }
 
-    /// Whether a factorisation of a matrix with pattern `pattern` is held.
+    /// Whether a factorisation of a positive definite matrix with pattern `pattern` is held:
+    /// only then is it reused, since on an unstable path (negative pivots) several equilibria
+    /// lie close together and an iteration with an old matrix may settle on another one.
     fn holds(&self, pattern: usize) -> bool {
         self.solver
             .as_ref()
-            .is_some_and(|(id, solver)| *id == pattern && solver.factorisation().is_some())
+            .is_some_and(|(id, solver)| *id == pattern && solver.negative_pivots() == Some(0))
     }
 
     /// A full step with the held factorisation: the new iterate, its displacement, the update

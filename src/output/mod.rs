@@ -1,5 +1,7 @@
 //! Results on disk: CSV tables flushed row by row, JSON summaries, PNG/SVG figures.
 
+pub mod atomic;
+pub mod lock;
 pub mod plot;
 pub mod table;
 pub mod vtu;
@@ -16,8 +18,8 @@ pub fn ensure_dir(dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))
 }
 
-/// Writes a pretty-printed JSON summary.
+/// Writes a pretty-printed JSON summary (atomically: complete or absent).
 pub fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<()> {
     let text = serde_json::to_string_pretty(value).map_err(|e| Error::NonFinite(format!("{}: {e}", path.display())))?;
-    std::fs::write(path, text + "\n").map_err(|e| Error::io(path, e))
+    atomic::write_file(path, text + "\n")
 }

@@ -1,5 +1,6 @@
 //! Line plots rendered to PNG and SVG with an embedded font (no fontconfig, no system fonts).
 
+use super::atomic::write_atomically;
 use crate::error::{Error, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -210,8 +211,12 @@ pub fn save_panels(panels: &[Figure], dir: &Path, stem: &str) -> Result<Vec<Path
         path: path.display().to_string(),
         message,
     };
-    render(BitMapBackend::new(&png, size).into_drawing_area(), panels).map_err(|m| fail(&png, m))?;
-    render(SVGBackend::new(&svg, size).into_drawing_area(), panels).map_err(|m| fail(&svg, m))?;
+    write_atomically(&png, |temporary| {
+        render(BitMapBackend::new(temporary, size).into_drawing_area(), panels).map_err(|m| fail(&png, m))
+    })?;
+    write_atomically(&svg, |temporary| {
+        render(SVGBackend::new(temporary, size).into_drawing_area(), panels).map_err(|m| fail(&svg, m))
+    })?;
     Ok(vec![png, svg])
 }
 

@@ -88,10 +88,12 @@ pub fn write_vtu(
             }
         }
     }
-    let io = |e| Error::io(path, e);
-    let mut out = BufWriter::new(File::create(path).map_err(io)?);
-    write_grid(&mut out, points, cells, point_data, cell_data).map_err(io)?;
-    out.flush().map_err(io)
+    super::atomic::write_atomically(path, |temporary| {
+        let io = |e| Error::io(path, e);
+        let mut out = BufWriter::new(File::create(temporary).map_err(io)?);
+        write_grid(&mut out, points, cells, point_data, cell_data).map_err(io)?;
+        out.flush().map_err(io)
+    })
 }
 
 fn write_grid(
@@ -195,7 +197,7 @@ impl Collection {
             ));
         }
         text.push_str("</Collection>\n</VTKFile>\n");
-        std::fs::write(&self.path, text).map_err(|e| Error::io(&self.path, e))
+        super::atomic::write_file(&self.path, text)
     }
 
     /// Number of files listed.

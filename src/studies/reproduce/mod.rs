@@ -86,7 +86,11 @@ pub fn run_piece(
         for ext in ["png", "svg"] {
             let from = dir.join(format!("{stem}.{ext}"));
             let to = out.join(format!("{stem}.{ext}"));
-            std::fs::copy(&from, &to).map_err(|e| Error::io(&from, e))?;
+            crate::output::atomic::write_atomically(&to, |temporary| {
+                std::fs::copy(&from, temporary)
+                    .map(|_| ())
+                    .map_err(|e| Error::io(&from, e))
+            })?;
         }
     }
     let seconds = start.elapsed().as_secs_f64();

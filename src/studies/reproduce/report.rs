@@ -2,6 +2,7 @@
 
 use super::{pieces, PieceOutcome};
 use crate::error::{Error, Result};
+use crate::output::atomic::write_file;
 use base64::Engine;
 use std::path::{Path, PathBuf};
 
@@ -81,8 +82,8 @@ pub fn write_report(out: &Path, outcomes: &[PieceOutcome]) -> Result<Vec<PathBuf
     html.push_str("</table></body></html>\n");
 
     let (md_path, html_path) = (out.join("report.md"), out.join("report.html"));
-    std::fs::write(&md_path, md).map_err(|e| Error::io(&md_path, e))?;
-    std::fs::write(&html_path, html).map_err(|e| Error::io(&html_path, e))?;
+    write_file(&md_path, md)?;
+    write_file(&html_path, html)?;
     Ok(vec![md_path, html_path])
 }
 

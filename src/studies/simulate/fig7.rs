@@ -8,6 +8,7 @@ use crate::fem::fields::cell_fields;
 use crate::fem::System;
 use crate::material::Bilayer;
 use crate::mesh::MeshSpec;
+use crate::output::atomic::write_atomically;
 use crate::output::plot::{register_font, FONT};
 use crate::output::write_json;
 use crate::parameters::Parameters;
@@ -129,8 +130,24 @@ impl CreaseSnapshots {
             path: path.display().to_string(),
             message,
         };
-        draw(BitMapBackend::new(&png, size).into_drawing_area(), &panels, scale, beta).map_err(|m| fail(&png, m))?;
-        draw(SVGBackend::new(&svg, size).into_drawing_area(), &panels, scale, beta).map_err(|m| fail(&svg, m))?;
+        write_atomically(&png, |temporary| {
+            draw(
+                BitMapBackend::new(temporary, size).into_drawing_area(),
+                &panels,
+                scale,
+                beta,
+            )
+            .map_err(|m| fail(&png, m))
+        })?;
+        write_atomically(&svg, |temporary| {
+            draw(
+                SVGBackend::new(temporary, size).into_drawing_area(),
+                &panels,
+                scale,
+                beta,
+            )
+            .map_err(|m| fail(&svg, m))
+        })?;
         Ok((states, vec![png, svg]))
     }
 }

@@ -297,7 +297,7 @@ impl From<&MeshSpec> for MeshSummary {
 pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Monitor) -> Result<SimulationSummary> {
     params.validate()?;
     study.validate()?;
-    crate::output::ensure_dir(out)?;
+    let _lock = crate::output::lock::OutputLock::acquire(out)?;
     let start = Instant::now();
     let materials = Bilayer::new(params);
     let mut table = CsvWriter::create(&out.join("amplitude.csv"), &amplitude_header())?;

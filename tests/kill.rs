@@ -1,0 +1,148 @@
+//! `kill -9` at random moments: every file a run leaves behind is complete (or absent), and the
+//! next `reproduce` reuses the pieces that finished and redoes the interrupted one.
+
+mod common;
+
+use common::scratch;
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::Duration;
+
+/// A small deterministic generator (xorshift) for the kill moments.
+struct Rng(u64);
+impl Rng {
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        lo + (hi - lo) * (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// Starts `fiberfold args`, kills it (SIGKILL) after `seconds`; whether it had already ended.
+fn kill_after(args: &[&str], seconds: f64) -> bool {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_fiberfold"))
+        .args(args)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("binary runs");
+    std::thread::sleep(Duration::from_secs_f64(seconds));
+    let ended = child.try_wait().expect("status").is_some();
+    let _ = child.kill();
+    child.wait().expect("reaped");
+    ended
+}
+
+/// Every visible file under `dir` is complete for its format; returns how many were checked.
+fn check_complete(dir: &Path) -> usize {
+    let mut checked = 0;
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        if name.starts_with('.') {
+            continue; // the lock and the temporaries of interrupted writes
+        }
+        if path.is_dir() {
+            checked += check_complete(&path);
+            continue;
+        }
+        let bytes = std::fs::read(&path).unwrap();
+        let text = || String::from_utf8(bytes.clone()).unwrap();
+        match path.extension().and_then(|e| e.to_str()).unwrap_or("") {
+            "json" => {
+                serde_json::from_slice::<serde_json::Value>(&bytes)
+                    .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            }
+            "csv" => {
+                let text = text();
+                assert!(text.ends_with('\n'), "{}: a partial last row", path.display());
+                let fields = text.lines().next().unwrap().split(',').count();
+                for line in text.lines() {
+                    assert_eq!(line.split(',').count(), fields, "{}: row `{line}`", path.display());
+                }
+            }
+            "vtu" => {
+                vtkio::Vtk::import(&path).unwrap_or_else(|e| panic!("{}: {e:?}", path.display()));
+            }
+            "pvd" => {
+                let text = text();
+                assert!(text.trim_end().ends_with("</VTKFile>"), "{}", path.display());
+                for file in text.split("file=\"").skip(1).map(|s| &s[..s.find('"').unwrap()]) {
+                    assert!(dir.join(file).is_file(), "{} lists a missing {file}", path.display());
+                }
+            }
+            "png" => {
+                assert!(bytes.starts_with(b"\x89PNG"), "{}", path.display());
+                assert!(bytes.ends_with(b"IEND\xaeB`\x82"), "{}: truncated", path.display());
+            }
+            "svg" => assert!(text().trim_end().ends_with("</svg>"), "{}: truncated", path.display()),
+            "html" => assert!(text().trim_end().ends_with("</html>"), "{}: truncated", path.display()),
+            "md" => assert!(!bytes.is_empty(), "{}", path.display()),
+            other => panic!("unexpected file type {other}: {}", path.display()),
+        }
+        checked += 1;
+    }
+    checked
+}
+
+#[test]
+fn a_killed_simulate_leaves_only_complete_files() {
+    let dir = scratch("killed-simulate");
+    let out = dir.to_str().unwrap();
+    let args = [
+        "simulate",
+        "--waves",
+        "4.5",
+        "--nx",
+        "40",
+        "--layer-elements",
+        "1",
+        "--substrate-elements",
+        "10",
+        "--d-max",
+        "0.3",
+        "--vtu-every",
+        "0.02",
+        "--out",
+        out,
+    ];
+    let mut rng = Rng(0x2545F4914F6CDD1D);
+    let mut checked = 0;
+    for _ in 0..6 {
+        kill_after(&args, rng.uniform(0.05, 1.5));
+        if dir.exists() {
+            checked += check_complete(&dir);
+        }
+    }
+    assert!(
+        checked > 10,
+        "the kills came too early to test anything ({checked} files)"
+    );
+    // The folder is usable again: the dead run's lock is taken over.
+    let out = common::fiberfold(&args);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    check_complete(&dir);
+}
+
+#[test]
+fn a_killed_reproduce_leaves_only_complete_files_and_resumes() {
+    let dir = scratch("killed-reproduce");
+    let out = dir.to_str().unwrap();
+    let args = ["reproduce", "--quick", "--jobs", "2", "--out", out];
+    let mut rng = Rng(0x9E3779B97F4A7C15);
+    for _ in 0..2 {
+        kill_after(&args, rng.uniform(1.0, 8.0));
+        if dir.exists() {
+            check_complete(&dir);
+        }
+    }
+    let done = common::fiberfold(&args);
+    assert!(done.status.success(), "{}", String::from_utf8_lossy(&done.stderr));
+    let stdout = String::from_utf8_lossy(&done.stdout);
+    let reused = stdout.lines().filter(|l| l.ends_with("already done, reused")).count();
+    let redone = stdout.lines().filter(|l| l.ends_with(" s  done")).count();
+    assert!(reused >= 1, "finished pieces are reused: {stdout}");
+    assert!(redone >= 1, "the interrupted pieces are redone: {stdout}");
+    assert!(check_complete(&dir) > 20);
+}
