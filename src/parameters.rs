@@ -23,7 +23,10 @@ pub struct Parameters {
     pub K_s: f64,
     /// Volume fraction of the substrate matrix.
     pub phi_m: f64,
-    /// Volume fraction of the fibres (multiplies the sum over both families).
+    /// Volume fraction of *each* fibre family: eq. 3 (and eq. 4a, which it reproduces) weights
+    /// both `f(I4)` terms by `phi_f`. The paper reads both ways: Table 1 lists `phi_f = 0.1`
+    /// beside `phi_m = 0.9` as if it were the total, while the text says each family has 0.05
+    /// (`reproduce` sets the claims of Figs. 4b-6 under both readings side by side).
     pub phi_f: f64,
     /// Fibre stiffness in `f(I4) = mu_f/4 (I4 - lambda_f^2)^2`.
     pub mu_f: f64,
@@ -178,9 +181,15 @@ impl Parameters {
 
     /// The resolved set as TOML that `--params` reads back.
     pub fn to_toml(&self) -> String {
-        toml::to_string(self).expect("a struct of numbers always serialises")
+        let body = toml::to_string(self).expect("a struct of numbers always serialises");
+        format!("{PHI_F_NOTE}\n{body}")
     }
 }
+
+/// What `phi_f` means, written at the top of every parameter file (a TOML comment).
+pub const PHI_F_NOTE: &str = "# phi_f is the volume fraction of EACH of the two fibre families (eq. 3 weights both \
+    f(I4) terms by it).\n# The paper reads both ways: Table 1 gives phi_f = 0.1 next to phi_m = 0.9, the text \
+    'phi_f = 0.05 for each family'.";
 
 fn unknown_parameter(key: &str) -> Error {
     Error::UnknownParameter {

@@ -313,3 +313,23 @@ fn a_mesh_that_cannot_fit_in_memory_is_refused_at_once() {
     assert!(start.elapsed().as_secs_f64() < 5.0, "refused without assembling");
     assert_eq!(message.lines().count(), 1, "one line: {message}");
 }
+
+#[test]
+fn the_two_readings_of_phi_f_are_documented_and_reported_side_by_side() {
+    let params = fiberfold(&["params"]);
+    let text = String::from_utf8_lossy(&params.stdout);
+    assert!(
+        text.contains("EACH of the two fibre families") && text.contains("0.05"),
+        "{text}"
+    );
+    let help = String::from_utf8_lossy(&fiberfold(&["onset", "--help"]).stdout).to_string();
+    assert!(help.contains("EACH of the two fibre families"), "{help}");
+    let dir = scratch("phi-f-readings");
+    let out = fiberfold(&["reproduce", "--quick", "--only", "fig5", "--out", dir.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let report = std::fs::read_to_string(dir.join("report.md")).unwrap();
+    let rows: Vec<&str> = report.lines().filter(|l| l.contains("growth of d_c")).collect();
+    assert_eq!(rows.len(), 2, "{report}");
+    assert!(rows[0].contains("[phi_f = 0.1 per family]") && rows[1].contains("[phi_f = 0.05 per family]"));
+    assert!(rows[1].contains("closer to the paper: phi_f = "), "{}", rows[1]);
+}

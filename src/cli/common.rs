@@ -14,8 +14,10 @@ pub struct ParamArgs {
     pub params: Option<PathBuf>,
 
     /// Override one parameter, repeatable, e.g. `--set beta=0.785398 --set mu_f=20`. Keys
-    /// (defaults): mu_l (10), K_l (30), mu_s (1), K_s (3), phi_m (0.9), phi_f (0.1),
-    /// mu_f (10), lambda_f (1), beta (0, radians), tension_only (false). Moduli in units of mu_s.
+    /// (defaults): mu_l (10), K_l (30), mu_s (1), K_s (3), phi_m (0.9), phi_f (0.1, the volume
+    /// fraction of EACH of the two fibre families: Table 1's 0.1 read as eq. 3 does; the paper's
+    /// text says 0.05 per family), mu_f (10), lambda_f (1), beta (0, radians), tension_only
+    /// (false). Moduli in units of mu_s.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
 }

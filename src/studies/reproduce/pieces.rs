@@ -65,6 +65,15 @@ fn significant(x: f64) -> String {
 }
 
 fn claim(what: &str, paper: f64, ours: f64, command: &str) -> Claim {
+    if !ours.is_finite() {
+        return Claim {
+            what: what.into(),
+            paper: significant(paper),
+            ours: "not found".into(),
+            note: "no such point in the computed range".into(),
+            command: command.into(),
+        };
+    }
     let relative = ours / paper - 1.0;
     let verdict = if relative.abs() < 0.01 {
         "agrees within 1 %"
@@ -81,58 +90,117 @@ fn claim(what: &str, paper: f64, ours: f64, command: &str) -> Claim {
     }
 }
 
-fn run_fig4b(params: &Parameters, options: &ReproduceOptions, dir: &Path, tick: Tick) -> Result<Vec<Claim>> {
-    let facts = crate::studies::stability_figures::fig4b(params, &Resolution::new(options.quick), dir, tick)?;
-    write_json(&dir.join("fig4b.json"), &facts)?;
-    let sweep_20 = "fiberfold sweep --param beta --from 0 --to 1.5707963 --set mu_f=20";
-    let mut claims = vec![
-        claim(
-            "k0 with unloaded fibres (mu_f = 0, phi_m = 0.9)",
-            0.5515,
-            facts.k0_unloaded_fibres,
-            "fiberfold onset --set mu_f=0",
-        ),
-        claim(
-            "max change of k0 from the fibre-free value, mu_f = 20",
-            0.134,
-            facts.max_relative_change_mu_f_20,
-            sweep_20,
-        ),
-        claim(
-            "angle of the largest k0, mu_f = 20",
-            1.18,
-            facts.angle_of_k_max_mu_f_20,
-            sweep_20,
-        ),
-        claim(
-            "max/min wavelength over beta, mu_f = 20",
-            1.15,
-            facts.wavelength_ratio_mu_f_20,
-            sweep_20,
-        ),
-    ];
-    if let (Some(beta), Some(k)) = (facts.crossing_angle, facts.crossing_k0) {
-        let sweep = "fiberfold sweep --param beta --from 0 --to 1.5707963 --series mu_f=1,50";
-        claims.push(claim(
-            "angle beta_c where the k0(beta) curves cross",
-            0.3846,
-            beta,
-            sweep,
-        ));
-        claims.push(claim("k0 at the crossing", 0.5516, k, sweep));
+/// The two readings of `phi_f` in the paper (see [`Parameters::phi_f`]): as given (Table 1's
+/// 0.1 per family under eq. 3), and half of it per family (the text's 0.05 each).
+fn phi_f_readings(params: &Parameters) -> [(String, Parameters); 2] {
+    let half = Parameters {
+        phi_f: 0.5 * params.phi_f,
+        ..params.clone()
+    };
+    [
+        (format!("phi_f = {} per family", params.phi_f), params.clone()),
+        (format!("phi_f = {} per family", half.phi_f), half),
+    ]
+}
+
+/// The claims of one figure under both readings of `phi_f`, side by side, each pair followed
+/// by which reading lands closer to the paper (computed, never typed in).
+fn under_both_readings(
+    params: &Parameters,
+    dir: &Path,
+    facts_claims: impl Fn(&Parameters, &Path) -> Result<Vec<(String, f64, f64, String)>>,
+) -> Result<Vec<Claim>> {
+    let readings = phi_f_readings(params);
+    let mut per_reading = Vec::new();
+    for (i, (label, p)) in readings.iter().enumerate() {
+        let folder = if i == 0 {
+            dir.to_path_buf()
+        } else {
+            dir.join("phi_f_half")
+        };
+        crate::output::ensure_dir(&folder)?;
+        per_reading.push((label, facts_claims(p, &folder)?));
+    }
+    let mut claims = Vec::new();
+    for (j, (what, paper, _, command)) in per_reading[0].1.iter().enumerate() {
+        let mut offs = Vec::new();
+        for (label, rows) in &per_reading {
+            let ours = rows[j].2;
+            claims.push(claim(&format!("{what} [{label}]"), *paper, ours, command));
+            offs.push(((ours / paper - 1.0).abs(), *label));
+        }
+        let verdict = match (offs[0], offs[1]) {
+            ((a, _), (b, _)) if (a - b).abs() <= 1e-9 * a.max(b) => "both readings give the same".to_string(),
+            ((a, first), (b, _)) if a < b || b.is_nan() => format!("closer to the paper: {first}"),
+            (_, (_, second)) => format!("closer to the paper: {second}"),
+        };
+        if let Some(last) = claims.last_mut() {
+            last.note.push_str(&format!("; {verdict}"));
+        }
     }
     Ok(claims)
 }
 
+fn run_fig4b(params: &Parameters, options: &ReproduceOptions, dir: &Path, tick: Tick) -> Result<Vec<Claim>> {
+    let sweep_20 = "fiberfold sweep --param beta --from 0 --to 1.5707963 --set mu_f=20";
+    let sweep_cross = "fiberfold sweep --param beta --from 0 --to 1.5707963 --series mu_f=1,50";
+    let resolution = Resolution::new(options.quick);
+    under_both_readings(params, dir, |p, folder| {
+        let facts = crate::studies::stability_figures::fig4b(p, &resolution, folder, tick)?;
+        write_json(&folder.join("fig4b.json"), &facts)?;
+        let mut rows = vec![
+            (
+                "k0 with unloaded fibres (mu_f = 0, phi_m = 0.9)".to_string(),
+                0.5515,
+                facts.k0_unloaded_fibres,
+                "fiberfold onset --set mu_f=0".to_string(),
+            ),
+            (
+                "max change of k0 from the fibre-free value, mu_f = 20".to_string(),
+                0.134,
+                facts.max_relative_change_mu_f_20,
+                sweep_20.to_string(),
+            ),
+            (
+                "angle of the largest k0, mu_f = 20".to_string(),
+                1.18,
+                facts.angle_of_k_max_mu_f_20,
+                sweep_20.to_string(),
+            ),
+            (
+                "max/min wavelength over beta, mu_f = 20".to_string(),
+                1.15,
+                facts.wavelength_ratio_mu_f_20,
+                sweep_20.to_string(),
+            ),
+        ];
+        let (beta, k) = (
+            facts.crossing_angle.unwrap_or(f64::NAN),
+            facts.crossing_k0.unwrap_or(f64::NAN),
+        );
+        rows.push((
+            "angle beta_c where the k0(beta) curves cross".into(),
+            0.3846,
+            beta,
+            sweep_cross.into(),
+        ));
+        rows.push(("k0 at the crossing".into(), 0.5516, k, sweep_cross.into()));
+        Ok(rows)
+    })
+}
+
 fn run_fig5(params: &Parameters, options: &ReproduceOptions, dir: &Path, tick: Tick) -> Result<Vec<Claim>> {
-    let facts = crate::studies::stability_figures::fig5(params, &Resolution::new(options.quick), dir, tick)?;
-    write_json(&dir.join("fig5.json"), &facts)?;
-    Ok(vec![claim(
-        "growth of d_c from beta = 0 to pi/2 at mu_f = 10",
-        0.5,
-        facts.growth_mu_f_10,
-        "fiberfold onset --set beta=0; fiberfold onset --set beta=1.5707963",
-    )])
+    let resolution = Resolution::new(options.quick);
+    under_both_readings(params, dir, |p, folder| {
+        let facts = crate::studies::stability_figures::fig5(p, &resolution, folder, tick)?;
+        write_json(&folder.join("fig5.json"), &facts)?;
+        Ok(vec![(
+            "growth of d_c from beta = 0 to pi/2 at mu_f = 10".to_string(),
+            0.5,
+            facts.growth_mu_f_10,
+            "fiberfold onset --set beta=0; fiberfold onset --set beta=1.5707963".to_string(),
+        )])
+    })
 }
 
 fn run_fig6(params: &Parameters, options: &ReproduceOptions, dir: &Path, tick: Tick) -> Result<Vec<Claim>> {
