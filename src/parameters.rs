@@ -153,20 +153,24 @@ impl Parameters {
 
     /// Checks every range; the message names the parameter and its allowed range.
     pub fn validate(&self) -> Result<()> {
-        let positive = [
+        // Moduli within 12 orders of magnitude of the unit mu_s = 1 (K/mu = 1e6 is nearly
+        // incompressible tissue; beyond 1e12 the energy's derivatives lose all precision).
+        let moduli = [
             ("mu_l", self.mu_l),
             ("K_l", self.K_l),
             ("mu_s", self.mu_s),
             ("K_s", self.K_s),
-            ("lambda_f", self.lambda_f),
         ];
-        for (name, value) in positive {
-            if !(value.is_finite() && value > 0.0) {
-                return Err(Error::invalid(name, value, "(0, inf), a finite number > 0"));
+        for (name, value) in moduli {
+            if !(value.is_finite() && (MODULUS_MIN..=MODULUS_MAX).contains(&value)) {
+                return Err(Error::invalid(name, value, "[1e-12, 1e12] (moduli in units of mu_s)"));
             }
         }
-        if !(self.mu_f.is_finite() && self.mu_f >= 0.0) {
-            return Err(Error::invalid("mu_f", self.mu_f, "[0, inf), a finite number >= 0"));
+        if !(self.mu_f.is_finite() && (0.0..=MODULUS_MAX).contains(&self.mu_f)) {
+            return Err(Error::invalid("mu_f", self.mu_f, "[0, 1e12] (in units of mu_s)"));
+        }
+        if !(self.lambda_f.is_finite() && self.lambda_f > 0.0 && self.lambda_f <= 10.0) {
+            return Err(Error::invalid("lambda_f", self.lambda_f, "(0, 10]"));
         }
         for (name, value) in [("phi_m", self.phi_m), ("phi_f", self.phi_f)] {
             if !(value.is_finite() && (0.0..=1.0).contains(&value)) {
@@ -185,6 +189,10 @@ impl Parameters {
         format!("{PHI_F_NOTE}\n{body}")
     }
 }
+
+/// Smallest and largest moduli accepted (units of `mu_s`).
+const MODULUS_MIN: f64 = 1e-12;
+const MODULUS_MAX: f64 = 1e12;
 
 /// What `phi_f` means, written at the top of every parameter file (a TOML comment).
 pub const PHI_F_NOTE: &str = "# phi_f is the volume fraction of EACH of the two fibre families (eq. 3 weights both \

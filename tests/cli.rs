@@ -28,10 +28,14 @@ fn volume_fraction_out_of_range() {
 
 #[test]
 fn non_positive_modulus() {
-    for key in ["mu_l", "K_l", "mu_s", "K_s", "lambda_f"] {
-        rejected(&["params", "--set", &format!("{key}=0")], &[key, "> 0"]);
+    for key in ["mu_l", "K_l", "mu_s", "K_s"] {
+        rejected(&["params", "--set", &format!("{key}=0")], &[key, "[1e-12, 1e12]"]);
+        rejected(&["params", "--set", &format!("{key}=1e308")], &[key, "[1e-12, 1e12]"]);
     }
-    rejected(&["params", "--set", "mu_f=-1"], &["mu_f", ">= 0"]);
+    rejected(&["params", "--set", "lambda_f=0"], &["lambda_f", "(0, 10]"]);
+    rejected(&["params", "--set", "mu_f=-1"], &["mu_f", "[0, 1e12]"]);
+    rejected(&["params", "--set", "mu_f=1e308"], &["mu_f", "[0, 1e12]"]);
+    rejected(&["dispersion", "--k-max", "378"], &["k-max", "10]"]);
 }
 
 #[test]

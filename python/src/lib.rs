@@ -9,7 +9,7 @@ use fiberfold::mesh::MeshSpec;
 use fiberfold::output::vtu::{vtk_cell, write_vtu, DataArray};
 use fiberfold::parameters::{validate_compression, Parameters, PARAMETER_NAMES};
 use fiberfold::stability::discrete::DiscreteOptions;
-use fiberfold::stability::{Method, StabilityAnalysis};
+use fiberfold::stability::{Method, StabilityAnalysis, K_MAX};
 use fiberfold::studies::homogeneous::{columns, CSV_HEADER};
 use fiberfold::studies::simulate::{self, amplitude_header, amplitude_row, Progress, SimulateOptions, StateFields};
 use fiberfold::studies::stability::{DispersionCurve, OnsetSummary, SweepStudy};
@@ -204,9 +204,9 @@ fn dispersion<'py>(
     method_name: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     let ks = k.as_array().to_vec();
-    if let Some(bad) = ks.iter().find(|k| !(k.is_finite() && **k > 0.0)) {
+    if let Some(bad) = ks.iter().find(|k| !(k.is_finite() && **k > 0.0 && **k <= K_MAX)) {
         return Err(PyValueError::new_err(format!(
-            "invalid value {bad} for `k`: allowed range is (0, inf)"
+            "invalid value {bad} for `k`: allowed range is (0, {K_MAX}] (beyond kH = {K_MAX} the layer acts as a half-space)"
         )));
     }
     let method = method(method_name)?;

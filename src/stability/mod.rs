@@ -17,7 +17,7 @@ pub mod moduli;
 mod search;
 
 pub use moduli::IncrementalModuli;
-pub use search::{Minimum, Onset, StabilityAnalysis};
+pub use search::{Minimum, Onset, StabilityAnalysis, K_MAX};
 
 /// Which solver computes `d_c(k)`.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -38,7 +38,10 @@ pub enum Minimum {
 /// to `K_SHORT`, where `kH` is large enough for the layer to act as a half-space and the exact
 /// method is still well conditioned); a minimum still at either end is reported as the limit.
 const K_LONG: f64 = 1e-4;
-const K_SHORT: f64 = 10.0;
+const K_SHORT: f64 = K_MAX;
+/// Largest wavenumber analysed: beyond `kH = 10` the layer acts as a half-space, and the exact
+/// method's exponentials of `k H` cost it its precision (garbage `d_c` from `k ~ 15`).
+pub const K_MAX: f64 = 10.0;
 /// Probes per decade beyond the grid.
 const PROBES_PER_DECADE: f64 = 4.0;
 /// A rise of `d_c` beyond the grid smaller than this is the round-off of a curve that has
@@ -195,6 +198,9 @@ impl StabilityAnalysis {
 
     fn limit_reason(&self) -> String {
         match self.d_ellipticity_loss {
+            Some(d) if d < 1e-3 => format!(
+                "the loss of strong ellipticity at d = {d:.2e}, i.e. at rest (e.g. stiff fibres under compression, or no matrix): no wrinkling answer exists"
+            ),
             Some(d) => format!("the loss of ellipticity at d = {d:.6}"),
             None => format!("d = {D_END}"),
         }
@@ -257,7 +263,10 @@ impl StabilityAnalysis {
             .expect("non-empty grid");
         if !curve[best].is_finite() {
             return Err(Error::NoRoot {
-                what: format!("wrinkling for k in [{k_lo}, {k_hi}] before {}", self.limit_reason()),
+                what: format!(
+                    "wrinkling for k in [{k_lo}, {k_hi}] (or beyond, to {K_LONG} and {K_SHORT}) before {}",
+                    self.limit_reason()
+                ),
                 lower: 0.0,
                 upper: self.d_limit,
             });

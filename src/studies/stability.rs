@@ -5,7 +5,7 @@ use crate::error::{Error, Result};
 use crate::output::table::Cell;
 use crate::output::{ensure_dir, plot::save_panels, write_json, CsvWriter, Figure, LineStyle, Series};
 use crate::parameters::{Parameters, PARAMETER_NAMES};
-use crate::stability::{Method, Minimum, Onset, StabilityAnalysis};
+use crate::stability::{Method, Minimum, Onset, StabilityAnalysis, K_MAX};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -24,11 +24,14 @@ impl DispersionStudy {
         if !(self.k_min.is_finite() && self.k_min > 0.0) {
             return Err(Error::invalid("k-min", self.k_min, "(0, k-max)"));
         }
-        if !(self.k_max.is_finite() && self.k_max > self.k_min) {
+        if !(self.k_max.is_finite() && self.k_max > self.k_min && self.k_max <= K_MAX) {
             return Err(Error::invalid(
                 "k-max",
                 self.k_max,
-                &format!("(k-min = {}, inf)", self.k_min),
+                &format!(
+                    "(k-min = {}, {K_MAX}] (beyond kH = {K_MAX} the layer acts as a half-space)",
+                    self.k_min
+                ),
             ));
         }
         validate_points("points", self.points, 2)
