@@ -42,7 +42,7 @@ enum Command {
     Bifurcation(bifurcation::BifurcationArgs),
     /// Timings of the stability analysis or the finite-element solver.
     Bench(bench::BenchArgs),
-    /// Regenerate every figure available so far into one folder, with a report.
+    /// Regenerate every figure of the paper (Figs. 2-7) into one folder, with a report.
     Reproduce(reproduce::ReproduceArgs),
 }
 

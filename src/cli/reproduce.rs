@@ -1,4 +1,4 @@
-//! `fiberfold reproduce`: every figure available so far, resumable, in parallel, with a report.
+//! `fiberfold reproduce`: every figure of the paper, resumable, in parallel, with a report.
 
 use super::common::{progress, ParamArgs};
 use clap::Args;

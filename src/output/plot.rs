@@ -3,7 +3,9 @@
 use super::atomic::write_atomically;
 use crate::error::{Error, Result};
 use plotters::coord::Shift;
+use plotters::element::{Drawable, PointCollection};
 use plotters::prelude::*;
+use plotters_backend::{BackendCoord, DrawingErrorKind};
 use std::path::{Path, PathBuf};
 use std::sync::Once;
 
@@ -163,13 +165,15 @@ impl Figure {
             }
             .map_err(|e| e.to_string())?;
             if !s.label.is_empty() {
+                // The legend shows exactly the mark and line the series is drawn with.
                 let style = s.style;
-                anno.label(&s.label).legend(move |(x, y)| match style {
-                    LineStyle::Circles | LineStyle::Crosses => {
-                        Circle::new((x + 10, y), 4, color.stroke_width(2)).into_dyn()
+                anno.label(&s.label).legend(move |(x, y)| {
+                    LegendGlyph {
+                        at: (x, y),
+                        style,
+                        color,
                     }
-                    LineStyle::Dashed => PathElement::new(vec![(x, y), (x + 8, y)], color.stroke_width(2)).into_dyn(),
-                    _ => PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)).into_dyn(),
+                    .into_dyn()
                 });
             }
         }
@@ -189,6 +193,48 @@ impl Figure {
                 .map_err(|e| e.to_string())?;
         }
         Ok(())
+    }
+}
+
+/// The legend's sample of a series: the same mark and line as the series, 20 px wide.
+struct LegendGlyph {
+    at: (i32, i32),
+    style: LineStyle,
+    color: RGBColor,
+}
+
+impl<'a> PointCollection<'a, (i32, i32)> for &'a LegendGlyph {
+    type Point = &'a (i32, i32);
+    type IntoIter = std::iter::Once<&'a (i32, i32)>;
+    fn point_iter(self) -> Self::IntoIter {
+        std::iter::once(&self.at)
+    }
+}
+
+impl<DB: DrawingBackend> Drawable<DB> for LegendGlyph {
+    fn draw<I: Iterator<Item = BackendCoord>>(
+        &self,
+        mut points: I,
+        backend: &mut DB,
+        _: (u32, u32),
+    ) -> std::result::Result<(), DrawingErrorKind<DB::ErrorType>> {
+        let Some((x, y)) = points.next() else { return Ok(()) };
+        let (stroke, mid) = (self.color.stroke_width(2), (x + 10, y));
+        let line = |backend: &mut DB, from: i32, to: i32| backend.draw_line((x + from, y), (x + to, y), &stroke);
+        match self.style {
+            LineStyle::Solid => line(backend, 0, 20),
+            LineStyle::Dashed => line(backend, 0, 8).and_then(|()| line(backend, 13, 20)),
+            LineStyle::Circles => backend.draw_circle(mid, 5, &stroke, false),
+            LineStyle::Crosses => {
+                let thick = self.color.stroke_width(3);
+                backend
+                    .draw_line((x + 3, y - 7), (x + 17, y + 7), &thick)
+                    .and_then(|()| backend.draw_line((x + 3, y + 7), (x + 17, y - 7), &thick))
+            }
+            LineStyle::DotsAndLine => {
+                line(backend, 0, 20).and_then(|()| backend.draw_circle(mid, 3, &self.color.filled(), true))
+            }
+        }
     }
 }
 
@@ -224,5 +270,48 @@ impl Figure {
     /// Writes `dir/stem.png` and `dir/stem.svg`.
     pub fn save(&self, dir: &Path, stem: &str) -> Result<Vec<PathBuf>> {
         save_panels(std::slice::from_ref(self), dir, stem)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Draws one legend glyph into a 20 x 20 white bitmap; whether pixel `(x, y)` was painted.
+    fn glyph(style: LineStyle) -> impl Fn(u32, u32) -> bool {
+        let mut buffer = vec![255u8; 20 * 20 * 3];
+        {
+            let root = BitMapBackend::with_buffer(&mut buffer, (20, 20)).into_drawing_area();
+            root.draw(&LegendGlyph {
+                at: (0, 10),
+                style,
+                color: RGBColor(0, 0, 0),
+            })
+            .unwrap();
+            root.present().unwrap();
+        }
+        move |x, y| buffer[3 * (20 * y + x) as usize] < 128
+    }
+
+    #[test]
+    fn legend_glyphs_show_the_mark_and_line_that_is_drawn() {
+        let cross = glyph(LineStyle::Crosses);
+        assert!(
+            cross(4, 4) && cross(16, 16) && cross(10, 10),
+            "a cross has its diagonals"
+        );
+        assert!(!cross(10, 5), "a cross is not a circle");
+        let circle = glyph(LineStyle::Circles);
+        assert!(circle(10, 5) && circle(5, 10) && !circle(10, 10), "an open circle");
+        assert!(!circle(4, 4), "a circle is not a cross");
+        let dashed = glyph(LineStyle::Dashed);
+        assert!(
+            dashed(3, 10) && dashed(16, 10) && !dashed(10, 10),
+            "a dash, a gap, a dash"
+        );
+        let solid = glyph(LineStyle::Solid);
+        assert!(solid(3, 10) && solid(10, 10) && solid(18, 10) && !solid(10, 6));
+        let dots = glyph(LineStyle::DotsAndLine);
+        assert!(dots(3, 10) && dots(10, 8) && !solid(10, 8), "a line with a dot on it");
     }
 }

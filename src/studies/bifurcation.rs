@@ -158,7 +158,7 @@ fn write_mode(out: &Path, materials: &Bilayer, spec: MeshSpec, found: &Bifurcati
             "Bifurcation mode at d = {:.6}: {} half waves, k = {:.4}",
             found.d, found.mode_number, found.k_mode
         ),
-        "X",
+        "reference X / H",
         "u_y of the mode on the top surface (max 1)",
     )
     .with(Series::new("mode", surface, LineStyle::Solid, 0));

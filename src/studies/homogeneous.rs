@@ -125,8 +125,8 @@ fn fig2(params: &Parameters, rows: &[HomogeneousRow]) -> Figure {
     let incompressible = rows.iter().map(|r| (r.state.lambda1, 1.0 / r.state.lambda1)).collect();
     Figure::new(
         format!("Fig. 2: substrate stretch, beta = {:.4}", params.beta),
-        "lambda_1 = 1 - d",
-        "lambda_2s",
+        "lateral stretch lambda_1 = 1 - d",
+        "substrate's vertical stretch lambda_2s",
     )
     .with(Series::new("compressible (eq. 4a)", compressible, LineStyle::Solid, 0))
     .with(Series::new(

@@ -97,8 +97,8 @@ pub fn dispersion(params: &Parameters, study: &DispersionStudy, out: &Path, tick
     }
     let figure = Figure::new(
         format!("Critical compression, beta = {:.4}", params.beta),
-        "wavenumber k",
-        "d_c",
+        "wavenumber k H",
+        "critical compression d_c",
     )
     .with(Series::new("d_c(k)", curve.points.clone(), LineStyle::Solid, 0))
     .with(match onset.minimum {
@@ -308,6 +308,15 @@ struct SweepSummary<'a> {
     points: &'a [SweepPoint],
 }
 
+/// A parameter's name with its unit, for an axis.
+pub(crate) fn parameter_axis(name: &str) -> String {
+    match name {
+        "beta" => "fibre angle beta (rad)".into(),
+        "mu_l" | "K_l" | "mu_s" | "K_s" | "mu_f" => format!("{name} (units of mu_s)"),
+        other => format!("{other} (-)"),
+    }
+}
+
 /// Writes `sweep.csv` (`series,value,k0,d_c,minimum`; `k0` empty where the minimum is a
 /// long- or short-wave limit), `sweep.json` and `sweep.png/svg` (limits marked by crosses).
 pub fn sweep(params: &Parameters, study: &SweepStudy, out: &Path, tick: Tick) -> Result<Vec<PathBuf>> {
@@ -336,8 +345,9 @@ pub fn sweep(params: &Parameters, study: &SweepStudy, out: &Path, tick: Tick) ->
             ])?;
         }
     }
-    let mut k_panel = Figure::new("Onset wavenumber", study.param.as_str(), "k0");
-    let mut d_panel = Figure::new("Critical compression", study.param.as_str(), "d_c");
+    let axis = parameter_axis(&study.param);
+    let mut k_panel = Figure::new("Onset wavenumber", axis.as_str(), "onset wavenumber k0 H");
+    let mut d_panel = Figure::new("Critical compression", axis.as_str(), "critical compression d_c");
     let mut series_values: Vec<Option<f64>> = points.iter().map(|p| p.series).collect();
     series_values.dedup();
     for (i, s) in series_values.iter().enumerate() {

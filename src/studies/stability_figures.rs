@@ -92,8 +92,12 @@ pub fn fig4b(params: &Parameters, resolution: &Resolution, out: &Path, tick: Tic
     let k0_unloaded_fibres = StabilityAnalysis::new(&unloaded, Method::Exact)?.onset()?.k0;
 
     let mut csv = CsvWriter::create(&out.join("fig4b.csv"), &["mu_f", "beta", "k0", "d_c"])?;
-    let mut figure =
-        Figure::new("Fig. 4b: onset wavenumber", "fibre angle beta (rad)", "k0").with_legend(Legend::LowerRight);
+    let mut figure = Figure::new(
+        "Fig. 4b: onset wavenumber",
+        "fibre angle beta (rad)",
+        "onset wavenumber k0 H",
+    )
+    .with_legend(Legend::LowerRight);
     for (i, &mu_f) in FIBRE_STIFFNESSES.iter().enumerate() {
         let curve: Vec<(f64, f64)> = series_of(&points, mu_f, |o| o.k0);
         for p in points.iter().filter(|p| p.series == Some(mu_f)) {
@@ -181,7 +185,8 @@ pub fn fig5(params: &Parameters, resolution: &Resolution, out: &Path, tick: Tick
     let mut onsets = Vec::new();
     let mut csv = CsvWriter::create(&out.join("fig5.csv"), &["beta", "mu_f", "k", "d_c"])?;
     for (label, beta) in [("(a) beta = 0", 0.0), ("(b) beta = pi/2", FRAC_PI_2)] {
-        let mut figure = Figure::new(format!("Fig. 5{label}"), "wavenumber k", "d_c").with_legend(Legend::UpperLeft);
+        let mut figure = Figure::new(format!("Fig. 5{label}"), "wavenumber k H", "critical compression d_c")
+            .with_legend(Legend::UpperLeft);
         for (i, &mu_f) in FIBRE_STIFFNESSES.iter().enumerate() {
             let analysis = StabilityAnalysis::new(
                 &Parameters {
@@ -195,9 +200,14 @@ pub fn fig5(params: &Parameters, resolution: &Resolution, out: &Path, tick: Tick
             for &(k, d) in &curve.points {
                 csv.append(&[beta, mu_f, k, d])?;
             }
-            figure
-                .series
-                .push(Series::new(format!("mu_f = {mu_f}"), curve.points, LineStyle::Solid, i));
+            // A curve that stops short of the wavenumbers asked for says why.
+            let ends_early = curve.points.last().is_some_and(|&(k, _)| k < ks[ks.len() - 1] - 1e-12);
+            let name = match (ends_early, analysis.ellipticity_loss()) {
+                (true, Some(d)) => format!("mu_f = {mu_f} (ends: ellipticity lost at d = {d:.3})"),
+                (true, None) => format!("mu_f = {mu_f} (ends: no d_c below 0.95)"),
+                _ => format!("mu_f = {mu_f}"),
+            };
+            figure.series.push(Series::new(name, curve.points, LineStyle::Solid, i));
             if let Ok(onset) = analysis.onset() {
                 figure
                     .series
@@ -246,10 +256,15 @@ pub fn fig6(params: &Parameters, resolution: &Resolution, out: &Path, tick: Tick
             lower.push((value, k_min));
             upper.push((value, k_max));
         }
-        let figure = Figure::new(format!("Fig. 6({panel}): admissible onset wavenumbers"), key, "k0")
-            .with_legend(Legend::LowerLeft)
-            .with(Series::new("k_max", upper, LineStyle::Solid, 0))
-            .with(Series::new("k_min", lower, LineStyle::Dashed, 0));
+        let axis = super::stability::parameter_axis(key);
+        let figure = Figure::new(
+            format!("Fig. 6({panel}): admissible onset wavenumbers"),
+            axis,
+            "onset wavenumber k0 H",
+        )
+        .with_legend(Legend::LowerLeft)
+        .with(Series::new("k_max", upper, LineStyle::Solid, 0))
+        .with(Series::new("k_min", lower, LineStyle::Dashed, 0));
         panels.push(figure);
     }
     save_panels(&panels, out, "fig6")?;

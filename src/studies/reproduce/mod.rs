@@ -1,4 +1,5 @@
-//! `reproduce`: every figure of the paper available so far, into one folder, with a report.
+//! `reproduce`: every figure of the paper (Figs. 2-7 and the exact FE bifurcation), into one
+//! folder, with a report.
 //!
 //! Each piece writes into its own sub-folder and copies its figures to the top folder. A piece
 //! whose `done.json` records the same parameters is skipped, so an interrupted run resumes.

@@ -108,8 +108,8 @@ fn run_case(params: &Parameters, options: &Fig4aOptions, beta: f64, waves: f64) 
 fn figure(params: &Parameters, options: &Fig4aOptions, rows: &[Fig4aRow]) -> Result<Figure> {
     let mut figure = Figure::new(
         "Fig. 4a: critical compression against wavenumber",
-        "wavenumber k",
-        "d_c",
+        "wavenumber k H",
+        "critical compression d_c",
     )
     .with_legend(Legend::LowerRight);
     for (colour, &beta) in options.betas.iter().enumerate() {

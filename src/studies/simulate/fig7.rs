@@ -296,14 +296,17 @@ fn draw<DB: DrawingBackend>(
                 (FONT, 18),
             )
             .margin(8)
-            .x_label_area_size(30)
-            .y_label_area_size(45)
+            .x_label_area_size(40)
+            .y_label_area_size(55)
             .build_cartesian_2d(0.0..panel.x_max, panel.surface_range())
             .map_err(e)?;
         profile
             .configure_mesh()
             .light_line_style(WHITE.mix(0.0))
             .label_style((FONT, 12))
+            .x_desc("current x / H")
+            .y_desc("current y / H")
+            .axis_desc_style((FONT, 13))
             .draw()
             .map_err(e)?;
         // One-pixel lines: a wider polyline's mitred joins degenerate where the surface folds
@@ -317,13 +320,16 @@ fn draw<DB: DrawingBackend>(
                 (FONT, 18),
             )
             .margin(8)
-            .x_label_area_size(30)
-            .y_label_area_size(45)
+            .x_label_area_size(40)
+            .y_label_area_size(55)
             .build_cartesian_2d(0.0..panel.x_max, panel.y_range.0..panel.y_range.1)
             .map_err(e)?;
         map.configure_mesh()
             .light_line_style(WHITE.mix(0.0))
             .label_style((FONT, 12))
+            .x_desc("current x / H")
+            .y_desc("current y / H")
+            .axis_desc_style((FONT, 13))
             .draw()
             .map_err(e)?;
         map.draw_series(

@@ -352,7 +352,7 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
     .iter()
     .map(|f| out.join(f))
     .collect();
-    files.extend(fig3(&curve, &onset).save(out, "fig3")?);
+    files.extend(crate::output::plot::save_panels(&fig3(&curve, &onset), out, "fig3")?);
     files.extend(secondary_files);
     if let Some(crease) = crease {
         files.extend(crease.draw(system, &materials, params.beta, out)?.1);

@@ -132,8 +132,8 @@ fn mode_figure(mesh: &Mesh, uy: &[f64], d: f64) -> Figure {
     let x = mesh.top().into_iter().map(|n| mesh.coordinates()[n][0]);
     Figure::new(
         format!("First secondary bifurcation mode, d = {d:.4}"),
-        "reference X",
-        "mode u_y on the top surface",
+        "reference X / H",
+        "mode u_y on the top surface (largest = 1)",
     )
     .with(Series::new(
         "",
