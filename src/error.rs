@@ -73,6 +73,11 @@ impl Error {
         }
     }
 
+    /// [`Error::invalid`] for a number, written shortly (`1e308`, not its 309 digits).
+    pub fn invalid_number(name: &str, value: f64, allowed: &str) -> Self {
+        Self::invalid(name, crate::output::table::format_number(value), allowed)
+    }
+
     /// Attaches a path to an I/O error.
     pub fn io(path: &std::path::Path, source: std::io::Error) -> Self {
         Error::Io {

@@ -163,14 +163,18 @@ impl Parameters {
         ];
         for (name, value) in moduli {
             if !(value.is_finite() && (MODULUS_MIN..=MODULUS_MAX).contains(&value)) {
-                return Err(Error::invalid(name, value, "[1e-12, 1e12] (moduli in units of mu_s)"));
+                return Err(Error::invalid_number(
+                    name,
+                    value,
+                    "[1e-12, 1e12] (moduli in units of mu_s)",
+                ));
             }
         }
         if !(self.mu_f.is_finite() && (0.0..=MODULUS_MAX).contains(&self.mu_f)) {
-            return Err(Error::invalid("mu_f", self.mu_f, "[0, 1e12] (in units of mu_s)"));
+            return Err(Error::invalid_number("mu_f", self.mu_f, "[0, 1e12] (in units of mu_s)"));
         }
         if !(self.lambda_f.is_finite() && self.lambda_f > 0.0 && self.lambda_f <= 10.0) {
-            return Err(Error::invalid("lambda_f", self.lambda_f, "(0, 10]"));
+            return Err(Error::invalid_number("lambda_f", self.lambda_f, "(0, 10]"));
         }
         for (name, value) in [("phi_m", self.phi_m), ("phi_f", self.phi_f)] {
             if !(value.is_finite() && (0.0..=1.0).contains(&value)) {
