@@ -337,3 +337,51 @@ fn the_two_readings_of_phi_f_are_documented_and_reported_side_by_side() {
     assert!(rows[0].contains("[phi_f = 0.1 per family]") && rows[1].contains("[phi_f = 0.05 per family]"));
     assert!(rows[1].contains("closer to the paper: phi_f = "), "{}", rows[1]);
 }
+
+#[test]
+fn crease_writes_its_onset_and_refuses_bad_folds() {
+    let dir = scratch("crease");
+    let out = dir.to_str().unwrap();
+    rejected(
+        &["crease", "--fold", "0", "--out", out],
+        &["`fold`", "(0, size / 4 = 3]"],
+    );
+    rejected(
+        &[
+            "crease", "--fold", "1", "--d-from", "0.5", "--d-to", "0.4", "--out", out,
+        ],
+        &["d-from"],
+    );
+    // A soft layer (mu_l = 1.5) on Table 1's substrate, one fold, a coarse block.
+    let run = fiberfold(&[
+        "crease",
+        "--set",
+        "mu_l=1.5",
+        "--set",
+        "K_l=4.5",
+        "--fold",
+        "1",
+        "--d-from",
+        "0.2",
+        "--d-to",
+        "0.3",
+        "--nx",
+        "24",
+        "--substrate-elements",
+        "12",
+        "--layer-elements",
+        "2",
+        "--no-convergence",
+        "--out",
+        out,
+    ]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("crease.json")).unwrap()).unwrap();
+    let d = report["d_crease"].as_f64().expect("a crease onset");
+    assert!((0.2..0.3).contains(&d), "{d}");
+    assert_eq!(report["fold_length"].as_f64(), Some(1.0));
+    for file in ["crease_energy.csv", "crease.png", "crease.svg"] {
+        assert!(dir.join(file).is_file(), "{file}");
+    }
+}

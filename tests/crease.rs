@@ -208,3 +208,54 @@ fn png_size(path: &std::path::Path) -> (u32, u32) {
     let be = |i: usize| u32::from_be_bytes(bytes[i..i + 4].try_into().unwrap());
     (be(16), be(20))
 }
+
+/// `fiberfold crease` on one solid (layer = substrate, K = 100 mu): Hong, Zhao and Suo's
+/// threshold (~0.35, far below Biot's 0.456) whatever the fold length, since a half-space has
+/// no length scale; the report names the smallest.
+#[test]
+fn the_crease_onset_of_a_half_space_is_the_same_for_every_fold_length() {
+    use fiberfold::studies::crease::{crease, CreaseMesh, CreaseStudy, Scan};
+    let params = Parameters {
+        mu_l: 1.0,
+        K_l: 100.0,
+        mu_s: 1.0,
+        K_s: 100.0,
+        phi_m: 1.0,
+        phi_f: 0.0,
+        ..Parameters::default()
+    };
+    let study = CreaseStudy {
+        mesh: CreaseMesh {
+            size: 12.0,
+            nx: 48,
+            layer: 8,
+            substrate: 20,
+            ratio: 8.0,
+        },
+        fold_lengths: vec![0.5, 1.0],
+        scan: Scan {
+            from: 0.30,
+            to: 0.38,
+            step: 0.04,
+            tolerance: 1e-3,
+        },
+        convergence: false,
+    };
+    let report = crease(&params, &study, &|| {}).unwrap();
+    let thresholds: Vec<f64> = report.folds.iter().map(|f| f.d_threshold.unwrap()).collect();
+    println!(
+        "thresholds {thresholds:?}, d_crease {:?} at a = {:?}",
+        report.d_crease, report.fold_length
+    );
+    for &d in &thresholds {
+        assert!((0.33..=0.38).contains(&d), "{d}");
+        assert!(d < BIOT_STRAIN - 0.07);
+    }
+    assert!(
+        (thresholds[0] - thresholds[1]).abs() < 0.01,
+        "scale-free: {thresholds:?}"
+    );
+    let d_crease = report.d_crease.unwrap();
+    assert_eq!(d_crease, thresholds.iter().copied().fold(f64::INFINITY, f64::min));
+    assert!(report.depth.unwrap() > 0.0);
+}

@@ -138,6 +138,12 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                 assert!(report.contains("| 0.5515 | 0.551513 |"), "{report}");
                 assert!(dir.join("report.html").exists() && dir.join("fig4b.png").exists());
             }
+            "crease" => {
+                // One solid: Hong, Zhao and Suo's creasing strain, far below Biot's 0.456.
+                let (dir, _) = run(command, &[]);
+                let d = json(dir.join("crease.json"))["d_crease"].as_f64().unwrap();
+                assert!((0.33..0.38).contains(&d), "d_crease {d}");
+            }
             other => panic!("README shows `{command}` but no test runs `{other}`"),
         }
     }

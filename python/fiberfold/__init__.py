@@ -36,6 +36,7 @@ __all__ = [
     "sweep",
     "simulate",
     "bifurcation",
+    "crease",
 ]
 
 ArrayLike = Union[Sequence[float], np.ndarray, float]
@@ -203,3 +204,31 @@ def bifurcation(params: Parameters, mesh: str = "coarse", out: Optional[str] = N
         return json.loads(_fiberfold.bifurcation_run(params, str(out), mesh))
     with tempfile.TemporaryDirectory() as folder:
         return json.loads(_fiberfold.bifurcation_run(params, folder, mesh))
+
+
+def crease(
+    params: Parameters,
+    folds: Sequence[float] = (0.5, 1.0, 2.0),
+    *,
+    d_from: float = 0.05,
+    d_to: float = 0.7,
+    d_step: float = 0.05,
+    tolerance: float = 1e-3,
+    size: float = 12.0,
+    nx: int = 48,
+    layer_elements: int = 4,
+    substrate_elements: int = 20,
+    ratio: float = 8.0,
+    convergence: bool = True,
+) -> Dict[str, Any]:
+    """The crease onset (``fiberfold crease``): where a seeded crease of reference length ``a``
+    (each of ``folds``, units of H) first lowers the energy below the flat state's (Hong, Zhao
+    and Suo's criterion). The content of ``crease.json``: ``d_crease`` (the smallest threshold,
+    None if none within the scan), ``fold_length``, ``depth``, every fold's ``d_threshold`` and
+    energies, and ``d_crease_refined`` on a mesh refined twice (``convergence``)."""
+    return json.loads(
+        _fiberfold.crease_run(
+            _check_parameters(params), [float(a) for a in folds], d_from, d_to, d_step, tolerance, size, nx,
+            layer_elements, substrate_elements, ratio, convergence,
+        )
+    )

@@ -77,3 +77,17 @@ def simulate_run(
     progress: Optional[Callable[[Dict[str, Any]], None]],
 ) -> Tuple[Dict[str, npt.NDArray[np.float64]], str, State, Optional[str]]: ...
 def bifurcation_run(params: Parameters, out: str, mesh: str = ...) -> str: ...
+def crease_run(
+    params: Parameters,
+    folds: List[float],
+    d_from: float,
+    d_to: float,
+    d_step: float,
+    tolerance: float,
+    size: float,
+    nx: int,
+    layer_elements: int,
+    substrate_elements: int,
+    ratio: float,
+    convergence: bool,
+) -> str: ...

@@ -507,6 +507,48 @@ fn bifurcation_run(py: Python<'_>, params: &PyParameters, out: PathBuf, mesh: &s
     serde_json::to_string(&report).map_err(|e| PyRuntimeError::new_err(e.to_string()))
 }
 
+/// The crease onset (`fiberfold crease`), in memory: `crease.json` as JSON text.
+#[pyfunction]
+#[pyo3(signature = (params, folds, d_from, d_to, d_step, tolerance, size, nx, layer_elements, substrate_elements, ratio, convergence))]
+#[allow(clippy::too_many_arguments)]
+fn crease_run(
+    py: Python<'_>,
+    params: &PyParameters,
+    folds: Vec<f64>,
+    d_from: f64,
+    d_to: f64,
+    d_step: f64,
+    tolerance: f64,
+    size: f64,
+    nx: usize,
+    layer_elements: usize,
+    substrate_elements: usize,
+    ratio: f64,
+    convergence: bool,
+) -> PyResult<String> {
+    use fiberfold::studies::crease::{crease, CreaseMesh, CreaseStudy, Scan};
+    let study = CreaseStudy {
+        mesh: CreaseMesh {
+            size,
+            nx,
+            layer: layer_elements,
+            substrate: substrate_elements,
+            ratio,
+        },
+        fold_lengths: folds,
+        scan: Scan {
+            from: d_from,
+            to: d_to,
+            step: d_step,
+            tolerance,
+        },
+        convergence,
+    };
+    let p = params.inner.clone();
+    let report = py.detach(|| crease(&p, &study, &|| {})).map_err(to_py)?;
+    serde_json::to_string(&report).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+}
+
 /// The native module.
 #[pymodule]
 fn _fiberfold(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -519,5 +561,6 @@ fn _fiberfold(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_run, m)?)?;
     m.add_function(wrap_pyfunction!(bifurcation_run, m)?)?;
+    m.add_function(wrap_pyfunction!(crease_run, m)?)?;
     Ok(())
 }

@@ -204,3 +204,11 @@ def test_bifurcation_of_the_discretised_perfect_system_meets_the_linear_theory()
     r = fiberfold.bifurcation(fiberfold.Parameters(phi_m=1.0, phi_f=0.0), mesh="coarse")
     assert abs(r["d_bifurcation"] / r["d_linear_theory_min"] - 1.0) < 1e-3
     assert r["k_mode"] > 0
+
+
+def test_crease_onset_of_a_soft_layer():
+    p = fiberfold.Parameters(mu_l=1.5, K_l=4.5)
+    r = fiberfold.crease(p, [1.0], d_from=0.2, d_to=0.3, nx=24, layer_elements=2, substrate_elements=12, convergence=False)
+    assert 0.2 < r["d_crease"] < 0.3 and r["fold_length"] == 1.0
+    with pytest.raises(ValueError, match="fold"):
+        fiberfold.crease(p, [0.0])

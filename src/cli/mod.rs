@@ -3,6 +3,7 @@
 mod bench;
 mod bifurcation;
 mod common;
+mod crease;
 mod homogeneous;
 mod params;
 mod reproduce;
@@ -38,6 +39,9 @@ enum Command {
     Sweep(stability::SweepArgs),
     /// Nonlinear finite-element simulation of the compressed bilayer: A(d), onset, VTU output.
     Simulate(simulate::SimulateArgs),
+    /// Crease onset of the bilayer: where a seeded crease first lowers the energy (Hong, Zhao
+    /// and Suo's criterion), minimised over the fold length, with a mesh check.
+    Crease(crease::CreaseArgs),
     /// Exact bifurcation of the discretised perfect system from the inertia of its tangent.
     Bifurcation(bifurcation::BifurcationArgs),
     /// Timings of the stability analysis or the finite-element solver.
@@ -56,6 +60,7 @@ pub fn run() -> ExitCode {
         Command::Onset(args) => stability::onset(&args),
         Command::Sweep(args) => stability::sweep(&args),
         Command::Simulate(args) => simulate::run(&args),
+        Command::Crease(args) => crease::run(&args),
         Command::Bifurcation(args) => bifurcation::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Reproduce(args) => reproduce::run(&args),

@@ -47,6 +47,9 @@ pub struct CreaseEnergy {
     pub min_jacobian: f64,
     /// Ramp steps taken.
     pub steps: usize,
+    /// The deformed top surface of the creased state, `(x, y)` from the crease outwards.
+    #[serde(skip)]
+    pub surface: Vec<(f64, f64)>,
 }
 
 /// `U_crease - U_flat` at compression `strain` for a fold of reference length `fold_length` on
@@ -112,6 +115,10 @@ pub fn crease_energy(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_leng
         .collect();
     let y = |n: usize| mesh.coordinates()[n][1] + u[2 * n + 1];
     let surface = mesh.top();
+    let profile = surface
+        .iter()
+        .map(|&n| (mesh.coordinates()[n][0] + u[2 * n], y(n)))
+        .collect();
     let depth = y(*surface.last().expect("a surface")) - folded.iter().map(|&n| y(n)).fold(f64::INFINITY, f64::min);
     let crease_energy = report.energy;
     Ok(CreaseEnergy {
@@ -125,6 +132,7 @@ pub fn crease_energy(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_leng
         tensile_nodes: reactions.iter().filter(|&&r| r < 0.0).count(),
         min_jacobian: report.min_jacobian,
         steps,
+        surface: profile,
     })
 }
 

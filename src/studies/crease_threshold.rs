@@ -1,15 +1,15 @@
 //! The creasing threshold of a homogeneous neo-Hookean half-space (Hong, Zhao & Suo 2009): the
-//! compression at which a seeded crease ([`crate::protocol::crease_seed`]) lowers the energy
-//! below the flat state's, found by Brent's method on `U_crease - U_flat`. Writes
+//! special case of [`super::crease`] where layer and substrate are one solid, so that the
+//! threshold is the same for every fold length. Writes
 //! `crease_threshold.json` and `crease_energy.csv` (every evaluation).
 
-use crate::error::Result;
+use super::crease::{fold_threshold, Scan};
+use crate::error::{Error, Result};
 use crate::material::Bilayer;
 use crate::mesh::{MeshSpec, XRefinement};
-use crate::numerics::roots::brent;
 use crate::output::{write_json, CsvWriter};
 use crate::parameters::Parameters;
-use crate::protocol::crease_seed::{crease_energy, CreaseEnergy};
+use crate::protocol::crease_seed::CreaseEnergy;
 use serde::Serialize;
 use std::path::Path;
 
@@ -79,31 +79,34 @@ pub struct CreaseThreshold {
     pub seconds: f64,
 }
 
-/// Locates the threshold of `study` (no files).
+/// Locates the threshold of `study` (no files): [`super::crease::fold_threshold`] of the
+/// homogeneous solid, scanning just the two ends of the bracket.
 pub fn crease_threshold(study: &CreaseThresholdStudy) -> Result<CreaseThreshold> {
     let start = std::time::Instant::now();
     let materials = Bilayer::new(&study.parameters());
-    let mut evaluations = Vec::new();
-    let strain = brent(
-        "the energy of a seeded crease minus that of the flat state",
-        |eps| {
-            let energy = crease_energy(&materials, study.mesh, eps, study.fold_length)?;
-            let difference = energy.difference;
-            evaluations.push(energy);
-            Ok(difference)
-        },
-        study.bracket.0,
-        study.bracket.1,
-        study.tolerance,
-    )?;
-    evaluations.sort_by(|a, b| a.strain.total_cmp(&b.strain));
+    let (lo, hi) = study.bracket;
+    let scan = Scan {
+        from: lo,
+        to: hi,
+        step: hi - lo,
+        tolerance: study.tolerance,
+    };
+    let fold = fold_threshold(&materials, study.mesh, study.fold_length, scan, &|| {})?;
+    let strain = fold.d_threshold.ok_or_else(|| Error::NoRoot {
+        what: format!(
+            "the energy of a seeded crease minus that of the flat state ({})",
+            fold.stopped.as_deref().unwrap_or("no sign change")
+        ),
+        lower: lo,
+        upper: hi,
+    })?;
     Ok(CreaseThreshold {
         strain,
         biot_strain: BIOT_STRAIN,
         bulk_ratio: study.bulk_ratio,
         fold_length: study.fold_length,
         unknowns: study.mesh.num_dofs(),
-        evaluations,
+        evaluations: fold.evaluations,
         seconds: start.elapsed().as_secs_f64(),
     })
 }

@@ -4,6 +4,7 @@
 pub mod bench_fe;
 pub mod bench_stability;
 pub mod bifurcation;
+pub mod crease;
 pub mod crease_threshold;
 pub mod homogeneous;
 pub mod reproduce;
