@@ -27,7 +27,7 @@ pub enum Error {
     NonPositiveJacobian { jacobian: f64 },
 
     /// A scalar equation without a root in the searched interval.
-    #[error("no root of {what} in [{lower}, {upper}]")]
+    #[error("no root of {what} in [{}, {}]", short(*.lower), short(*.upper))]
     NoRoot { what: String, lower: f64, upper: f64 },
 
     /// A computation that produced a non-finite number.
@@ -88,3 +88,8 @@ impl Error {
 }
 
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// A number as CSV writes it (`2.25e-6`, not `0.0000022500040889396213`).
+fn short(x: f64) -> String {
+    crate::output::table::format_number(x)
+}
