@@ -385,3 +385,29 @@ fn crease_writes_its_onset_and_refuses_bad_folds() {
         assert!(dir.join(file).is_file(), "{file}");
     }
 }
+
+#[test]
+fn a_second_run_into_a_folder_being_written_is_refused() {
+    let dir = scratch("locked");
+    let out = dir.to_str().unwrap();
+    let args = ["simulate", "--waves", "4.5", "--d-max", "0.3", "--out", out];
+    let mut first = std::process::Command::new(env!("CARGO_BIN_EXE_fiberfold"))
+        .args(args)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    // Wait until the first run holds the folder.
+    let lock = dir.join(".fiberfold.lock");
+    let start = std::time::Instant::now();
+    while !lock.exists() && start.elapsed().as_secs() < 10 {
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    let message = rejected(&args, &["`out`", "no other running fiberfold", &first.id().to_string()]);
+    assert_eq!(message.lines().filter(|l| l.starts_with("error: ")).count(), 1);
+    first.kill().unwrap();
+    first.wait().unwrap();
+    // The dead run's lock is taken over.
+    let again = fiberfold(&["simulate", "--waves", "4.5", "--d-max", "0.01", "--out", out]);
+    assert!(again.status.success(), "{}", String::from_utf8_lossy(&again.stderr));
+}

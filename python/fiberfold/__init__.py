@@ -109,8 +109,9 @@ class Simulation:
         contact: the content of ``contact.json``.
         secondary: every change of the tangent's inertia (``d_before``, ``d_after``,
             ``negative_before``, ``negative_after``).
-        state: the last converged state (:class:`State`: ``points``, ``cells``, ``point_data``,
-            ``cell_data``, ``write_vtu(path)``), ready for pyvista or meshio.
+        state: the last converged state (:class:`State`: reference ``points``,
+            ``deformed_points``, ``cells``, ``point_data``, ``cell_data``, ``write_vtu(path)``),
+            ready for pyvista or meshio.
         k, unknowns, d_max, d_reached, completed, accepted_steps, cuts: facts of the run.
         stopped: why the path ended before ``d_max`` (None if it did not).
     """

@@ -288,6 +288,21 @@ impl PyState {
             .into_pyarray(py)
     }
 
+    /// `(n, 3)` deformed coordinates: `points` plus the displacement.
+    #[getter]
+    fn deformed_points<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray2<f64>> {
+        let f = &self.fields;
+        let flat: Vec<f64> = f
+            .points
+            .iter()
+            .zip(&f.displacement)
+            .flat_map(|(&[x, y], &[ux, uy])| [x + ux, y + uy, 0.0])
+            .collect();
+        Array2::from_shape_vec((f.points.len(), 3), flat)
+            .expect("3 per point")
+            .into_pyarray(py)
+    }
+
     /// `(m, 9)` node indices per cell, in VTK's order for `VTK_BIQUADRATIC_QUAD` (type 28).
     #[getter]
     fn cells<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray2<i64>> {

@@ -105,6 +105,7 @@ def test_simulate_arrays_have_the_documented_shapes():
     assert points.dtype == np.float64 and points.shape[1] == 3 and np.all(points[:, 2] == 0.0)
     assert cells.dtype == np.int64 and cells.shape[1] == 9 and cells.max() < len(points)
     assert state.point_data["displacement"].shape == (len(points), 3)
+    assert np.array_equal(state.deformed_points, points + state.point_data["displacement"])
     assert state.cell_data["cauchy_stress"].shape == (len(cells), 6)
     assert state.cell_data["J"].shape == (len(cells),)
     assert np.all(state.cell_data["J"] > 0)
