@@ -133,6 +133,21 @@ impl MeshSpec {
         }
     }
 
+    /// The same mesh with any of `nx`, the layer and substrate element counts and `h0` replaced.
+    pub fn with_overrides(
+        mut self,
+        nx: Option<usize>,
+        layer_elements: Option<usize>,
+        substrate_elements: Option<usize>,
+        h0: Option<f64>,
+    ) -> Self {
+        self.nx = nx.unwrap_or(self.nx);
+        self.layer_elements = layer_elements.unwrap_or(self.layer_elements);
+        self.substrate_elements = substrate_elements.unwrap_or(self.substrate_elements);
+        self.top_substrate_thickness = h0.unwrap_or(self.top_substrate_thickness);
+        self
+    }
+
     /// 100 / 2 / 25 elements, `h0 = 0.5` (bottom element about 5): 22,110 unknowns.
     pub fn coarse() -> Self {
         Self::new(100, 2, 25, 0.5, 50.0, 50.0)

@@ -150,8 +150,8 @@ fn assembled_tangent_and_lifting_match_central_differences() {
     }
 }
 
-#[test]
-fn newton_converges_quadratically() {
+/// A small perturbed bilayer mesh with fibres at beta = 0.3, for the Newton tests.
+fn wavy_problem() -> (Parameters, Mesh) {
     let p = Parameters {
         beta: 0.3,
         ..Parameters::default()
@@ -159,6 +159,12 @@ fn newton_converges_quadratically() {
     let mesh = Mesh::new(MeshSpec::new(6, 2, 4, 0.5, 6.0, 6.0))
         .unwrap()
         .perturbed(|[x, y]| [0.0, 0.05 * (std::f64::consts::PI * x / 3.0).cos() * (1.0 + y / 6.0)]);
+    (p, mesh)
+}
+
+#[test]
+fn newton_converges_quadratically() {
+    let (p, mesh) = wavy_problem();
     let mut system = System::new(mesh.clone(), &Bilayer::new(&p)).unwrap();
     let bc = model_conditions(&mesh, 0.1).unwrap();
     let mut u = vec![0.0; mesh.num_dofs()];
@@ -181,13 +187,7 @@ fn newton_converges_quadratically() {
 
 #[test]
 fn reused_factorisation_reaches_the_full_newton_solution_with_fewer_factorisations() {
-    let p = Parameters {
-        beta: 0.3,
-        ..Parameters::default()
-    };
-    let mesh = Mesh::new(MeshSpec::new(6, 2, 4, 0.5, 6.0, 6.0))
-        .unwrap()
-        .perturbed(|[x, y]| [0.0, 0.05 * (std::f64::consts::PI * x / 3.0).cos() * (1.0 + y / 6.0)]);
+    let (p, mesh) = wavy_problem();
     // A path of load steps from the same start, by full Newton and by Newton reusing the last
     // factorisation (the one at the previous solution, as in a continuation).
     let path = |reuse: bool| {

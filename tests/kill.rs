@@ -3,21 +3,10 @@
 
 mod common;
 
-use common::scratch;
+use common::{scratch, Rng};
 use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::Duration;
-
-/// A small deterministic generator (xorshift) for the kill moments.
-struct Rng(u64);
-impl Rng {
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        lo + (hi - lo) * (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
 
 /// Starts `fiberfold args`, kills it (SIGKILL) after `seconds`; whether it had already ended.
 fn kill_after(args: &[&str], seconds: f64) -> bool {

@@ -11,7 +11,9 @@ use fiberfold::parameters::{validate_compression, Parameters, PARAMETER_NAMES};
 use fiberfold::stability::discrete::DiscreteOptions;
 use fiberfold::stability::{Method, StabilityAnalysis, K_MAX};
 use fiberfold::studies::homogeneous::{columns, CSV_HEADER};
-use fiberfold::studies::simulate::{self, amplitude_header, amplitude_row, Progress, SimulateOptions, StateFields};
+use fiberfold::studies::simulate::{
+    self, amplitude_header, amplitude_row, cell_arrays, displacement_array, Progress, SimulateOptions, StateFields,
+};
 use fiberfold::studies::stability::{DispersionCurve, OnsetSummary, SweepStudy};
 use fiberfold::Error;
 use numpy::ndarray::Array2;
@@ -347,22 +349,11 @@ impl PyState {
 
 impl PyState {
     fn point_arrays(&self) -> Vec<DataArray> {
-        vec![DataArray::plane_vectors(
-            "displacement",
-            self.fields.displacement.iter().copied(),
-        )]
+        vec![displacement_array(self.fields.displacement.iter().copied())]
     }
 
     fn cell_arrays(&self) -> Vec<DataArray> {
-        let c = &self.fields.cell;
-        vec![
-            DataArray::scalars("J", c.jacobian.clone()),
-            DataArray::symmetric_tensors("cauchy_stress", &c.cauchy),
-            DataArray::scalars("von_mises", c.von_mises.clone()),
-            DataArray::scalars("fibre_stretch_1", c.fibre_stretch[0].clone()),
-            DataArray::scalars("fibre_stretch_2", c.fibre_stretch[1].clone()),
-            DataArray::scalars("layer", c.layer.clone()),
-        ]
+        cell_arrays(self.fields.cell.clone())
     }
 }
 
@@ -412,11 +403,9 @@ fn simulate_run<'py>(
     force: bool,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<(Bound<'py, PyDict>, String, PyState, Option<String>)> {
-    let mut spec = MeshSpec::preset(mesh).map_err(to_py)?;
-    spec.nx = nx.unwrap_or(spec.nx);
-    spec.layer_elements = layer_elements.unwrap_or(spec.layer_elements);
-    spec.substrate_elements = substrate_elements.unwrap_or(spec.substrate_elements);
-    spec.top_substrate_thickness = h0.unwrap_or(spec.top_substrate_thickness);
+    let spec = MeshSpec::preset(mesh)
+        .map_err(to_py)?
+        .with_overrides(nx, layer_elements, substrate_elements, h0);
     let options = SimulateOptions {
         mesh: spec,
         waves,

@@ -51,11 +51,8 @@ impl MeshArgs {
             MeshPreset::Coarse => MeshSpec::coarse(),
             MeshPreset::Fine => MeshSpec::fine(),
             MeshPreset::Extra => MeshSpec::extra(),
-        };
-        spec.nx = self.nx.unwrap_or(spec.nx);
-        spec.layer_elements = self.layer_elements.unwrap_or(spec.layer_elements);
-        spec.substrate_elements = self.substrate_elements.unwrap_or(spec.substrate_elements);
-        spec.top_substrate_thickness = self.h0.unwrap_or(spec.top_substrate_thickness);
+        }
+        .with_overrides(self.nx, self.layer_elements, self.substrate_elements, self.h0);
         if let Some(r) = self.grading {
             if !(1.0..=2.0).contains(&r) {
                 return Err(Error::invalid("grading", r, "[1, 2]"));

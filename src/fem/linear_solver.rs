@@ -36,6 +36,8 @@ pub struct SparseLdlt {
     perm_inverse: Vec<usize>,
     scratch: MemBuffer,
     state: Option<Factorisation>,
+    /// Negative pivots of the current factorisation, counted on first request.
+    negative: std::cell::OnceCell<usize>,
     symbolic_time: Duration,
     factorisation_time: Duration,
     solve_time: Duration,
@@ -67,6 +69,7 @@ impl SparseLdlt {
             symbolic,
             scratch,
             state: None,
+            negative: std::cell::OnceCell::new(),
             symbolic_time: start.elapsed(),
             factorisation_time: Duration::ZERO,
             solve_time: Duration::ZERO,
@@ -87,6 +90,7 @@ impl SparseLdlt {
     /// construction); falls back to `L B L^T` on a zero pivot.
     pub fn factorize(&mut self, a: SparseColMatRef<'_, usize, f64>) -> Factorisation {
         let start = Instant::now();
+        self.negative = std::cell::OnceCell::new();
         let ldlt = self.symbolic.factorize_numeric_ldlt(
             &mut self.values,
             a,
@@ -109,6 +113,7 @@ impl SparseLdlt {
     /// Intranode Bunch-Kaufman `L B L^T` of `a`: slower, but stable for indefinite matrices.
     pub fn factorize_pivoted(&mut self, a: SparseColMatRef<'_, usize, f64>) -> Factorisation {
         let start = Instant::now();
+        self.negative = std::cell::OnceCell::new();
         self.symbolic.factorize_numeric_intranode_lblt(
             &mut self.values,
             &mut self.subdiag,
@@ -168,10 +173,10 @@ impl SparseLdlt {
         let SymbolicCholeskyRaw::Supernodal(supernodal) = self.symbolic.raw() else {
             unreachable!("the symbolic analysis forces a supernodal factor")
         };
-        Some(match kind {
+        Some(*self.negative.get_or_init(|| match kind {
             Factorisation::Ldlt => self.diagonal_blocks(supernodal).filter(|&(d, _)| d < 0.0).count(),
             Factorisation::Lblt => self.block_inertia(supernodal),
-        })
+        }))
     }
 
     /// `(d_ii, subdiag_i)` of every pivot, in factor order. The `L B L^T` values share the

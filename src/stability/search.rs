@@ -274,11 +274,11 @@ impl StabilityAnalysis {
         let (a, b) = match best {
             0 => match self.follow((ks[0], curve[0]), ks[1], K_LONG)? {
                 Beyond::Bracket(a, b) => (a, b),
-                Beyond::Limit(d_c) => return Ok(self.limit(0.0, d_c, Minimum::LongWave)),
+                Beyond::Limit(d_c) => return Ok(self.onset_at(0.0, d_c, Minimum::LongWave)),
             },
             b if b == GRID - 1 => match self.follow((ks[GRID - 1], curve[GRID - 1]), ks[GRID - 2], K_SHORT)? {
                 Beyond::Bracket(a, b) => (a, b),
-                Beyond::Limit(d_c) => return Ok(self.limit(f64::INFINITY, d_c, Minimum::ShortWave)),
+                Beyond::Limit(d_c) => return Ok(self.onset_at(f64::INFINITY, d_c, Minimum::ShortWave)),
             },
             _ => (ks[best - 1], ks[best + 1]),
         };
@@ -293,13 +293,7 @@ impl StabilityAnalysis {
             b,
             1e-8,
         )?;
-        Ok(Onset {
-            k0,
-            d_c,
-            lambda1_c: 1.0 - d_c,
-            d_ellipticity_loss: self.d_ellipticity_loss,
-            minimum: Minimum::Interior,
-        })
+        Ok(self.onset_at(k0, d_c, Minimum::Interior))
     }
 
     /// Follows a decreasing `d_c(k)` from the grid's end `(k, d)` (whose neighbour inside the
@@ -330,8 +324,8 @@ impl StabilityAnalysis {
         Ok(Beyond::Limit(d))
     }
 
-    /// The onset of a limit (long or short waves).
-    fn limit(&self, k0: f64, d_c: f64, minimum: Minimum) -> Onset {
+    /// The onset at `(k0, d_c)` of this analysis.
+    fn onset_at(&self, k0: f64, d_c: f64, minimum: Minimum) -> Onset {
         Onset {
             k0,
             d_c,
@@ -370,13 +364,7 @@ impl StabilityAnalysis {
             1e-8,
         );
         match minimum {
-            Ok((k0, d_c)) if k0 > a * 1.001 && k0 < b * 0.999 => Ok(Onset {
-                k0,
-                d_c,
-                lambda1_c: 1.0 - d_c,
-                d_ellipticity_loss: self.d_ellipticity_loss,
-                minimum: Minimum::Interior,
-            }),
+            Ok((k0, d_c)) if k0 > a * 1.001 && k0 < b * 0.999 => Ok(self.onset_at(k0, d_c, Minimum::Interior)),
             _ => self.onset(),
         }
     }

@@ -196,17 +196,6 @@ pub fn kernels(params: &Parameters, meshes: &[(&str, MeshSpec)]) -> Result<Kerne
     use crate::homogeneous::homogeneous_state;
     use crate::material::Bilayer;
     use crate::protocol::bifurcation::homogeneous_displacement;
-    use std::time::Instant;
-    let median_ms = |mut f: Box<dyn FnMut() -> Result<()> + '_>| -> Result<f64> {
-        let mut times = Vec::new();
-        for _ in 0..5 {
-            let start = Instant::now();
-            f()?;
-            times.push(1e3 * start.elapsed().as_secs_f64());
-        }
-        times.sort_by(f64::total_cmp);
-        Ok(times[2])
-    };
     let materials = Bilayer::new(params);
     let mut rows = Vec::new();
     for &(name, spec) in meshes {
@@ -216,18 +205,18 @@ pub fn kernels(params: &Parameters, meshes: &[(&str, MeshSpec)]) -> Result<Kerne
         let u = homogeneous_displacement(system.mesh(), &homogeneous_state(&materials, d)?);
         let assembled = system.assemble(&u, &bc, None, true)?;
         let k = assembled.tangent.expect("assembled with the tangent");
-        let tangent_assembly_ms = median_ms(Box::new(|| system.assemble(&u, &bc, None, true).map(|_| ())))?;
-        let residual_assembly_ms = median_ms(Box::new(|| system.assemble(&u, &bc, None, false).map(|_| ())))?;
+        let tangent_assembly_ms = median_ms(|| system.assemble(&u, &bc, None, true).map(|_| ()))?;
+        let residual_assembly_ms = median_ms(|| system.assemble(&u, &bc, None, false).map(|_| ()))?;
         let mut solver = SparseLdlt::new(k.symbolic());
-        let factorisation_ms = median_ms(Box::new(|| {
+        let factorisation_ms = median_ms(|| {
             solver.factorize(k.as_ref());
             Ok(())
-        }))?;
+        })?;
         let mut x = assembled.residual.clone();
-        let solve_ms = median_ms(Box::new(|| {
+        let solve_ms = median_ms(|| {
             x.copy_from_slice(&assembled.residual);
             solver.solve_in_place(&mut x)
-        }))?;
+        })?;
         rows.push(KernelRow {
             mesh: name.to_string(),
             free_unknowns: k.nrows(),
@@ -240,6 +229,18 @@ pub fn kernels(params: &Parameters, meshes: &[(&str, MeshSpec)]) -> Result<Kerne
         });
     }
     Ok(Kernels { rows })
+}
+
+/// Median wall time of 5 calls of `f`, in ms.
+fn median_ms(mut f: impl FnMut() -> Result<()>) -> Result<f64> {
+    let mut times = Vec::new();
+    for _ in 0..5 {
+        let start = std::time::Instant::now();
+        f()?;
+        times.push(1e3 * start.elapsed().as_secs_f64());
+    }
+    times.sort_by(f64::total_cmp);
+    Ok(times[2])
 }
 
 impl fmt::Display for Kernels {

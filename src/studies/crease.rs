@@ -293,23 +293,18 @@ pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<Cr
         .collect::<Result<Vec<_>>>()?;
     let best = folds
         .iter()
-        .filter_map(|f| f.d_threshold.map(|d| (d, f)))
+        .enumerate()
+        .filter_map(|(i, f)| f.d_threshold.map(|d| (d, i)))
         .min_by(|x, y| x.0.total_cmp(&y.0));
-    let depth_at = |f: &FoldThreshold, d: f64| {
-        f.evaluations
-            .iter()
-            .min_by(|x, y| (x.strain - d).abs().total_cmp(&(y.strain - d).abs()))
-            .map(|e| e.depth)
-    };
     let (mut d_crease_refined, mut refined_unknowns) = (None, None);
-    if let (true, Some((d, f))) = (study.convergence, best) {
+    if let (true, Some((d, i))) = (study.convergence, best) {
         // The same fold on the refined mesh, scanned from just below the coarse threshold.
         let refined = study.mesh.refined().spec(study.longest());
         let scan = Scan {
             from: (d - 2.0 * study.scan.step).max(study.scan.from),
             ..study.scan
         };
-        let fold = fold_threshold(&materials, refined, f.fold_length, scan, tick)?;
+        let fold = fold_threshold(&materials, refined, folds[i].fold_length, scan, tick)?;
         d_crease_refined = fold.d_threshold;
         refined_unknowns = Some(refined.num_dofs());
     }
@@ -319,15 +314,24 @@ pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<Cr
         mesh: study.mesh,
         unknowns: spec.num_dofs(),
         d_crease: best.map(|(d, _)| d),
-        fold_length: best.map(|(_, f)| f.fold_length),
-        depth: best.and_then(|(d, f)| depth_at(f, d)),
+        fold_length: best.map(|(_, i)| folds[i].fold_length),
+        depth: best.and_then(|(d, i)| folds[i].nearest(d)).map(|e| e.depth),
         mesh_change: best.and_then(|(d, _)| d_crease_refined.map(|r| (r - d).abs() / d)),
         d_crease_refined,
         refined_unknowns,
         scan: study.scan,
-        folds: folds.clone(),
+        folds,
         seconds: start.elapsed().as_secs_f64(),
     })
+}
+
+impl FoldThreshold {
+    /// The evaluation closest to `d`.
+    fn nearest(&self, d: f64) -> Option<&CreaseEnergy> {
+        self.evaluations
+            .iter()
+            .min_by(|x, y| (x.strain - d).abs().total_cmp(&(y.strain - d).abs()))
+    }
 }
 
 /// Runs the study and writes `crease.json`, `crease_energy.csv` and `crease.png/svg` (the
@@ -373,11 +377,7 @@ pub fn run(params: &Parameters, study: &CreaseStudy, out: &Path, tick: Tick) -> 
     let onset = report.d_crease.zip(report.fold_length);
     if let Some((d, a)) = onset {
         let fold = report.folds.iter().find(|f| f.fold_length == a).expect("the best fold");
-        let nearest = fold
-            .evaluations
-            .iter()
-            .min_by(|x, y| (x.strain - d).abs().total_cmp(&(y.strain - d).abs()))
-            .expect("evaluated");
+        let nearest = fold.nearest(d).expect("evaluated");
         let window = 4.0 * a;
         let surface: Vec<(f64, f64)> = nearest.surface.iter().copied().filter(|p| p.0 <= window).collect();
         panels.push(

@@ -21,7 +21,7 @@ pub use fig7::{fig7, CreaseSnapshots, Fig7Facts, Fig7State, FIG7_D};
 pub use options::SimulateOptions;
 pub use secondary::{SecondaryReport, SecondaryTracker};
 pub use solve::{solve, Solution, StateFields};
-pub use state_vtu::write_state;
+pub use state_vtu::{cell_arrays, displacement_array, write_state};
 
 use crate::error::{Error, Result};
 use crate::fem::System;

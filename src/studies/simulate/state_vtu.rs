@@ -2,7 +2,7 @@
 //! Mises stress, fibre stretches and the layer id as element-centre cell data.
 
 use crate::error::Result;
-use crate::fem::fields::cell_fields;
+use crate::fem::fields::{cell_fields, CellFields};
 use crate::fem::System;
 use crate::material::Bilayer;
 use crate::output::vtu::{write_vtu, DataArray};
@@ -11,20 +11,26 @@ use std::path::Path;
 /// Writes the state `u` of `system` to `path`, with `extra` point data (e.g. a mode).
 pub fn write_state(path: &Path, system: &System, materials: &Bilayer, u: &[f64], extra: Vec<DataArray>) -> Result<()> {
     let mesh = system.mesh();
-    let fields = cell_fields(system, materials, u)?;
-    let mut point_data = vec![DataArray::plane_vectors(
-        "displacement",
-        u.chunks(2).map(|c| [c[0], c[1]]),
-    )];
+    let mut point_data = vec![displacement_array(u.chunks(2).map(|c| [c[0], c[1]]))];
     point_data.extend(extra);
+    let cell_data = cell_arrays(cell_fields(system, materials, u)?);
+    write_vtu(path, mesh.coordinates(), mesh.elements(), &point_data, &cell_data)
+}
+
+/// The nodal displacement as the snapshots' point data.
+pub fn displacement_array(displacement: impl Iterator<Item = [f64; 2]>) -> DataArray {
+    DataArray::plane_vectors("displacement", displacement)
+}
+
+/// The element-centre fields as the snapshots' cell data.
+pub fn cell_arrays(fields: CellFields) -> Vec<DataArray> {
     let [stretch_1, stretch_2] = fields.fibre_stretch;
-    let cell_data = vec![
+    vec![
         DataArray::scalars("J", fields.jacobian),
         DataArray::symmetric_tensors("cauchy_stress", &fields.cauchy),
         DataArray::scalars("von_mises", fields.von_mises),
         DataArray::scalars("fibre_stretch_1", stretch_1),
         DataArray::scalars("fibre_stretch_2", stretch_2),
         DataArray::scalars("layer", fields.layer),
-    ];
-    write_vtu(path, mesh.coordinates(), mesh.elements(), &point_data, &cell_data)
+    ]
 }
