@@ -240,6 +240,7 @@ fn the_crease_onset_of_a_half_space_is_the_same_for_every_fold_length() {
             tolerance: 1e-3,
         },
         convergence: false,
+        lowest_only: false,
     };
     let report = crease(&params, &study, &|| {}).unwrap();
     let thresholds: Vec<f64> = report.folds.iter().map(|f| f.d_threshold.unwrap()).collect();

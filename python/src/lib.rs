@@ -547,6 +547,7 @@ fn crease_run(
             tolerance,
         },
         convergence,
+        lowest_only: false,
     };
     let p = params.inner.clone();
     let report = py.detach(|| crease(&p, &study, &|| {})).map_err(to_py)?;

@@ -80,6 +80,7 @@ pub fn run(args: &CreaseArgs) -> Result<()> {
             tolerance: args.tolerance,
         },
         convergence: !args.no_convergence,
+        lowest_only: false,
     };
     study.validate()?;
     println!(

@@ -5,6 +5,7 @@ mod bifurcation;
 mod common;
 mod crease;
 mod homogeneous;
+mod map;
 mod params;
 mod reproduce;
 mod simulate;
@@ -42,6 +43,9 @@ enum Command {
     /// Crease onset of the bilayer: where a seeded crease first lowers the energy (Hong, Zhao
     /// and Suo's criterion), minimised over the fold length, with a mesh check.
     Crease(crease::CreaseArgs),
+    /// Instability map over two parameters: wrinkle or crease first, and what the wrinkle
+    /// becomes; resumable, and shardable over a SLURM job array (--shard I/N, then --collect).
+    Map(map::MapArgs),
     /// Exact bifurcation of the discretised perfect system from the inertia of its tangent.
     Bifurcation(bifurcation::BifurcationArgs),
     /// Timings of the stability analysis or the finite-element solver.
@@ -61,6 +65,7 @@ pub fn run() -> ExitCode {
         Command::Sweep(args) => stability::sweep(&args),
         Command::Simulate(args) => simulate::run(&args),
         Command::Crease(args) => crease::run(&args),
+        Command::Map(args) => map::run(&args),
         Command::Bifurcation(args) => bifurcation::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Reproduce(args) => reproduce::run(&args),

@@ -15,8 +15,14 @@ pub struct OutputLock {
 impl OutputLock {
     /// Takes the lock of `dir` (created if needed).
     pub fn acquire(dir: &Path) -> Result<Self> {
+        Self::acquire_named(dir, ".fiberfold.lock")
+    }
+
+    /// Takes the lock file `name` of `dir`: writers of disjoint parts of one folder (the shards
+    /// of a map) hold one each.
+    pub fn acquire_named(dir: &Path, name: &str) -> Result<Self> {
         super::ensure_dir(dir)?;
-        let path = dir.join(".fiberfold.lock");
+        let path = dir.join(name);
         for _ in 0..3 {
             match std::fs::OpenOptions::new().write(true).create_new(true).open(&path) {
                 Ok(mut file) => {

@@ -84,31 +84,44 @@ pub struct Branch {
 
 /// Classifies the final state `u` of `mesh` seeded with wavenumber `k` (module docs).
 pub fn branch(mesh: &Mesh, u: &[f64], k: f64) -> Branch {
-    let profile = surface_profile(mesh, u);
     let reference: Vec<f64> = mesh.top().iter().map(|&n| mesh.coordinates()[n][0]).collect();
+    let trough_depths = trough_depths(&reference, &surface_profile(mesh, u), k, mesh.spec().length);
+    Branch {
+        kind: branch_kind(&trough_depths),
+        trough_depths,
+    }
+}
+
+/// The depth below the highest point of `profile` (deformed `(x, y)` of the surface points at
+/// reference abscissae `reference`) of each trough of `cos(k X)` on `[0, length]`: the lowest
+/// point within a quarter wavelength of `X = (2 j + 1) pi / k`.
+pub fn trough_depths(reference: &[f64], profile: &[(f64, f64)], k: f64, length: f64) -> Vec<f64> {
     let top = profile.iter().fold(f64::NEG_INFINITY, |m, p| m.max(p.1));
     let half = std::f64::consts::PI / k;
-    let length = mesh.spec().length;
-    let trough_depths: Vec<f64> = (0..)
+    (0..)
         .map(|j| (2 * j + 1) as f64 * half)
         .take_while(|&centre| centre <= length + 1e-9)
         .map(|centre| {
             let lowest = reference
                 .iter()
-                .zip(&profile)
+                .zip(profile)
                 .filter(|(x, _)| (**x - centre).abs() <= 0.5 * half)
                 .fold(f64::INFINITY, |m, (_, p)| m.min(p.1));
             top - lowest
         })
-        .collect();
-    let mut sorted = trough_depths.clone();
+        .collect()
+}
+
+/// "periodic" when every trough is within [`LOCALISED_SPREAD`] of the deepest, "localised"
+/// when the deepest leads the next by more, "modulated" otherwise.
+pub fn branch_kind(trough_depths: &[f64]) -> &'static str {
+    let mut sorted = trough_depths.to_vec();
     sorted.sort_by(|a, b| b.total_cmp(a));
     let spread = |other: f64| sorted[0] - other > LOCALISED_SPREAD * sorted[0];
-    let kind = match sorted.as_slice() {
+    match sorted.as_slice() {
         [] | [_] => "periodic",
         [_, second, ..] if spread(*second) => "localised",
         [.., shallowest] if spread(*shallowest) => "modulated",
         _ => "periodic",
-    };
-    Branch { trough_depths, kind }
+    }
 }

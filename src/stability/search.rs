@@ -11,7 +11,7 @@ use crate::material::Bilayer;
 use crate::numerics::minimize::brent_minimize;
 use crate::numerics::roots::brent;
 use crate::parameters::Parameters;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Largest compression searched (`d` in `(0, D_END]`).
 pub const D_END: f64 = 0.95;
@@ -21,7 +21,7 @@ const D_START: f64 = 1e-6;
 const D_TOLERANCE: f64 = 1e-13;
 
 /// Where the smallest `d_c(k)` lies.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Minimum {
     /// At a finite `k0 > 0`: wrinkles of wavelength `2 pi / k0`.

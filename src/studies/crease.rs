@@ -19,13 +19,13 @@ use crate::numerics::roots::brent;
 use crate::output::{ensure_dir, plot::save_panels, write_json, CsvWriter, Figure, LineStyle, Series};
 use crate::parameters::Parameters;
 use crate::protocol::crease_seed::{crease_energy, CreaseEnergy};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 /// The square block `[0, size] x [-size, 1]` around the crease at `X = 0`: `nx` elements in X
 /// refined `ratio` times near the crease, `layer` elements through the layer, `substrate`
 /// below (graded from the layer's element size).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CreaseMesh {
     pub size: f64,
     pub nx: usize,
@@ -66,7 +66,7 @@ impl CreaseMesh {
 
 /// How `d(a)` is searched: scan `from` upwards by `step` to `to`, then locate the sign change
 /// to `tolerance` in `d`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Scan {
     pub from: f64,
     pub to: f64,
@@ -83,6 +83,9 @@ pub struct CreaseStudy {
     pub scan: Scan,
     /// Recompute the smallest threshold on [`CreaseMesh::refined`].
     pub convergence: bool,
+    /// Scan each fold only up to the lowest threshold found before it: the minimum over the
+    /// folds is the same, the thresholds above it are not located (the map's shortcut).
+    pub lowest_only: bool,
 }
 
 impl Default for CreaseStudy {
@@ -105,6 +108,7 @@ impl Default for CreaseStudy {
                 tolerance: 1e-3,
             },
             convergence: true,
+            lowest_only: false,
         }
     }
 }
@@ -183,8 +187,11 @@ pub fn fold_threshold(materials: &Bilayer, spec: MeshSpec, a: f64, scan: Scan, t
     let mut evaluations: Vec<CreaseEnergy> = Vec::new();
     let mut stopped = None;
     let mut bracket = None;
-    let mut d = scan.from;
-    while d <= scan.to + 1e-12 {
+    let grid = (0..)
+        .map(|i| scan.from + i as f64 * scan.step)
+        .take_while(|&d| d < scan.to - 1e-9)
+        .chain(std::iter::once(scan.to));
+    for d in grid {
         match crease_energy(materials, spec, d, a) {
             Ok(e) => {
                 let pays = e.difference <= 0.0;
@@ -207,7 +214,6 @@ pub fn fold_threshold(materials: &Bilayer, spec: MeshSpec, a: f64, scan: Scan, t
             }
             Err(e) => return Err(e),
         }
-        d += scan.step;
     }
     let mut d_threshold = None;
     if let Some((lo, hi)) = bracket {
@@ -286,11 +292,18 @@ pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<Cr
     let start = std::time::Instant::now();
     let materials = Bilayer::new(params);
     let spec = study.mesh.spec(study.longest());
-    let folds = study
-        .fold_lengths
-        .iter()
-        .map(|&a| fold_threshold(&materials, spec, a, study.scan, tick))
-        .collect::<Result<Vec<_>>>()?;
+    let mut folds: Vec<FoldThreshold> = Vec::with_capacity(study.fold_lengths.len());
+    for &a in &study.fold_lengths {
+        let mut scan = study.scan;
+        if study.lowest_only {
+            let lowest = folds.iter().filter_map(|f| f.d_threshold).fold(scan.to, f64::min);
+            if lowest <= scan.from {
+                continue;
+            }
+            scan.to = lowest;
+        }
+        folds.push(fold_threshold(&materials, spec, a, scan, tick)?);
+    }
     let best = folds
         .iter()
         .enumerate()

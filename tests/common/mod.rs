@@ -59,3 +59,65 @@ impl Rng {
         &items[self.below(items.len())]
     }
 }
+
+/// A 2 x 1 map on small meshes (a few seconds a point): an isotropic soft and stiff layer.
+pub fn tiny_map(out: &std::path::Path, extra: &[&str]) -> Vec<String> {
+    let mut args: Vec<String> = [
+        "map",
+        "--set",
+        "phi_m=1",
+        "--set",
+        "phi_f=0",
+        "--x",
+        "mu_l",
+        "--x-from",
+        "1.5",
+        "--x-to",
+        "10",
+        "--x-points",
+        "2",
+        "--x-log",
+        "--y",
+        "beta",
+        "--y-from",
+        "0",
+        "--y-to",
+        "0",
+        "--y-points",
+        "1",
+        "--waves",
+        "2",
+        "--elements-per-wave",
+        "12",
+        "--substrate-elements",
+        "10",
+        "--post-buckling-range",
+        "0.04",
+        "--fold",
+        "1",
+        "--crease-nx",
+        "24",
+        "--crease-layer-elements",
+        "2",
+        "--crease-substrate-elements",
+        "10",
+        "--out",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    args.push(out.display().to_string());
+    args.extend(extra.iter().map(|s| s.to_string()));
+    args
+}
+
+/// The points of `map.json` without their wall times.
+pub fn map_points(dir: &std::path::Path) -> Vec<serde_json::Value> {
+    let text = std::fs::read_to_string(dir.join("map.json")).expect("map.json");
+    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let mut points = json["points"].as_array().unwrap().clone();
+    for p in &mut points {
+        p.as_object_mut().unwrap().remove("seconds");
+    }
+    points
+}

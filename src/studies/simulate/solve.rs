@@ -8,8 +8,8 @@ use crate::material::Bilayer;
 #[cfg(doc)]
 use crate::output::vtu::vtk_cell;
 use crate::parameters::Parameters;
-use crate::protocol::secondary::{inertia_changes, InertiaChange};
-use crate::protocol::stages;
+use crate::protocol::secondary::{branch, inertia_changes, Branch, InertiaChange};
+use crate::protocol::{stages, surface_profile};
 
 /// A mesh state ready for a viewer: reference points, 9-node cells (the local node order of
 /// [`crate::mesh`]; [`vtk_cell`] gives VTK's), the nodal displacement and the element-centre
@@ -31,6 +31,10 @@ pub struct Solution {
     pub contact: ContactReport,
     /// Every change of the tangent's inertia (secondary bifurcations).
     pub inertia_changes: Vec<InertiaChange>,
+    /// The branch the path ended on (depths of the seeded troughs at the last state).
+    pub branch: Branch,
+    /// Deformed `(x, y)` of the top surface at the last state, by reference `X`.
+    pub surface: Vec<(f64, f64)>,
     /// The last converged state.
     pub state: StateFields,
 }
@@ -49,6 +53,8 @@ pub fn solve(params: &Parameters, study: &SimulateStudy, monitor: Monitor) -> Re
     let continuation = &outcome.continuation;
     let (system, u) = (continuation.system(), continuation.displacement());
     let mesh = system.mesh();
+    let branch = branch(mesh, u, study.protocol.k);
+    let surface = surface_profile(mesh, u);
     let state = StateFields {
         points: mesh.coordinates().to_vec(),
         cells: mesh.elements().to_vec(),
@@ -64,6 +70,8 @@ pub fn solve(params: &Parameters, study: &SimulateStudy, monitor: Monitor) -> Re
         onset,
         contact,
         inertia_changes,
+        branch,
+        surface,
         state,
     })
 }

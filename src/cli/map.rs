@@ -1,0 +1,191 @@
+//! `fiberfold map`: the instability map over two parameters, resumable and shardable.
+
+use super::common::{progress, report_files, ParamArgs};
+use clap::Args;
+use fiberfold::output::lock::OutputLock;
+use fiberfold::studies::crease::CreaseMesh;
+use fiberfold::studies::map::{self, Axis, MapSettings, MapStudy, Shard};
+use fiberfold::Result;
+use std::path::PathBuf;
+
+#[derive(Args)]
+pub struct MapArgs {
+    #[command(flatten)]
+    pub params: ParamArgs,
+
+    /// Parameter along the horizontal axis (any numeric key of --set).
+    #[arg(long, default_value = "mu_l")]
+    pub x: String,
+    /// First value of --x (units of the parameter: moduli by mu_s, angles in radians).
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    pub x_from: f64,
+    /// Last value of --x.
+    #[arg(long, default_value_t = 30.0, allow_negative_numbers = true)]
+    pub x_to: f64,
+    /// Values of --x.
+    #[arg(long, default_value_t = 12)]
+    pub x_points: usize,
+    /// Space the --x values geometrically (a log axis).
+    #[arg(long)]
+    pub x_log: bool,
+
+    /// Parameter along the vertical axis.
+    #[arg(long, default_value = "beta")]
+    pub y: String,
+    /// First value of --y.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub y_from: f64,
+    /// Last value of --y (default pi/2).
+    #[arg(long, default_value_t = std::f64::consts::FRAC_PI_2, allow_negative_numbers = true)]
+    pub y_to: f64,
+    /// Values of --y.
+    #[arg(long, default_value_t = 7)]
+    pub y_points: usize,
+    /// Space the --y values geometrically (a log axis).
+    #[arg(long)]
+    pub y_log: bool,
+
+    /// Let the bulk modulus stay at its base value when mu_l or mu_s is mapped (by default it
+    /// scales with it, keeping the base K/mu: Table 1's Poisson ratio).
+    #[arg(long)]
+    pub free_bulk: bool,
+
+    /// Nonlinear run: wavelengths 2 pi/k0 across the half domain (2 x waves an integer).
+    #[arg(long, default_value_t = 4.0, allow_negative_numbers = true)]
+    pub waves: f64,
+    /// Nonlinear run: Q2 elements per wavelength along X.
+    #[arg(long, default_value_t = 20)]
+    pub elements_per_wave: usize,
+    /// Nonlinear run: elements through the layer.
+    #[arg(long, default_value_t = 2)]
+    pub layer_elements: usize,
+    /// Nonlinear run: graded elements through the substrate (domain depth 50 H).
+    #[arg(long, default_value_t = 25)]
+    pub substrate_elements: usize,
+    /// Nonlinear run: A_2 of the half-wave seed that breaks the symmetry between troughs
+    /// (units of H; A_init of the wrinkle is 0.05).
+    #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
+    pub seed: f64,
+    /// Nonlinear run: compression beyond d_wrinkle to follow the wrinkle (the run ends at
+    /// d_wrinkle + this, at most 0.7).
+    #[arg(long, default_value_t = 0.2, allow_negative_numbers = true)]
+    pub post_buckling_range: f64,
+
+    /// Crease search: fold lengths a (units of H), comma separated.
+    #[arg(long, value_delimiter = ',', default_values_t = vec![0.5, 1.0, 2.0], allow_negative_numbers = true)]
+    pub fold: Vec<f64>,
+    /// Crease search: elements along X of its 12 H block (refined 8 times at the crease).
+    #[arg(long, default_value_t = 48)]
+    pub crease_nx: usize,
+    /// Crease search: elements through the layer.
+    #[arg(long, default_value_t = 4)]
+    pub crease_layer_elements: usize,
+    /// Crease search: graded elements through the substrate.
+    #[arg(long, default_value_t = 20)]
+    pub crease_substrate_elements: usize,
+
+    /// Compute only the points with index % N == I (I/N; e.g. $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT),
+    /// into the same folder as the other shards; assemble them with --collect.
+    #[arg(long, value_name = "I/N", conflicts_with = "collect")]
+    pub shard: Option<String>,
+
+    /// Only assemble the finished points in --out into map.csv, map.json and the figure (with
+    /// the same map flags as the shards); missing points are an error.
+    #[arg(long)]
+    pub collect: bool,
+
+    /// Output folder (finished points in DIR/points are reused).
+    #[arg(long, value_name = "DIR", default_value = "results/map")]
+    pub out: PathBuf,
+}
+
+impl MapArgs {
+    fn study(&self) -> Result<MapStudy> {
+        let axis = |name: &str, from, to, points, log| Axis {
+            name: name.to_string(),
+            from,
+            to,
+            points,
+            log,
+        };
+        let defaults = MapSettings::default();
+        Ok(MapStudy {
+            base: self.params.resolve()?,
+            x: axis(&self.x, self.x_from, self.x_to, self.x_points, self.x_log),
+            y: axis(&self.y, self.y_from, self.y_to, self.y_points, self.y_log),
+            settings: MapSettings {
+                waves: self.waves,
+                elements_per_wave: self.elements_per_wave,
+                layer_elements: self.layer_elements,
+                substrate_elements: self.substrate_elements,
+                seed: self.seed,
+                post_buckling_range: self.post_buckling_range,
+                crease_mesh: CreaseMesh {
+                    nx: self.crease_nx,
+                    layer: self.crease_layer_elements,
+                    substrate: self.crease_substrate_elements,
+                    ..defaults.crease_mesh
+                },
+                fold_lengths: self.fold.clone(),
+                keep_poisson: !self.free_bulk,
+                ..defaults
+            },
+        })
+    }
+}
+
+pub fn run(args: &MapArgs) -> Result<()> {
+    let study = args.study()?;
+    let shard = args.shard.as_deref().map(Shard::parse).transpose()?;
+    study.validate()?;
+    let total = study.x.points * study.y.points;
+    if !args.collect {
+        let _lock = match shard {
+            Some(s) => {
+                OutputLock::acquire_named(&args.out, &format!(".fiberfold-shard-{}-of-{}.lock", s.index, s.count))?
+            }
+            None => OutputLock::acquire(&args.out)?,
+        };
+        let share = shard.map_or(total, |s| (total + s.count - 1 - s.index) / s.count);
+        println!(
+            "instability map: {} x {} points over {} in [{}, {}] and {} in [{}, {}]{}",
+            study.x.points,
+            study.y.points,
+            study.x.name,
+            study.x.from,
+            study.x.to,
+            study.y.name,
+            study.y.from,
+            study.y.to,
+            shard.map_or(String::new(), |s| format!(
+                ", shard {}/{}: {share} points",
+                s.index, s.count
+            )),
+        );
+        let bar = progress(share, "points");
+        let done = map::compute(&study, &args.out, shard, &|| bar.inc(1))?;
+        bar.finish_and_clear();
+        println!(
+            "  {} points computed, {} reused from {}",
+            done.points - done.reused,
+            done.reused,
+            args.out.join("points").display()
+        );
+        if shard.is_some() {
+            println!("  assemble the shards with the same flags and --collect");
+            return Ok(());
+        }
+    }
+    let _lock = OutputLock::acquire(&args.out)?;
+    let (report, files) = map::collect(&study, &args.out)?;
+    let count = |f: fn(&map::MapPoint) -> bool| report.points.iter().filter(|p| f(p)).count();
+    println!(
+        "  crease first at {} points, wrinkle first at {}, neither in range at {}; point work {:.0} s",
+        count(|p| p.first == map::First::Crease),
+        count(|p| p.first == map::First::Wrinkle),
+        count(|p| p.first == map::First::None),
+        report.point_seconds
+    );
+    report_files(&files);
+    Ok(())
+}

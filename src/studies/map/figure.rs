@@ -1,0 +1,198 @@
+//! The phase diagram `map.png/svg`: one coloured cell per point by its regime, black lines
+//! where the regime changes between neighbours, and the paper's parameter set marked.
+
+use super::{First, MapPoint, MapReport, PostBuckling};
+use crate::error::{Error, Result};
+use crate::output::atomic::write_atomically;
+use crate::output::plot::{register_font, FONT};
+use crate::parameters::Parameters;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::{Path, PathBuf};
+
+/// The regimes, in legend order, with their colours.
+const REGIMES: [(&str, RGBColor); 9] = [
+    ("crease first", RGBColor(214, 39, 40)),
+    ("wrinkle, stays periodic", RGBColor(158, 202, 225)),
+    ("wrinkle -> period doubling", RGBColor(49, 130, 189)),
+    ("wrinkle -> fold", RGBColor(44, 160, 44)),
+    ("wrinkle -> creases", RGBColor(255, 152, 150)),
+    ("wrinkle, not followed", RGBColor(200, 200, 200)),
+    ("none in range", RGBColor(255, 255, 255)),
+    ("undecided (crease search snapped)", RGBColor(120, 120, 120)),
+    ("wrinkle -> unstable, unresolved", RGBColor(255, 221, 113)),
+];
+
+/// The regime of a point (an index into [`REGIMES`]).
+pub fn regime(point: &MapPoint) -> usize {
+    match (point.first, point.becomes) {
+        (First::Crease, _) => 0,
+        (First::Wrinkle, Some(PostBuckling::Wrinkle)) => 1,
+        (First::Wrinkle, Some(PostBuckling::PeriodDoubling)) => 2,
+        (First::Wrinkle, Some(PostBuckling::Fold)) => 3,
+        (First::Wrinkle, Some(PostBuckling::Crease)) => 4,
+        (First::Wrinkle, None) => 5,
+        (First::None, _) => 6,
+        (First::Undecided, _) => 7,
+        (First::Wrinkle, Some(PostBuckling::Unresolved)) => 8,
+    }
+}
+
+/// Cell edges around `values` (plotted coordinates): midpoints, half a cell beyond the ends.
+fn edges(values: &[f64]) -> Vec<f64> {
+    if values.len() == 1 {
+        return vec![values[0] - 0.5, values[0] + 0.5];
+    }
+    let mut e = vec![values[0] - 0.5 * (values[1] - values[0])];
+    e.extend(values.windows(2).map(|w| 0.5 * (w[0] + w[1])));
+    let n = values.len();
+    e.push(values[n - 1] + 0.5 * (values[n - 1] - values[n - 2]));
+    e
+}
+
+/// Writes `map.png` and `map.svg`.
+pub fn phase_diagram(report: &MapReport, out: &Path) -> Result<Vec<PathBuf>> {
+    register_font();
+    let size = (900, 620);
+    let png = out.join("map.png");
+    let svg = out.join("map.svg");
+    let fail = |path: &Path, message: String| Error::Plot {
+        path: path.display().to_string(),
+        message,
+    };
+    write_atomically(&png, |t| {
+        draw(BitMapBackend::new(t, size).into_drawing_area(), report).map_err(|m| fail(&png, m))
+    })?;
+    write_atomically(&svg, |t| {
+        draw(SVGBackend::new(t, size).into_drawing_area(), report).map_err(|m| fail(&svg, m))
+    })?;
+    Ok(vec![png, svg])
+}
+
+fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, report: &MapReport) -> std::result::Result<(), String> {
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    root.fill(&WHITE).map_err(err)?;
+    let (xa, ya) = (&report.study.x, &report.study.y);
+    // Plotted coordinates: log10 of a log axis.
+    let plot_x = |v: f64| if xa.log { v.log10() } else { v };
+    let plot_y = |v: f64| if ya.log { v.log10() } else { v };
+    let xs: Vec<f64> = xa.values().into_iter().map(plot_x).collect();
+    let ys: Vec<f64> = ya.values().into_iter().map(plot_y).collect();
+    let (xe, ye) = (edges(&xs), edges(&ys));
+    let (x0, x1, y0, y1) = (xe[0], xe[xe.len() - 1], ye[0], ye[ye.len() - 1]);
+    let axis_name = |a: &super::Axis| {
+        if a.log {
+            format!("{} (log scale)", a.name)
+        } else {
+            a.name.clone()
+        }
+    };
+    let (plot_area, legend_area) = root.split_horizontally(640);
+    let mut chart = ChartBuilder::on(&plot_area)
+        .caption(
+            "Which instability comes first, and what the wrinkle becomes",
+            (FONT, 20),
+        )
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(65)
+        .build_cartesian_2d(x0..x1, y0..y1)
+        .map_err(err)?;
+    let unplot = |log: bool| {
+        move |v: &f64| {
+            if log {
+                format!("{:.3}", 10f64.powf(*v))
+            } else {
+                format!("{v:.3}")
+            }
+        }
+    };
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc(axis_name(xa))
+        .y_desc(axis_name(ya))
+        .x_label_formatter(&unplot(xa.log))
+        .y_label_formatter(&unplot(ya.log))
+        .label_style((FONT, 14))
+        .axis_desc_style((FONT, 16))
+        .draw()
+        .map_err(err)?;
+    let nx = xs.len();
+    let regimes: Vec<usize> = report.points.iter().map(regime).collect();
+    let mut legend = Vec::new();
+    for (r, &(name, color)) in REGIMES.iter().enumerate() {
+        let cells: Vec<_> = report
+            .points
+            .iter()
+            .filter(|p| regimes[p.index] == r)
+            .map(|p| Rectangle::new([(xe[p.ix], ye[p.iy]), (xe[p.ix + 1], ye[p.iy + 1])], color.filled()))
+            .collect();
+        if cells.is_empty() {
+            continue;
+        }
+        chart.draw_series(cells).map_err(err)?;
+        legend.push((name, color));
+    }
+    // Boundaries between cells of different regimes.
+    let mut lines = Vec::new();
+    for p in &report.points {
+        let here = regimes[p.index];
+        if p.ix + 1 < nx && regimes[p.index + 1] != here {
+            lines.push(vec![(xe[p.ix + 1], ye[p.iy]), (xe[p.ix + 1], ye[p.iy + 1])]);
+        }
+        if p.iy + 1 < ys.len() && regimes[p.index + nx] != here {
+            lines.push(vec![(xe[p.ix], ye[p.iy + 1]), (xe[p.ix + 1], ye[p.iy + 1])]);
+        }
+    }
+    chart
+        .draw_series(lines.into_iter().map(|l| PathElement::new(l, BLACK.stroke_width(3))))
+        .map_err(err)?;
+    // The paper's point: Table 1's values of the two mapped parameters.
+    let table1 = Parameters::default();
+    let mut paper = false;
+    if let (Ok(px), Ok(py)) = (table1.number(&xa.name), table1.number(&ya.name)) {
+        let at = (plot_x(px), plot_y(py));
+        if (x0..=x1).contains(&at.0) && (y0..=y1).contains(&at.1) {
+            chart
+                .draw_series(std::iter::once(Cross::new(at, 9, BLACK.stroke_width(3))))
+                .map_err(err)?;
+            paper = true;
+        }
+    }
+    // The legend, beside the plot.
+    let text = (FONT, 15).into_font().color(&BLACK);
+    for (i, (name, color)) in legend.iter().enumerate() {
+        let y = 60 + 28 * i as i32;
+        legend_area
+            .draw(&Rectangle::new([(10, y - 9), (30, y + 9)], color.filled()))
+            .map_err(err)?;
+        legend_area
+            .draw(&Rectangle::new([(10, y - 9), (30, y + 9)], BLACK.stroke_width(1)))
+            .map_err(err)?;
+        legend_area
+            .draw(&Text::new(*name, (38, y - 8), text.clone()))
+            .map_err(err)?;
+    }
+    if paper {
+        let y = 60 + 28 * legend.len() as i32;
+        legend_area
+            .draw(&Cross::new((20, y), 7, BLACK.stroke_width(3)))
+            .map_err(err)?;
+        legend_area
+            .draw(&Text::new("paper (Table 1)", (38, y - 8), text.clone()))
+            .map_err(err)?;
+    }
+    root.present().map_err(err)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cell_edges_lie_halfway_and_half_a_cell_beyond_the_ends() {
+        assert_eq!(edges(&[1.0, 2.0, 4.0]), vec![0.5, 1.5, 3.0, 5.0]);
+        assert_eq!(edges(&[3.0]), vec![2.5, 3.5]);
+    }
+}

@@ -1,0 +1,347 @@
+//! One point of the instability map: the wrinkling onset of the linear theory, the crease onset
+//! of the energy criterion, which comes first, and what the wrinkle becomes in a nonlinear run.
+
+use super::MapSettings;
+use crate::error::{Error, Result};
+use crate::mesh::MeshSpec;
+use crate::parameters::Parameters;
+use crate::protocol::secondary::branch_kind;
+use crate::stability::{Method, Minimum, StabilityAnalysis};
+use crate::studies::crease::{crease, CreaseStudy, Scan};
+use crate::studies::simulate::{solve, SimulateOptions};
+use serde::{Deserialize, Serialize};
+use std::time::Instant;
+
+/// The first instability under growing compression.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum First {
+    /// `d_wrinkle <= d_crease` (or no crease pays off in the scan).
+    Wrinkle,
+    /// `d_crease < d_wrinkle` (or no wrinkling before the loss of ellipticity).
+    Crease,
+    /// Neither within the ranges searched.
+    None,
+    /// No crease paid off, but its search ended (a fold that snapped) below `d_wrinkle`.
+    Undecided,
+}
+
+/// What the wrinkle becomes in the nonlinear run ([`post_buckling`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PostBuckling {
+    /// The troughs stay equally deep (within 20 %) and open: a periodic wrinkle to the end.
+    Wrinkle,
+    /// Deep troughs alternate with shallow ones: a period doubling (or a longer modulation).
+    PeriodDoubling,
+    /// One trough leads all others by more than 20 % of its depth: a localised fold.
+    Fold,
+    /// The troughs stay equally deep but close on themselves: every trough becomes a crease.
+    Crease,
+    /// The path stayed periodic, but its last state is unstable (negative pivots): the seed did
+    /// not excite the mode that took over, so what the wrinkle becomes is not resolved.
+    Unresolved,
+}
+
+/// A surface whose component at half the seeded wavenumber is at least this fraction of the
+/// seeded one has doubled its period.
+pub const DOUBLING_RATIO: f64 = 0.2;
+
+/// The rule, on the last state of the run: one seeded trough deeper than all others by more
+/// than 20 % of its depth (the "localised" branch of [`crate::protocol::secondary`]) is a
+/// fold; otherwise a surface whose `k / 2` component is at least [`DOUBLING_RATIO`] of its `k`
+/// component ([`doubling`]) has doubled its period; otherwise a last state whose tangent has
+/// negative pivots is an unstable periodic path (unresolved); otherwise troughs that closed on
+/// themselves are a row of creases, and open ones a wrinkle. The tangent's inertia also dates
+/// the change (`d_secondary`: its first change along the run).
+pub fn post_buckling(trough_depths: &[f64], doubling: f64, unstable: bool, self_contact: bool) -> PostBuckling {
+    if branch_kind(trough_depths) == "localised" {
+        PostBuckling::Fold
+    } else if doubling >= DOUBLING_RATIO {
+        PostBuckling::PeriodDoubling
+    } else if unstable {
+        PostBuckling::Unresolved
+    } else if self_contact {
+        PostBuckling::Crease
+    } else {
+        PostBuckling::Wrinkle
+    }
+}
+
+/// `|c(k / 2)| / |c(k)|`, with `c(q)` the cosine component of the surface height `y` over the
+/// reference abscissa `X = x / (1 - d)` (the trapezoidal rule on the deformed surface points
+/// `(x, y)` of a half domain with symmetry planes at both ends).
+pub fn doubling(surface: &[(f64, f64)], k: f64, d: f64) -> f64 {
+    let component = |q: f64| {
+        surface
+            .windows(2)
+            .map(|w| {
+                let (xa, xb) = (w[0].0 / (1.0 - d), w[1].0 / (1.0 - d));
+                0.5 * (xb - xa) * (w[0].1 * (q * xa).cos() + w[1].1 * (q * xb).cos())
+            })
+            .sum::<f64>()
+    };
+    let seeded = component(k).abs();
+    if seeded > 0.0 {
+        component(0.5 * k).abs() / seeded
+    } else {
+        0.0
+    }
+}
+
+/// Everything computed at one point (a file `points/point-<index>.json`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MapPoint {
+    /// Position in the map: `index = iy * x_points + ix`.
+    pub index: usize,
+    pub ix: usize,
+    pub iy: usize,
+    pub x: f64,
+    pub y: f64,
+    pub parameters: Parameters,
+    /// Linear theory: the minimum of `d_c(k)` and where it lies (None: no wrinkling before the
+    /// loss of ellipticity or d = 0.95).
+    pub d_wrinkle: Option<f64>,
+    pub k0: Option<f64>,
+    pub minimum: Option<Minimum>,
+    /// Energy criterion: the crease onset, its fold length and depth (units of H).
+    pub d_crease: Option<f64>,
+    pub crease_fold_length: Option<f64>,
+    pub crease_depth: Option<f64>,
+    pub first: First,
+    /// Nonlinear run (only where the wrinkle has a wavelength, `minimum = interior`).
+    pub becomes: Option<PostBuckling>,
+    pub trough_depths: Vec<f64>,
+    /// [`doubling`] of the last state.
+    pub doubling: Option<f64>,
+    pub d_secondary: Option<f64>,
+    pub d_first_contact: Option<f64>,
+    pub d_reached: Option<f64>,
+    /// Why a part is missing or ended early.
+    pub notes: Vec<String>,
+    /// Wall time of the linear theory, the crease search and the nonlinear run (s).
+    pub seconds: [f64; 3],
+}
+
+/// The nonlinear run's mesh: `waves` wavelengths `2 pi / k0` across the half domain, `elements`
+/// per wavelength, and the coarse mesh's layers and depth.
+fn wave_mesh(settings: &MapSettings, k0: f64) -> MeshSpec {
+    let length = settings.waves * 2.0 * std::f64::consts::PI / k0;
+    let nx = (settings.elements_per_wave as f64 * settings.waves).ceil() as usize;
+    MeshSpec::new(
+        nx,
+        settings.layer_elements,
+        settings.substrate_elements,
+        1.0 / settings.layer_elements as f64,
+        length,
+        settings.depth,
+    )
+}
+
+/// Computes the point `(ix, iy)` with `parameters`: [`first_instability`], then the nonlinear
+/// run where the wrinkle has a wavelength. Solver failures become notes, other errors (bad
+/// input) are returned.
+pub fn compute(
+    settings: &MapSettings,
+    crease_study: &CreaseStudy,
+    (index, ix, iy, x, y): (usize, usize, usize, f64, f64),
+    parameters: Parameters,
+) -> Result<MapPoint> {
+    let mut point = first_instability(settings, crease_study, parameters.clone())?;
+    (point.index, point.ix, point.iy, point.x, point.y) = (index, ix, iy, x, y);
+    let clock = Instant::now();
+    match (point.k0, point.d_wrinkle) {
+        (Some(k0), Some(d_wrinkle)) => nonlinear(settings, &parameters, k0, d_wrinkle, &mut point)?,
+        _ => point
+            .notes
+            .push("no nonlinear run: the wrinkle has no finite wavelength".into()),
+    }
+    point.seconds[2] = clock.elapsed().as_secs_f64();
+    Ok(point)
+}
+
+/// The wrinkling onset (linear theory), the crease onset (energy criterion) and which comes
+/// first, as a point at position 0 without its nonlinear run.
+pub fn first_instability(
+    settings: &MapSettings,
+    crease_study: &CreaseStudy,
+    parameters: Parameters,
+) -> Result<MapPoint> {
+    let mut notes = Vec::new();
+    let clock = Instant::now();
+    let onset = StabilityAnalysis::new(&parameters, Method::Exact)?.onset();
+    let onset = match onset {
+        Ok(o) => Some(o),
+        Err(Error::NoRoot { .. }) => {
+            notes.push("no wrinkling before the loss of ellipticity or d = 0.95".into());
+            None
+        }
+        Err(e) => return Err(e),
+    };
+    let linear_seconds = clock.elapsed().as_secs_f64();
+
+    let d_wrinkle = onset.map(|o| o.d_c);
+    let clock = Instant::now();
+    let crease_study = crease_search(crease_study, d_wrinkle, settings);
+    let report = crease(&parameters, &crease_study, &|| {})?;
+    let crease_seconds = clock.elapsed().as_secs_f64();
+    if report.d_crease.is_none() {
+        let why = report.folds.iter().filter_map(|f| f.stopped.as_deref()).next();
+        notes.push(format!(
+            "no crease pays off up to d = {:.4}{}",
+            crease_study.scan.to,
+            why.map(|w| format!(" ({w})")).unwrap_or_default()
+        ));
+    }
+    // Without a threshold, the crease is known not to pay off below the lowest d where a fold's
+    // scan ended.
+    let cleared = report
+        .folds
+        .iter()
+        .map(|f| f.evaluations.iter().map(|e| e.strain).fold(0.0, f64::max))
+        .fold(crease_study.scan.to, f64::min);
+    let first = match (d_wrinkle, report.d_crease) {
+        (Some(w), Some(c)) if c < w => First::Crease,
+        (Some(_), Some(_)) => First::Wrinkle,
+        (Some(w), None) if w <= cleared => First::Wrinkle,
+        (Some(_), None) => First::Undecided,
+        (None, Some(_)) => First::Crease,
+        (None, None) => First::None,
+    };
+
+    Ok(MapPoint {
+        index: 0,
+        ix: 0,
+        iy: 0,
+        x: 0.0,
+        y: 0.0,
+        parameters,
+        d_wrinkle,
+        k0: onset.filter(|o| o.minimum == Minimum::Interior).map(|o| o.k0),
+        minimum: onset.map(|o| o.minimum),
+        d_crease: report.d_crease,
+        crease_fold_length: report.fold_length,
+        crease_depth: report.depth,
+        first,
+        becomes: None,
+        trough_depths: Vec::new(),
+        doubling: None,
+        d_secondary: None,
+        d_first_contact: None,
+        d_reached: None,
+        notes,
+        seconds: [linear_seconds, crease_seconds, 0.0],
+    })
+}
+
+/// The crease search of a point: the scan's steps land on `d_wrinkle` (the comparison that
+/// decides which comes first needs no crease beyond it) and end at `d_wrinkle +
+/// post_buckling_range`; without a wrinkle, `base`'s scan.
+fn crease_search(base: &CreaseStudy, d_wrinkle: Option<f64>, settings: &MapSettings) -> CreaseStudy {
+    let mut study = base.clone();
+    if let Some(w) = d_wrinkle {
+        let step = w / (w / base.scan.step).ceil();
+        study.scan = Scan {
+            from: step,
+            step,
+            to: (w + settings.post_buckling_range).min(base.scan.to).max(w),
+            tolerance: base.scan.tolerance.min(0.5 * step),
+        };
+    }
+    study
+}
+
+/// The nonlinear run to `d_wrinkle + post_buckling_range` with a symmetry-breaking seed.
+fn nonlinear(
+    settings: &MapSettings,
+    parameters: &Parameters,
+    k0: f64,
+    d_wrinkle: f64,
+    point: &mut MapPoint,
+) -> Result<()> {
+    let options = SimulateOptions {
+        mesh: wave_mesh(settings, k0),
+        waves: Some(settings.waves),
+        d_max: (d_wrinkle + settings.post_buckling_range).min(settings.d_limit),
+        imperfection: settings.imperfection,
+        imperfection2: settings.seed,
+        imperfection2_waves: 0.5 * settings.waves,
+        ..SimulateOptions::default()
+    };
+    let mut study = options.study()?;
+    if let Some(damper) = &mut study.protocol.stabilisation {
+        damper.budget = settings.snap_budget;
+    }
+    let solution = solve(parameters, &study, &|_| Ok(()))?;
+    if let Some(why) = &solution.curve.stopped {
+        point.notes.push(format!("nonlinear run stopped early: {why}"));
+    }
+    let depths = solution.branch.trough_depths;
+    let d = solution.contact.d_reached;
+    point.doubling = Some(doubling(&solution.surface, study.protocol.k, d));
+    let unstable = solution
+        .curve
+        .records
+        .last()
+        .and_then(|r| r.negative_pivots)
+        .is_some_and(|n| n > 0);
+    point.becomes = Some(post_buckling(
+        &depths,
+        point.doubling.unwrap_or(0.0),
+        unstable,
+        solution.contact.d_first_contact.is_some(),
+    ));
+    point.trough_depths = depths;
+    point.d_secondary = solution.inertia_changes.first().map(|c| c.d_after);
+    point.d_first_contact = solution.contact.d_first_contact;
+    point.d_reached = Some(solution.contact.d_reached);
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::protocol::secondary::trough_depths;
+
+    #[test]
+    fn the_rule_names_constructed_surfaces() {
+        let (k, length) = (std::f64::consts::PI / 2.0, 16.0); // four waves of length 4
+                                                              // The surface as the run gives it: deformed x = (1 - d) X, at d = 0.2.
+        let surface = |y: &dyn Fn(f64) -> f64| -> Vec<(f64, f64)> {
+            (0..=2000)
+                .map(|i| length * i as f64 / 2000.0)
+                .map(|x| (0.8 * x, y(x)))
+                .collect()
+        };
+        let classify = |y: &dyn Fn(f64) -> f64, contact: bool| {
+            let s = surface(y);
+            let xs: Vec<f64> = s.iter().map(|p| p.0 / 0.8).collect();
+            post_buckling(&trough_depths(&xs, &s, k, length), doubling(&s, k, 0.2), false, contact)
+        };
+        let wrinkle = |x: f64| 0.3 * (k * x).cos();
+        assert_eq!(
+            trough_depths(&[0.0, 2.0, 4.0], &[(0.0, 1.0), (1.6, -1.0), (3.2, 1.0)], k, 4.0),
+            vec![2.0]
+        );
+        assert!(doubling(&surface(&wrinkle), k, 0.2) < 1e-6);
+        assert_eq!(classify(&wrinkle, false), PostBuckling::Wrinkle);
+        assert_eq!(classify(&wrinkle, true), PostBuckling::Crease);
+        let depths = [1.0, 1.0, 1.0];
+        assert_eq!(post_buckling(&depths, 0.0, true, true), PostBuckling::Unresolved);
+        // Period doubling, even about both symmetry planes: alternate peaks (cos(k X / 2)) ...
+        let peaks = |x: f64| 0.3 * (k * x).cos() + 0.1 * (0.5 * k * x).cos();
+        assert!((doubling(&surface(&peaks), k, 0.2) - 1.0 / 3.0).abs() < 1e-3);
+        assert_eq!(classify(&peaks, false), PostBuckling::PeriodDoubling);
+        assert_eq!(classify(&peaks, true), PostBuckling::PeriodDoubling);
+        // ... not a monotone drift of the trough depths from a long-wave seed.
+        let drift = |x: f64| 0.3 * (k * x).cos() * (1.0 + 0.15 * x / length);
+        assert_eq!(classify(&drift, false), PostBuckling::Wrinkle);
+        // A fold: one trough (at X = 6) far deeper than the rest, closed or not.
+        let fold = |x: f64| 0.2 * (k * x).cos() - 1.5 * (-((x - 6.0) / 1.0).powi(2)).exp();
+        assert_eq!(classify(&fold, false), PostBuckling::Fold);
+        assert_eq!(classify(&fold, true), PostBuckling::Fold);
+        // A 5 % modulation is still a periodic wrinkle.
+        let mild = |x: f64| 0.3 * (k * x).cos() + 0.015 * (0.5 * k * x).cos();
+        assert_eq!(classify(&mild, false), PostBuckling::Wrinkle);
+    }
+}
