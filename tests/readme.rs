@@ -144,6 +144,30 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                 let d = json(dir.join("crease.json"))["d_crease"].as_f64().unwrap();
                 assert!((0.33..0.38).contains(&d), "d_crease {d}");
             }
+            "map" => {
+                // One point, the stiffest layer at beta = 0, on small meshes: it wrinkles first,
+                // near the thin-film law d_c = (1/4) (3 mu_s / mu_l)^(2/3) = 0.054.
+                let small = [
+                    ("--x-from", "30"),
+                    ("--x-points", "1"),
+                    ("--y-to", "0"),
+                    ("--y-points", "1"),
+                    ("--waves", "2"),
+                    ("--elements-per-wave", "12"),
+                    ("--substrate-elements", "10"),
+                    ("--post-buckling-range", "0.04"),
+                    ("--fold", "1"),
+                    ("--crease-nx", "24"),
+                    ("--crease-layer-elements", "2"),
+                    ("--crease-substrate-elements", "10"),
+                ];
+                let (dir, _) = run(command, &small);
+                let point = &json(dir.join("map.json"))["points"][0];
+                assert_eq!(point["first"], "wrinkle", "{point}");
+                let d = point["d_wrinkle"].as_f64().unwrap();
+                assert!((d / 0.054 - 1.0).abs() < 0.1, "d_wrinkle {d}");
+                assert!(dir.join("map.csv").exists() && dir.join("map.png").exists());
+            }
             other => panic!("README shows `{command}` but no test runs `{other}`"),
         }
     }

@@ -62,8 +62,8 @@ pub struct MapArgs {
     /// Nonlinear run: graded elements through the substrate (domain depth 50 H).
     #[arg(long, default_value_t = 25)]
     pub substrate_elements: usize,
-    /// Nonlinear run: A_2 of the half-wave seed that breaks the symmetry between troughs
-    /// (units of H; A_init of the wrinkle is 0.05).
+    /// Nonlinear run: amplitude of the seed along the mode of the first secondary bifurcation,
+    /// which breaks the symmetry between troughs (units of H; A_init of the wrinkle is 0.05).
     #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
     pub seed: f64,
     /// Nonlinear run: compression beyond d_wrinkle to follow the wrinkle (the run ends at

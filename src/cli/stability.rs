@@ -87,6 +87,9 @@ pub fn onset(args: &OnsetArgs) -> Result<()> {
     let (onset, path) = stability::onset(&params, args.method.method(), &args.out)?;
     match (onset.minimum, onset.wavelength) {
         (_, Some(wavelength)) => println!("  k0 = {:.6}  (wavelength {wavelength:.4} H)", onset.k0),
+        (Minimum::Flat, _) => println!(
+            "  no k0: d_c(k) is the same at every k (flat): a homogeneous half-space's surface instability, at any wavelength"
+        ),
         (Minimum::LongWave, _) => println!(
             "  no finite k0: d_c(k) decreases all the way to k -> 0 (long_wave): the substrate's own surface instability comes first"
         ),

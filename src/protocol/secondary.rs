@@ -8,11 +8,13 @@
 //! "localised" when one trough is clearly the deepest, and "modulated" when several deep
 //! troughs alternate with shallow ones (e.g. a period doubling).
 
+use super::bifurcation::{dominant_cosine, top_uy};
 use super::continuation::StepRecord;
 use super::surface::surface_profile;
 use crate::error::Result;
 use crate::fem::linear_solver::inverse_iteration;
 use crate::fem::{model_conditions, SparseLdlt, System};
+use crate::material::Bilayer;
 use crate::mesh::Mesh;
 use serde::Serialize;
 
@@ -124,4 +126,24 @@ pub fn branch_kind(trough_depths: &[f64]) -> &'static str {
         [.., shallowest] if spread(*shallowest) => "modulated",
         _ => "periodic",
     }
+}
+
+/// The first change of the tangent's inertia along a protocol's path, and its mode.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct SecondaryMode {
+    /// `d` of the first state with the changed inertia.
+    pub d: f64,
+    /// The mode's dominant number of half wavelengths across the domain (`cos(m pi X / L)`).
+    pub half_waves: usize,
+}
+
+/// The mode nearest zero of the tangent at the state `u` (end-shortening `d`) of `mesh`, and
+/// its dominant number of half wavelengths across the domain.
+pub fn secondary_mode(materials: &Bilayer, mesh: &Mesh, u: &[f64], d: f64) -> Result<SecondaryMode> {
+    let mut system = System::new(mesh.clone(), materials)?;
+    let (mode, _) = mode_nearest_zero(&mut system, u, d, 60, &mut None)?;
+    Ok(SecondaryMode {
+        d,
+        half_waves: dominant_cosine(&top_uy(mesh, &mode), mesh.spec().length, mesh),
+    })
 }

@@ -32,6 +32,10 @@ pub enum Minimum {
     /// `d_c(k)` decreases all the way to `k -> inf`: the layer's own surface instability comes
     /// first, at wavelengths much shorter than `H` (`k0 = inf`, `d_c` its limit).
     ShortWave,
+    /// `d_c(k)` is the same at every `k` (within `RISE_TOLERANCE` over the grid): no contrast
+    /// between the layers, the half-space's scale-free surface instability (`k0` undefined: NaN,
+    /// `null` in JSON).
+    Flat,
 }
 
 /// Wavenumbers probed for the long-wave limit (down to `K_LONG`) and the short-wave limit (up
@@ -51,8 +55,8 @@ const RISE_TOLERANCE: f64 = 1e-6;
 /// The onset of wrinkling: the minimum of `d_c(k)`.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct Onset {
-    /// Onset wavenumber (referential, units 1/H): 0 for a long-wave and infinite (`null` in
-    /// JSON) for a short-wave minimum.
+    /// Onset wavenumber (referential, units 1/H): 0 for a long-wave, infinite for a short-wave
+    /// minimum and NaN for a flat curve (both `null` in JSON).
     pub k0: f64,
     /// Critical compression at `k0`.
     pub d_c: f64,
@@ -270,6 +274,10 @@ impl StabilityAnalysis {
                 lower: 0.0,
                 upper: self.d_limit,
             });
+        }
+        let highest = curve.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        if highest - curve[best] <= RISE_TOLERANCE {
+            return Ok(self.onset_at(f64::NAN, curve[best], Minimum::Flat));
         }
         let (a, b) = match best {
             0 => match self.follow((ks[0], curve[0]), ks[1], K_LONG)? {

@@ -20,6 +20,24 @@ fn plain_bilayer(mu_l: f64, mu_s: f64, bulk_ratio: f64) -> Parameters {
     }
 }
 
+/// No contrast and no fibres: `d_c(k)` is flat at the half-space value, and the onset says so.
+#[test]
+fn without_contrast_the_onset_is_flat_at_the_half_space_value() {
+    let onset = StabilityAnalysis::new(&plain_bilayer(1.0, 1.0, 3.0), Method::Exact)
+        .unwrap()
+        .onset()
+        .unwrap();
+    assert_eq!(onset.minimum, Minimum::Flat, "{onset:?}");
+    assert!(onset.k0.is_nan() && onset.wavelength().is_none());
+    // The compressible (K = 3 mu) half-space value.
+    assert!((onset.d_c - 0.46866).abs() < 1e-5, "{}", onset.d_c);
+    let json = serde_json::to_string(&onset).unwrap();
+    assert!(
+        json.contains(r#""k0":null"#) && json.contains(r#""minimum":"flat""#),
+        "{json}"
+    );
+}
+
 #[test]
 fn biot_half_space_is_independent_of_k_and_tends_to_0_5437() {
     // Biot (1963): an incompressible neo-Hookean half-space wrinkles at lambda_1 = 0.5437.

@@ -109,11 +109,11 @@ pub fn dispersion(params: &Parameters, study: &DispersionStudy, out: &Path, tick
             1,
         ),
         limit => Series::new(
-            format!(
-                "no interior minimum: d_c -> {:.4} as k -> {}",
-                onset.d_c,
-                if limit == Minimum::LongWave { "0" } else { "inf" }
-            ),
+            match limit {
+                Minimum::Flat => format!("flat: d_c = {:.4} at every k", onset.d_c),
+                Minimum::LongWave => format!("no interior minimum: d_c -> {:.4} as k -> 0", onset.d_c),
+                _ => format!("no interior minimum: d_c -> {:.4} as k -> inf", onset.d_c),
+            },
             vec![(study.k_min, onset.d_c), (study.k_max, onset.d_c)],
             LineStyle::Dashed,
             1,

@@ -17,7 +17,7 @@ const REGIMES: [(&str, RGBColor); 9] = [
     ("wrinkle -> period doubling", RGBColor(49, 130, 189)),
     ("wrinkle -> fold", RGBColor(44, 160, 44)),
     ("wrinkle -> creases", RGBColor(255, 152, 150)),
-    ("wrinkle, not followed", RGBColor(200, 200, 200)),
+    ("wrinkle without a wavelength", RGBColor(200, 200, 200)),
     ("none in range", RGBColor(255, 255, 255)),
     ("undecided (crease search snapped)", RGBColor(120, 120, 120)),
     ("wrinkle -> unstable, unresolved", RGBColor(255, 221, 113)),

@@ -9,7 +9,7 @@
 mod figure;
 mod point;
 
-pub use point::{post_buckling, First, MapPoint, PostBuckling};
+pub use point::{compute as compute_point, doubling, first_instability, post_buckling, First, MapPoint, PostBuckling};
 
 use super::crease::{CreaseMesh, CreaseStudy, Scan};
 use super::{validate_points, Tick};
@@ -83,7 +83,7 @@ pub struct MapSettings {
     pub substrate_elements: usize,
     /// Depth of the nonlinear run's domain (units of H).
     pub depth: f64,
-    /// `A_init` of the seeded wrinkle, and `A_2` of the symmetry-breaking half-wave seed.
+    /// `A_init` of the seeded wrinkle, and `A_2` of the seed along the first secondary mode.
     pub imperfection: f64,
     pub seed: f64,
     /// The nonlinear run goes to `d_wrinkle + post_buckling_range`, at most `d_limit`.
@@ -93,6 +93,7 @@ pub struct MapSettings {
     /// the run crosses the snaps a wrinkle makes into a fold or a period doubling (a `simulate`
     /// run stops at 1 %, where the path stops being quasi-static).
     pub snap_budget: f64,
+
     /// The crease search ([`CreaseStudy`], without its mesh check).
     pub crease_mesh: CreaseMesh,
     pub fold_lengths: Vec<f64>,
@@ -104,7 +105,8 @@ pub struct MapSettings {
 
 impl Default for MapSettings {
     /// Four wavelengths at 20 elements each, the coarse mesh's layers (2 + 25, depth 50),
-    /// `A_init = 0.05` with a 0.01 half-wave seed, runs to `d_wrinkle + 0.2` (at most 0.7); the
+    /// `A_init = 0.05` with a 0.01 seed along the first secondary mode, runs to `d_wrinkle + 0.2`
+    /// (at most 0.7); the
     /// crease search of `fiberfold crease` without its mesh check.
     fn default() -> Self {
         let crease = CreaseStudy::default();
@@ -119,6 +121,7 @@ impl Default for MapSettings {
             post_buckling_range: 0.2,
             d_limit: 0.7,
             snap_budget: 0.5,
+
             crease_mesh: crease.mesh,
             fold_lengths: crease.fold_lengths,
             crease_scan: crease.scan,
@@ -128,7 +131,9 @@ impl Default for MapSettings {
 }
 
 impl MapSettings {
-    fn crease_study(&self) -> CreaseStudy {
+    /// The crease search of every point (without the mesh check; each point's scan is then
+    /// fitted to its `d_wrinkle`).
+    pub fn crease_study(&self) -> CreaseStudy {
         CreaseStudy {
             mesh: self.crease_mesh,
             fold_lengths: self.fold_lengths.clone(),
@@ -352,10 +357,12 @@ pub struct MapReport {
 
 const MAP_NOTE: &str = "d_wrinkle: minimum of the linear theory's d_c(k) (minimum: interior, long_wave or \
     short_wave). d_crease: energy criterion of `fiberfold crease`, minimised over the fold lengths. first: the \
-    smaller of the two. becomes: a nonlinear run of `waves` wavelengths 2 pi / k0 with a half-wave seed, to \
-    d_wrinkle + post_buckling_range: 'fold' if one trough is more than 20 % deeper than all others, \
-    'period_doubling' if the surface's k/2 component is at least 20 % of its k component, 'unresolved' if the path stayed periodic but its last \
-    state is unstable, 'crease' if the troughs stay alike but close on themselves, 'wrinkle' otherwise; d_secondary is the first change of the tangent's inertia along that run.";
+    smaller of the two. becomes (where the wrinkle has a wavelength and comes first): a nonlinear run of `waves` \
+    wavelengths 2 pi / k0 to d_wrinkle + post_buckling_range; if the tangent's inertia changes along it \
+    (d_secondary), the run is repeated seeded with that change's mode (secondary_half_waves across the domain); the \
+    last state is classified: 'fold' if one trough is more than 20 % deeper than all others, \
+    'period_doubling' if deep and shallow troughs alternate (spread above 20 %) or the surface's k/2 component is \
+    at least 20 % of its k component, 'unresolved' if the path stayed periodic but its last state is unstable, 'crease' if the troughs stay alike but close on themselves, 'wrinkle' otherwise.";
 
 /// Assembles the finished points of `study` in `out` into `map.csv`, `map.json` and the phase
 /// diagram; refuses a folder of another map or with missing points.
@@ -415,6 +422,7 @@ fn write_csv(report: &MapReport, out: &Path) -> Result<PathBuf> {
             "first",
             "becomes",
             "d_secondary",
+            "secondary_half_waves",
             "d_first_contact",
             "d_reached",
             "seconds",
@@ -436,6 +444,7 @@ fn write_csv(report: &MapReport, out: &Path) -> Result<PathBuf> {
             Cell::Text(&first),
             Cell::Text(&becomes),
             number(p.d_secondary),
+            number(p.secondary_half_waves.map(|m| m as f64)),
             number(p.d_first_contact),
             number(p.d_reached),
             Cell::Number(p.seconds.iter().sum()),

@@ -8,7 +8,7 @@ use crate::parameters::Parameters;
 use crate::protocol::secondary::branch_kind;
 use crate::stability::{Method, Minimum, StabilityAnalysis};
 use crate::studies::crease::{crease, CreaseStudy, Scan};
-use crate::studies::simulate::{solve, SimulateOptions};
+use crate::studies::simulate::{solve, solve_to_secondary, SimulateOptions, ToSecondary};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -32,7 +32,8 @@ pub enum First {
 pub enum PostBuckling {
     /// The troughs stay equally deep (within 20 %) and open: a periodic wrinkle to the end.
     Wrinkle,
-    /// Deep troughs alternate with shallow ones: a period doubling (or a longer modulation).
+    /// Deep troughs alternate with shallow ones, or alternate peaks grow: a period doubling (or
+    /// the longer modulation nearest to it that the domain admits).
     PeriodDoubling,
     /// One trough leads all others by more than 20 % of its depth: a localised fold.
     Fold,
@@ -49,15 +50,18 @@ pub const DOUBLING_RATIO: f64 = 0.2;
 
 /// The rule, on the last state of the run: one seeded trough deeper than all others by more
 /// than 20 % of its depth (the "localised" branch of [`crate::protocol::secondary`]) is a
-/// fold; otherwise a surface whose `k / 2` component is at least [`DOUBLING_RATIO`] of its `k`
-/// component ([`doubling`]) has doubled its period; otherwise a last state whose tangent has
+/// fold; otherwise deep troughs alternating with shallow ones (the "modulated" branch: the
+/// shallowest more than 20 % above the deepest), or a surface whose `k / 2` component is at
+/// least [`DOUBLING_RATIO`] of its `k` component ([`doubling`]: alternate peaks), have doubled
+/// their period; otherwise a last state whose tangent has
 /// negative pivots is an unstable periodic path (unresolved); otherwise troughs that closed on
 /// themselves are a row of creases, and open ones a wrinkle. The tangent's inertia also dates
 /// the change (`d_secondary`: its first change along the run).
 pub fn post_buckling(trough_depths: &[f64], doubling: f64, unstable: bool, self_contact: bool) -> PostBuckling {
-    if branch_kind(trough_depths) == "localised" {
+    let kind = branch_kind(trough_depths);
+    if kind == "localised" {
         PostBuckling::Fold
-    } else if doubling >= DOUBLING_RATIO {
+    } else if kind == "modulated" || doubling >= DOUBLING_RATIO {
         PostBuckling::PeriodDoubling
     } else if unstable {
         PostBuckling::Unresolved
@@ -104,7 +108,8 @@ pub struct MapPoint {
     pub d_wrinkle: Option<f64>,
     pub k0: Option<f64>,
     pub minimum: Option<Minimum>,
-    /// Energy criterion: the crease onset, its fold length and depth (units of H).
+    /// Energy criterion: the crease onset, its fold length and depth (units of H). Searched up
+    /// to `d_wrinkle` only: beyond it the flat state the criterion compares with is unstable.
     pub d_crease: Option<f64>,
     pub crease_fold_length: Option<f64>,
     pub crease_depth: Option<f64>,
@@ -115,6 +120,8 @@ pub struct MapPoint {
     /// [`doubling`] of the last state.
     pub doubling: Option<f64>,
     pub d_secondary: Option<f64>,
+    /// Half wavelengths across the domain of the mode at `d_secondary`.
+    pub secondary_half_waves: Option<usize>,
     pub d_first_contact: Option<f64>,
     pub d_reached: Option<f64>,
     /// Why a part is missing or ended early.
@@ -147,11 +154,17 @@ pub fn compute(
     (index, ix, iy, x, y): (usize, usize, usize, f64, f64),
     parameters: Parameters,
 ) -> Result<MapPoint> {
-    let mut point = first_instability(settings, crease_study, parameters.clone())?;
+    let mut point = first_instability(crease_study, parameters.clone())?;
     (point.index, point.ix, point.iy, point.x, point.y) = (index, ix, iy, x, y);
     let clock = Instant::now();
     match (point.k0, point.d_wrinkle) {
-        (Some(k0), Some(d_wrinkle)) => nonlinear(settings, &parameters, k0, d_wrinkle, &mut point)?,
+        _ if point.first == First::Crease => point
+            .notes
+            .push("no nonlinear run: the crease comes first, the wrinkle is not followed".into()),
+        (Some(k0), Some(d_wrinkle)) => match nonlinear(settings, &parameters, k0, d_wrinkle, &mut point) {
+            Err(Error::Solver(why)) => point.notes.push(format!("nonlinear run failed: {why}")),
+            other => other?,
+        },
         _ => point
             .notes
             .push("no nonlinear run: the wrinkle has no finite wavelength".into()),
@@ -162,11 +175,7 @@ pub fn compute(
 
 /// The wrinkling onset (linear theory), the crease onset (energy criterion) and which comes
 /// first, as a point at position 0 without its nonlinear run.
-pub fn first_instability(
-    settings: &MapSettings,
-    crease_study: &CreaseStudy,
-    parameters: Parameters,
-) -> Result<MapPoint> {
+pub fn first_instability(crease_study: &CreaseStudy, parameters: Parameters) -> Result<MapPoint> {
     let mut notes = Vec::new();
     let clock = Instant::now();
     let onset = StabilityAnalysis::new(&parameters, Method::Exact)?.onset();
@@ -182,13 +191,13 @@ pub fn first_instability(
 
     let d_wrinkle = onset.map(|o| o.d_c);
     let clock = Instant::now();
-    let crease_study = crease_search(crease_study, d_wrinkle, settings);
+    let crease_study = crease_search(crease_study, d_wrinkle);
     let report = crease(&parameters, &crease_study, &|| {})?;
     let crease_seconds = clock.elapsed().as_secs_f64();
     if report.d_crease.is_none() {
         let why = report.folds.iter().filter_map(|f| f.stopped.as_deref()).next();
         notes.push(format!(
-            "no crease pays off up to d = {:.4}{}",
+            "no crease pays off up to d = {:.4} (the search ends at d_wrinkle){}",
             crease_study.scan.to,
             why.map(|w| format!(" ({w})")).unwrap_or_default()
         ));
@@ -227,6 +236,7 @@ pub fn first_instability(
         trough_depths: Vec::new(),
         doubling: None,
         d_secondary: None,
+        secondary_half_waves: None,
         d_first_contact: None,
         d_reached: None,
         notes,
@@ -234,24 +244,27 @@ pub fn first_instability(
     })
 }
 
-/// The crease search of a point: the scan's steps land on `d_wrinkle` (the comparison that
-/// decides which comes first needs no crease beyond it) and end at `d_wrinkle +
-/// post_buckling_range`; without a wrinkle, `base`'s scan.
-fn crease_search(base: &CreaseStudy, d_wrinkle: Option<f64>, settings: &MapSettings) -> CreaseStudy {
+/// The crease search of a point: up to `d_wrinkle` (beyond it the flat state the criterion
+/// compares with is unstable, and which comes first is decided), in steps that land on it;
+/// without a wrinkle, `base`'s scan.
+fn crease_search(base: &CreaseStudy, d_wrinkle: Option<f64>) -> CreaseStudy {
     let mut study = base.clone();
-    if let Some(w) = d_wrinkle {
-        let step = w / (w / base.scan.step).ceil();
+    if let Some(w) = d_wrinkle.filter(|&w| w < base.scan.to) {
+        let step = w / (w / base.scan.step).ceil().max(2.0);
         study.scan = Scan {
             from: step,
             step,
-            to: (w + settings.post_buckling_range).min(base.scan.to).max(w),
+            to: w,
             tolerance: base.scan.tolerance.min(0.5 * step),
         };
     }
     study
 }
 
-/// The nonlinear run to `d_wrinkle + post_buckling_range` with a symmetry-breaking seed.
+/// The nonlinear analysis to `d_wrinkle + post_buckling_range`. The unseeded path is followed
+/// to the first change of the tangent's inertia; its mode there (`m` half wavelengths across
+/// the domain) seeds, as `seed cos(m pi X / L)`, the run that is classified. Without a change
+/// the unseeded run is classified.
 fn nonlinear(
     settings: &MapSettings,
     parameters: &Parameters,
@@ -264,15 +277,27 @@ fn nonlinear(
         waves: Some(settings.waves),
         d_max: (d_wrinkle + settings.post_buckling_range).min(settings.d_limit),
         imperfection: settings.imperfection,
-        imperfection2: settings.seed,
-        imperfection2_waves: 0.5 * settings.waves,
         ..SimulateOptions::default()
     };
     let mut study = options.study()?;
     if let Some(damper) = &mut study.protocol.stabilisation {
         damper.budget = settings.snap_budget;
     }
-    let solution = solve(parameters, &study, &|_| Ok(()))?;
+    let solution = match solve_to_secondary(parameters, &study)? {
+        ToSecondary::Whole(solution) => *solution,
+        ToSecondary::Changed(mode) => {
+            point.d_secondary = Some(mode.d);
+            point.secondary_half_waves = Some(mode.half_waves);
+            let mut seeded = study;
+            seeded.protocol.imperfection2 = settings.seed;
+            seeded.protocol.imperfection2_waves = 0.5 * mode.half_waves as f64;
+            if let Err(why) = seeded.validate() {
+                point.notes.push(format!("the secondary mode is not seeded: {why}"));
+                seeded = study;
+            }
+            solve(parameters, &seeded, &|_| Ok(()))?
+        }
+    };
     if let Some(why) = &solution.curve.stopped {
         point.notes.push(format!("nonlinear run stopped early: {why}"));
     }
@@ -292,9 +317,8 @@ fn nonlinear(
         solution.contact.d_first_contact.is_some(),
     ));
     point.trough_depths = depths;
-    point.d_secondary = solution.inertia_changes.first().map(|c| c.d_after);
     point.d_first_contact = solution.contact.d_first_contact;
-    point.d_reached = Some(solution.contact.d_reached);
+    point.d_reached = Some(d);
     Ok(())
 }
 
@@ -336,6 +360,9 @@ mod tests {
         // ... not a monotone drift of the trough depths from a long-wave seed.
         let drift = |x: f64| 0.3 * (k * x).cos() * (1.0 + 0.15 * x / length);
         assert_eq!(classify(&drift, false), PostBuckling::Wrinkle);
+        // ... or alternate troughs deepen (the modulation a symmetric domain of 4 waves admits).
+        let troughs = |x: f64| 0.3 * (k * x).cos() - 0.1 * (3.0 * std::f64::consts::PI * x / length).cos();
+        assert_eq!(classify(&troughs, false), PostBuckling::PeriodDoubling);
         // A fold: one trough (at X = 6) far deeper than the rest, closed or not.
         let fold = |x: f64| 0.2 * (k * x).cos() - 1.5 * (-((x - 6.0) / 1.0).powi(2)).exp();
         assert_eq!(classify(&fold, false), PostBuckling::Fold);

@@ -2,13 +2,15 @@
 //! summaries and the fields of the last state, from the same protocol as [`super::run`].
 
 use super::{ContactReport, Curve, Monitor, OnsetReport, Recorder, SimulateStudy};
+use crate::error::Error;
 use crate::error::Result;
 use crate::fem::fields::{cell_fields, CellFields};
 use crate::material::Bilayer;
 #[cfg(doc)]
 use crate::output::vtu::vtk_cell;
 use crate::parameters::Parameters;
-use crate::protocol::secondary::{branch, inertia_changes, Branch, InertiaChange};
+use crate::protocol::secondary::{branch, inertia_changes, secondary_mode, Branch, InertiaChange, SecondaryMode};
+use crate::protocol::Event;
 use crate::protocol::{stages, surface_profile};
 
 /// A mesh state ready for a viewer: reference points, 9-node cells (the local node order of
@@ -50,6 +52,54 @@ pub fn solve(params: &Parameters, study: &SimulateStudy, monitor: Monitor) -> Re
     let outcome = stages::run(&materials, study.mesh, &study.protocol, &mut |event| {
         recorder.note(&event)
     })?;
+    finish(params, study, &materials, recorder, outcome)
+}
+
+/// How [`solve_to_secondary`] ended.
+pub enum ToSecondary {
+    /// The inertia never changed: the whole run.
+    Whole(Box<Solution>),
+    /// It first changed at the state `d`: the mode nearest zero there.
+    Changed(SecondaryMode),
+}
+
+/// Runs `study` like [`solve`], but stops at the first change of the tangent's inertia and
+/// returns the mode that takes over there instead of the path.
+pub fn solve_to_secondary(params: &Parameters, study: &SimulateStudy) -> Result<ToSecondary> {
+    params.validate()?;
+    study.validate()?;
+    let materials = Bilayer::new(params);
+    let mut recorder = Recorder::new(&|_| Ok(()));
+    let mut last = None;
+    let mut changed = None;
+    let outcome = stages::run(&materials, study.mesh, &study.protocol, &mut |event| {
+        if let Event::Step { record, system, u } = &event {
+            if let Some(negative) = record.negative_pivots {
+                if last.is_some_and(|l| l != negative) {
+                    changed = Some(secondary_mode(&materials, system.mesh(), u, record.d));
+                    return Err(Error::Interrupted("the inertia changed".into()));
+                }
+                last = Some(negative);
+            }
+        }
+        recorder.note(&event)
+    })?;
+    match changed {
+        Some(mode) => Ok(ToSecondary::Changed(mode?)),
+        None => Ok(ToSecondary::Whole(Box::new(finish(
+            params, study, &materials, recorder, outcome,
+        )?))),
+    }
+}
+
+/// The [`Solution`] of a finished run.
+fn finish(
+    params: &Parameters,
+    study: &SimulateStudy,
+    materials: &Bilayer,
+    recorder: Recorder<'_>,
+    outcome: stages::Outcome,
+) -> Result<Solution> {
     let continuation = &outcome.continuation;
     let (system, u) = (continuation.system(), continuation.displacement());
     let mesh = system.mesh();
@@ -59,7 +109,7 @@ pub fn solve(params: &Parameters, study: &SimulateStudy, monitor: Monitor) -> Re
         points: mesh.coordinates().to_vec(),
         cells: mesh.elements().to_vec(),
         displacement: u.chunks(2).map(|c| [c[0], c[1]]).collect(),
-        cell: cell_fields(system, &materials, u)?,
+        cell: cell_fields(system, materials, u)?,
     };
     let curve = recorder.into_curve(outcome.stopped);
     let onset = OnsetReport::new(params, study.protocol.k, study.mesh.length, &curve)?;

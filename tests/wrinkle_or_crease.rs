@@ -1,0 +1,108 @@
+//! Wrinkle or crease first, and what the wrinkle becomes, against independent facts: a bilayer
+//! without contrast is a half-space, which creases (Hong, Zhao & Suo ~0.35) long before it
+//! wrinkles (Biot 0.456); a stiff layer wrinkles first at any fibre angle (its wrinkles come
+//! at a few per cent, a crease must fold the layer); and a crease is never dearer than one
+//! confined to the layer, so the crossover cannot come before the ratio at which the layer's
+//! wrinkles reach the half-space crease strain. Nearly incompressible (K = 100 mu), no fibres.
+
+use fiberfold::stability::{Method, StabilityAnalysis};
+use fiberfold::studies::map::{compute_point, first_instability, First, MapSettings, PostBuckling};
+use fiberfold::Parameters;
+
+fn isotropic(ratio: f64) -> Parameters {
+    Parameters {
+        mu_l: ratio,
+        K_l: 100.0 * ratio,
+        mu_s: 1.0,
+        K_s: 100.0,
+        phi_m: 1.0,
+        phi_f: 0.0,
+        mu_f: 0.0,
+        ..Parameters::default()
+    }
+}
+
+fn d_wrinkle(ratio: f64) -> f64 {
+    StabilityAnalysis::new(&isotropic(ratio), Method::Exact)
+        .unwrap()
+        .onset()
+        .unwrap()
+        .d_c
+}
+
+#[test]
+fn a_soft_bilayer_creases_first_a_stiff_one_wrinkles_first_and_the_crossover_lies_between() {
+    let settings = MapSettings::default();
+    let crease = settings.crease_study();
+    let first = |ratio: f64| first_instability(&crease, isotropic(ratio)).unwrap();
+
+    let same = first(1.0);
+    println!("ratio 1: d_wrinkle {:?}, d_crease {:?}", same.d_wrinkle, same.d_crease);
+    assert_eq!(same.first, First::Crease);
+    let half_space_crease = same.d_crease.unwrap();
+    assert!((0.34..0.38).contains(&half_space_crease), "{half_space_crease}");
+    for ratio in [10.0, 30.0] {
+        let stiff = first(ratio);
+        println!(
+            "ratio {ratio}: d_wrinkle {:?}, d_crease {:?}, {:?}",
+            stiff.d_wrinkle, stiff.d_crease, stiff.notes
+        );
+        assert_eq!(stiff.first, First::Wrinkle, "ratio {ratio}");
+    }
+
+    // The crossover: bisection in log(ratio) on which comes first, to a bracket of 12 %.
+    let (mut soft, mut stiff) = (1.0f64, 10.0f64);
+    while stiff / soft > 1.12 {
+        let mid = (soft * stiff).sqrt();
+        let p = first(mid);
+        println!(
+            "ratio {mid:.3}: {:?} (d_wrinkle {:?}, d_crease {:?})",
+            p.first, p.d_wrinkle, p.d_crease
+        );
+        match p.first {
+            First::Crease => soft = mid,
+            First::Wrinkle => stiff = mid,
+            other => panic!("ratio {mid}: {other:?} {:?}", p.notes),
+        }
+    }
+    // The ratio at which the layer's wrinkles come at the half-space crease strain.
+    let (mut lo, mut hi) = (1.0f64, 10.0f64);
+    for _ in 0..40 {
+        let mid = 0.5 * (lo + hi);
+        if d_wrinkle(mid) > half_space_crease {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    println!("crossover in [{soft:.3}, {stiff:.3}]; wrinkles reach the half-space crease strain at {lo:.3}");
+    assert!(stiff >= lo, "creases stop coming first at {stiff} < {lo}");
+}
+
+#[test]
+fn a_stiff_layer_goes_on_to_a_period_doubling_or_a_fold() {
+    let settings = MapSettings {
+        post_buckling_range: 0.3,
+        fold_lengths: vec![1.0],
+        ..MapSettings::default()
+    };
+    let parameters = Parameters {
+        K_l: 90.0,
+        K_s: 3.0,
+        ..isotropic(30.0)
+    };
+    let point = compute_point(&settings, &settings.crease_study(), (0, 0, 0, 30.0, 0.0), parameters).unwrap();
+    println!(
+        "becomes {:?}: troughs {:?}, doubling {:?}, secondary at {:?} (mode {:?}), notes {:?}",
+        point.becomes, point.trough_depths, point.doubling, point.d_secondary, point.secondary_half_waves, point.notes
+    );
+    assert_eq!(point.first, First::Wrinkle);
+    assert!(
+        matches!(point.becomes, Some(PostBuckling::PeriodDoubling | PostBuckling::Fold)),
+        "{:?}",
+        point.becomes
+    );
+    // The wrinkle loses stability after its onset and before it ends.
+    let d = point.d_secondary.unwrap();
+    assert!(d > point.d_wrinkle.unwrap() && d < point.d_reached.unwrap(), "{d}");
+}
