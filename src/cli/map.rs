@@ -35,7 +35,7 @@ pub struct MapArgs {
     /// First value of --y.
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub y_from: f64,
-    /// Last value of --y (default pi/2).
+    /// Last value of --y (the default is pi/2).
     #[arg(long, default_value_t = std::f64::consts::FRAC_PI_2, allow_negative_numbers = true)]
     pub y_to: f64,
     /// Values of --y.
