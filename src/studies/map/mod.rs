@@ -52,9 +52,18 @@ impl Axis {
     /// Checks the name (a numeric parameter), the range and the number of points; `flag` is the
     /// CLI's prefix (`x` or `y`).
     fn validate(&self, flag: &str) -> Result<()> {
-        Parameters::default().number(&self.name)?;
+        if self.name == "tension_only" || Parameters::default().number(&self.name).is_err() {
+            return Err(Error::invalid(
+                flag,
+                &self.name,
+                "a numeric parameter: mu_l, K_l, mu_s, K_s, phi_m, phi_f, mu_f, lambda_f or beta",
+            ));
+        }
         validate_points(&format!("{flag}-points"), self.points, 1)?;
-        if !(self.from.is_finite() && self.to.is_finite() && (self.points == 1 || self.to > self.from)) {
+        if !self.from.is_finite() {
+            return Err(Error::invalid(&format!("{flag}-from"), self.from, "a finite number"));
+        }
+        if !(self.to.is_finite() && (self.points == 1 || self.to > self.from)) {
             return Err(Error::invalid(
                 &format!("{flag}-to"),
                 self.to,
@@ -159,6 +168,18 @@ impl MapSettings {
         }
         if !(self.seed.is_finite() && (0.0..1.0).contains(&self.seed)) {
             return Err(Error::invalid("seed", self.seed, "[0, 1)"));
+        }
+        let counts = [
+            ("layer-elements", self.layer_elements, 16),
+            ("substrate-elements", self.substrate_elements, 400),
+            ("crease-nx", self.crease_mesh.nx, 2000),
+            ("crease-layer-elements", self.crease_mesh.layer, 64),
+            ("crease-substrate-elements", self.crease_mesh.substrate, 1000),
+        ];
+        for (name, count, most) in counts {
+            if !(1..=most).contains(&count) {
+                return Err(Error::invalid(name, count, &format!("[1, {most}]")));
+            }
         }
         self.crease_study().validate()
     }
@@ -459,4 +480,51 @@ fn label<T: Serialize>(value: &T) -> String {
         .ok()
         .and_then(|v| v.as_str().map(str::to_string))
         .unwrap_or_default()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn axis(name: &str, from: f64, to: f64, log: bool) -> Axis {
+        Axis {
+            name: name.into(),
+            from,
+            to,
+            points: 3,
+            log,
+        }
+    }
+
+    #[test]
+    fn axes_are_spaced_as_asked_and_bad_ones_name_their_flag() {
+        assert_eq!(axis("mu_l", 1.0, 100.0, true).values(), vec![1.0, 10.0, 100.0]);
+        assert_eq!(axis("beta", 0.0, 1.0, false).values(), vec![0.0, 0.5, 1.0]);
+        let message = |a: Axis| a.validate("x").unwrap_err().to_string();
+        assert!(message(axis("tension_only", 0.0, 1.0, false)).contains("`x`: allowed range is a numeric parameter"));
+        assert!(message(axis("mu_l", f64::NAN, 1.0, false)).contains("`x-from`"));
+        assert!(message(axis("mu_l", 2.0, 1.0, false)).contains("`x-to`"));
+        assert!(message(axis("mu_l", 0.0, 1.0, true)).contains("with --x-log"));
+    }
+
+    #[test]
+    fn a_mapped_shear_modulus_keeps_the_base_poisson_ratio_unless_asked_not_to() {
+        let mut study = MapStudy {
+            base: Parameters::default(),
+            x: axis("mu_l", 1.0, 30.0, true),
+            y: axis("beta", 0.0, 1.0, false),
+            settings: MapSettings::default(),
+        };
+        let grid = study.grid().unwrap();
+        let ((index, ix, iy, x, y), p) = &grid[5];
+        assert_eq!((*index, *ix, *iy), (5, 2, 1));
+        assert_eq!((p.mu_l, p.beta), (*x, *y));
+        assert!((p.K_l / p.mu_l - 3.0).abs() < 1e-12, "{p:?}");
+        study.settings.keep_poisson = false;
+        assert_eq!(study.grid().unwrap()[5].1.K_l, 30.0);
+        assert_eq!(Shard::parse("1/4").unwrap(), Shard { index: 1, count: 4 });
+        for bad in ["4/4", "1/0", "a/2", "3"] {
+            assert!(Shard::parse(bad).is_err(), "{bad}");
+        }
+    }
 }
