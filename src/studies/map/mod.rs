@@ -323,7 +323,18 @@ fn claim_folder(study: &MapStudy, out: &Path) -> Result<()> {
             }
             Ok(())
         }
-        Err(_) => write_json(&spec, study),
+        Err(_) => {
+            // Shards starting at once all write it: each through a temporary of its own, the
+            // renames of identical files over one another are harmless.
+            static WRITES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+            let nanos = std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map_or(0, |t| t.subsec_nanos());
+            let count = WRITES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            let temporary = out.join(format!(".map-spec.{}-{nanos}-{count}.json", std::process::id()));
+            write_json(&temporary, study)?;
+            std::fs::rename(&temporary, &spec).map_err(|e| Error::io(&spec, e))
+        }
     }
 }
 
@@ -505,6 +516,33 @@ mod tests {
         assert!(message(axis("mu_l", f64::NAN, 1.0, false)).contains("`x-from`"));
         assert!(message(axis("mu_l", 2.0, 1.0, false)).contains("`x-to`"));
         assert!(message(axis("mu_l", 0.0, 1.0, true)).contains("with --x-log"));
+    }
+
+    #[test]
+    fn shards_that_start_together_all_claim_the_folder() {
+        let study = MapStudy {
+            base: Parameters::default(),
+            x: axis("mu_l", 1.0, 30.0, true),
+            y: axis("beta", 0.0, 1.0, false),
+            settings: MapSettings::default(),
+        };
+        for round in 0..20 {
+            let out = std::env::temp_dir().join(format!("fiberfold-claim-{}-{round}", std::process::id()));
+            let _ = std::fs::remove_dir_all(&out);
+            std::thread::scope(|scope| {
+                let claims: Vec<_> = (0..8).map(|_| scope.spawn(|| claim_folder(&study, &out))).collect();
+                for claim in claims {
+                    claim.join().unwrap().unwrap();
+                }
+            });
+            let stray: Vec<_> = std::fs::read_dir(&out)
+                .unwrap()
+                .filter_map(|e| e.ok())
+                .map(|e| e.file_name())
+                .collect();
+            assert_eq!(stray.len(), 2, "{stray:?}"); // map-spec.json and points/
+            std::fs::remove_dir_all(&out).unwrap();
+        }
     }
 
     #[test]
