@@ -311,6 +311,24 @@ fn mismatch(out: &Path) -> Error {
     )
 }
 
+/// Writes `value` as JSON to `path`, which other processes may be writing with the same
+/// content at the same time (shards starting together, or a resumed run beside running shards):
+/// each writer goes through a temporary of its own, and renames of identical files over one
+/// another are harmless.
+fn write_shared<T: Serialize>(path: &Path, value: &T) -> Result<()> {
+    static WRITES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |t| t.subsec_nanos());
+    let count = WRITES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let name = path
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    let temporary = path.with_file_name(format!(".{name}.{}-{nanos}-{count}", std::process::id()));
+    write_json(&temporary, value)?;
+    std::fs::rename(&temporary, path).map_err(|e| Error::io(path, e))
+}
+
 /// Writes `map-spec.json`, or checks that the one in `out` is `study`'s.
 fn claim_folder(study: &MapStudy, out: &Path) -> Result<()> {
     ensure_dir(&out.join("points"))?;
@@ -323,18 +341,7 @@ fn claim_folder(study: &MapStudy, out: &Path) -> Result<()> {
             }
             Ok(())
         }
-        Err(_) => {
-            // Shards starting at once all write it: each through a temporary of its own, the
-            // renames of identical files over one another are harmless.
-            static WRITES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-            let nanos = std::time::SystemTime::now()
-                .duration_since(std::time::UNIX_EPOCH)
-                .map_or(0, |t| t.subsec_nanos());
-            let count = WRITES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            let temporary = out.join(format!(".map-spec.{}-{nanos}-{count}.json", std::process::id()));
-            write_json(&temporary, study)?;
-            std::fs::rename(&temporary, &spec).map_err(|e| Error::io(&spec, e))
-        }
+        Err(_) => write_shared(&spec, study),
     }
 }
 
@@ -360,7 +367,7 @@ pub fn compute(study: &MapStudy, out: &Path, shard: Option<Shard>, tick: Tick) -
     let reused = share.len() - pending.len();
     pending.into_par_iter().try_for_each(|(at, parameters)| {
         let point = point::compute(&study.settings, &crease_study, at, parameters)?;
-        write_json(
+        write_shared(
             &point_path(out, at.0),
             &PointFile {
                 study: study.clone(),
