@@ -20,6 +20,16 @@ pub fn ensure_dir(dir: &Path) -> Result<()> {
 
 /// Writes a pretty-printed JSON summary (atomically: complete or absent).
 pub fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<()> {
+    atomic::write_file(path, json_text(path, value)?)
+}
+
+/// [`write_json`] for a file other processes may be writing at the same time with the same
+/// contents ([`atomic::write_file_shared`]).
+pub fn write_json_shared<T: Serialize>(path: &Path, value: &T) -> Result<()> {
+    atomic::write_file_shared(path, json_text(path, value)?)
+}
+
+fn json_text<T: Serialize>(path: &Path, value: &T) -> Result<String> {
     let text = serde_json::to_string_pretty(value).map_err(|e| Error::NonFinite(format!("{}: {e}", path.display())))?;
-    atomic::write_file(path, text + "\n")
+    Ok(text + "\n")
 }

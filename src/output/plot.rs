@@ -247,10 +247,23 @@ fn render<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, panels: &[Figure]) -
     root.present().map_err(|e| e.to_string())
 }
 
-/// Writes `dir/stem.png` and `dir/stem.svg` with the panels side by side.
-pub fn save_panels(panels: &[Figure], dir: &Path, stem: &str) -> Result<Vec<PathBuf>> {
+/// A picture that any plotters backend can draw on its whole canvas.
+pub(crate) trait Canvas {
+    fn render<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> std::result::Result<(), String>;
+}
+
+/// Panels side by side.
+struct Panels<'a>(&'a [Figure]);
+
+impl Canvas for Panels<'_> {
+    fn render<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> std::result::Result<(), String> {
+        render(root, self.0)
+    }
+}
+
+/// Writes `dir/stem.png` and `dir/stem.svg` of `size` pixels, each atomically.
+pub(crate) fn save_canvas(canvas: &impl Canvas, size: (u32, u32), dir: &Path, stem: &str) -> Result<Vec<PathBuf>> {
     register_font();
-    let size = (640 * panels.len() as u32, 480);
     let png = dir.join(format!("{stem}.png"));
     let svg = dir.join(format!("{stem}.svg"));
     let fail = |path: &Path, message: String| Error::Plot {
@@ -258,12 +271,21 @@ pub fn save_panels(panels: &[Figure], dir: &Path, stem: &str) -> Result<Vec<Path
         message,
     };
     write_atomically(&png, |temporary| {
-        render(BitMapBackend::new(temporary, size).into_drawing_area(), panels).map_err(|m| fail(&png, m))
+        canvas
+            .render(BitMapBackend::new(temporary, size).into_drawing_area())
+            .map_err(|m| fail(&png, m))
     })?;
     write_atomically(&svg, |temporary| {
-        render(SVGBackend::new(temporary, size).into_drawing_area(), panels).map_err(|m| fail(&svg, m))
+        canvas
+            .render(SVGBackend::new(temporary, size).into_drawing_area())
+            .map_err(|m| fail(&svg, m))
     })?;
     Ok(vec![png, svg])
+}
+
+/// Writes `dir/stem.png` and `dir/stem.svg` with the panels side by side.
+pub fn save_panels(panels: &[Figure], dir: &Path, stem: &str) -> Result<Vec<PathBuf>> {
+    save_canvas(&Panels(panels), (640 * panels.len() as u32, 480), dir, stem)
 }
 
 impl Figure {

@@ -94,6 +94,14 @@ pub enum Cell<'a> {
     Empty,
 }
 
+/// The JSON name of a unit enum variant (`"long_wave"`), for a text cell.
+pub fn variant_name<T: serde::Serialize>(value: &T) -> String {
+    serde_json::to_value(value)
+        .ok()
+        .and_then(|v| v.as_str().map(str::to_string))
+        .unwrap_or_default()
+}
+
 /// Shortest round-trip text of a number, scientific when very small or large.
 pub fn format_number(x: f64) -> String {
     if x == 0.0 || (1e-4..1e6).contains(&x.abs()) {

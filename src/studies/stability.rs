@@ -2,7 +2,7 @@
 
 use super::{linspace, validate_points, Tick};
 use crate::error::{Error, Result};
-use crate::output::table::Cell;
+use crate::output::table::{variant_name, Cell};
 use crate::output::{ensure_dir, plot::save_panels, write_json, CsvWriter, Figure, LineStyle, Series};
 use crate::parameters::{Parameters, PARAMETER_NAMES};
 use crate::stability::{Method, Minimum, Onset, StabilityAnalysis, K_MAX};
@@ -335,13 +335,13 @@ pub fn sweep(params: &Parameters, study: &SweepStudy, out: &Path, tick: Tick) ->
             } else {
                 Cell::Empty
             };
-            let minimum = serde_json::to_value(o.minimum).expect("a plain enum");
+            let minimum = variant_name(&o.minimum);
             table.append_cells(&[
                 Cell::Text(&label(p.series)),
                 Cell::Number(p.value),
                 k0,
                 Cell::Number(o.d_c),
-                Cell::Text(minimum.as_str().expect("serialised as a string")),
+                Cell::Text(&minimum),
             ])?;
         }
     }

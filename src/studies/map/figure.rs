@@ -2,9 +2,8 @@
 //! where the regime changes between neighbours, and the paper's parameter set marked.
 
 use super::{First, MapPoint, MapReport, PostBuckling};
-use crate::error::{Error, Result};
-use crate::output::atomic::write_atomically;
-use crate::output::plot::{register_font, FONT};
+use crate::error::Result;
+use crate::output::plot::{save_canvas, Canvas, FONT};
 use crate::parameters::Parameters;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -52,21 +51,15 @@ fn edges(values: &[f64]) -> Vec<f64> {
 
 /// Writes `map.png` and `map.svg`.
 pub fn phase_diagram(report: &MapReport, out: &Path) -> Result<Vec<PathBuf>> {
-    register_font();
-    let size = (900, 620);
-    let png = out.join("map.png");
-    let svg = out.join("map.svg");
-    let fail = |path: &Path, message: String| Error::Plot {
-        path: path.display().to_string(),
-        message,
-    };
-    write_atomically(&png, |t| {
-        draw(BitMapBackend::new(t, size).into_drawing_area(), report).map_err(|m| fail(&png, m))
-    })?;
-    write_atomically(&svg, |t| {
-        draw(SVGBackend::new(t, size).into_drawing_area(), report).map_err(|m| fail(&svg, m))
-    })?;
-    Ok(vec![png, svg])
+    save_canvas(&PhaseDiagram(report), (900, 620), out, "map")
+}
+
+struct PhaseDiagram<'a>(&'a MapReport);
+
+impl Canvas for PhaseDiagram<'_> {
+    fn render<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> std::result::Result<(), String> {
+        draw(root, self.0)
+    }
 }
 
 fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, report: &MapReport) -> std::result::Result<(), String> {

@@ -14,8 +14,8 @@ pub use point::{compute as compute_point, doubling, first_instability, post_buck
 use super::crease::{CreaseMesh, CreaseStudy, Scan};
 use super::{validate_points, Tick};
 use crate::error::{Error, Result};
-use crate::output::table::Cell;
-use crate::output::{ensure_dir, write_json, CsvWriter};
+use crate::output::table::{variant_name, Cell};
+use crate::output::{ensure_dir, write_json, write_json_shared, CsvWriter};
 use crate::parameters::Parameters;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -311,24 +311,6 @@ fn mismatch(out: &Path) -> Error {
     )
 }
 
-/// Writes `value` as JSON to `path`, which other processes may be writing with the same
-/// content at the same time (shards starting together, or a resumed run beside running shards):
-/// each writer goes through a temporary of its own, and renames of identical files over one
-/// another are harmless.
-fn write_shared<T: Serialize>(path: &Path, value: &T) -> Result<()> {
-    static WRITES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-    let nanos = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |t| t.subsec_nanos());
-    let count = WRITES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let name = path
-        .file_name()
-        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-    let temporary = path.with_file_name(format!(".{name}.{}-{nanos}-{count}", std::process::id()));
-    write_json(&temporary, value)?;
-    std::fs::rename(&temporary, path).map_err(|e| Error::io(path, e))
-}
-
 /// Writes `map-spec.json`, or checks that the one in `out` is `study`'s.
 fn claim_folder(study: &MapStudy, out: &Path) -> Result<()> {
     ensure_dir(&out.join("points"))?;
@@ -341,7 +323,7 @@ fn claim_folder(study: &MapStudy, out: &Path) -> Result<()> {
             }
             Ok(())
         }
-        Err(_) => write_shared(&spec, study),
+        Err(_) => write_json_shared(&spec, study),
     }
 }
 
@@ -367,7 +349,7 @@ pub fn compute(study: &MapStudy, out: &Path, shard: Option<Shard>, tick: Tick) -
     let reused = share.len() - pending.len();
     pending.into_par_iter().try_for_each(|(at, parameters)| {
         let point = point::compute(&study.settings, &crease_study, at, parameters)?;
-        write_shared(
+        write_json_shared(
             &point_path(out, at.0),
             &PointFile {
                 study: study.clone(),
@@ -469,8 +451,11 @@ fn write_csv(report: &MapReport, out: &Path) -> Result<PathBuf> {
     )?;
     let number = |v: Option<f64>| v.map_or(Cell::Empty, Cell::Number);
     for p in &report.points {
-        let minimum = p.minimum.map(|m| label(&m)).unwrap_or_default();
-        let (first, becomes) = (label(&p.first), p.becomes.map(|b| label(&b)).unwrap_or_default());
+        let minimum = p.minimum.map(|m| variant_name(&m)).unwrap_or_default();
+        let (first, becomes) = (
+            variant_name(&p.first),
+            p.becomes.map(|b| variant_name(&b)).unwrap_or_default(),
+        );
         table.append_cells(&[
             Cell::Number(p.index as f64),
             Cell::Number(p.x),
@@ -490,14 +475,6 @@ fn write_csv(report: &MapReport, out: &Path) -> Result<PathBuf> {
         ])?;
     }
     Ok(path)
-}
-
-/// The JSON name of a unit enum variant (`"long_wave"`).
-fn label<T: Serialize>(value: &T) -> String {
-    serde_json::to_value(value)
-        .ok()
-        .and_then(|v| v.as_str().map(str::to_string))
-        .unwrap_or_default()
 }
 
 #[cfg(test)]

@@ -303,7 +303,7 @@ fn nonlinear(
     }
     let depths = solution.branch.trough_depths;
     let d = solution.contact.d_reached;
-    point.doubling = Some(doubling(&solution.surface, study.protocol.k, d));
+    let doubled = doubling(&solution.surface, study.protocol.k, d);
     let unstable = solution
         .curve
         .records
@@ -312,10 +312,11 @@ fn nonlinear(
         .is_some_and(|n| n > 0);
     point.becomes = Some(post_buckling(
         &depths,
-        point.doubling.unwrap_or(0.0),
+        doubled,
         unstable,
         solution.contact.d_first_contact.is_some(),
     ));
+    point.doubling = Some(doubled);
     point.trough_depths = depths;
     point.d_first_contact = solution.contact.d_first_contact;
     point.d_reached = Some(d);
