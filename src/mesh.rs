@@ -26,7 +26,38 @@ pub enum Region {
     Substrate,
 }
 
-/// Size and grading of a structured bilayer mesh.
+/// The finite element on the mesh (both interpolate displacements with Q2).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ElementKind {
+    /// Q2 displacements, full 3x3 integration ([`crate::fem::element`]); locks as `K / mu` grows.
+    #[default]
+    Displacement,
+    /// Q2 displacements with a discontinuous linear pressure condensed per element
+    /// ([`crate::fem::mixed`]); free of locking up to `K / mu = 10^6`.
+    Mixed,
+}
+
+impl ElementKind {
+    /// The element by its name, `displacement` or `mixed`.
+    pub fn from_name(name: &str) -> Result<Self> {
+        match name {
+            "displacement" => Ok(ElementKind::Displacement),
+            "mixed" => Ok(ElementKind::Mixed),
+            other => Err(Error::invalid("element", other, "displacement or mixed")),
+        }
+    }
+
+    /// The name [`ElementKind::from_name`] reads.
+    pub fn name(self) -> &'static str {
+        match self {
+            ElementKind::Displacement => "displacement",
+            ElementKind::Mixed => "mixed",
+        }
+    }
+}
+
+/// Size and grading of a structured bilayer mesh, and the element on it.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct MeshSpec {
     /// Number of elements along X.
@@ -43,6 +74,8 @@ pub struct MeshSpec {
     pub depth: f64,
     /// Refinement in X (`None`: uniform).
     pub x_refinement: Option<XRefinement>,
+    /// The element (default: displacement).
+    pub element: ElementKind,
 }
 
 /// Elements in X sized inversely to the density `1 + (ratio - 1) sum_j exp(-((X - X_j) / width)^2)`
@@ -98,7 +131,14 @@ impl MeshSpec {
             length,
             depth,
             x_refinement: None,
+            element: ElementKind::Displacement,
         }
+    }
+
+    /// The same mesh with `element` on it.
+    pub fn with_element(mut self, element: ElementKind) -> Self {
+        self.element = element;
+        self
     }
 
     /// The same mesh refined in X by `refinement`.

@@ -5,35 +5,14 @@
 
 mod common;
 
-use common::homogeneous_material;
+use common::{boundary_values, distortion, error_norms, homogeneous_material};
 use fiberfold::fem::boundary::{X, Y};
-use fiberfold::fem::element::shape_functions;
 use fiberfold::fem::linear_solver::multiply;
-use fiberfold::fem::{dof, model_conditions, Dirichlet, Newton, NewtonError, NewtonSettings, System};
+use fiberfold::fem::{dof, model_conditions, Newton, NewtonError, NewtonSettings, System};
 use fiberfold::homogeneous::homogeneous_state;
 use fiberfold::material::Bilayer;
-use fiberfold::mesh::{Mesh, MeshSpec};
+use fiberfold::mesh::{ElementKind, Mesh, MeshSpec};
 use fiberfold::Parameters;
-
-/// A smooth distortion of every node, curving the element edges.
-fn distortion(amplitude: f64) -> impl Fn([f64; 2]) -> [f64; 2] {
-    move |[x, y]| {
-        [
-            amplitude * (1.7 * x + 0.9 * y).sin(),
-            amplitude * (1.3 * x - 2.1 * y).cos(),
-        ]
-    }
-}
-
-/// Prescribes `value(X)` on every boundary node.
-fn boundary_values(mesh: &Mesh, value: impl Fn([f64; 2]) -> [f64; 2]) -> Dirichlet {
-    let nodes = [mesh.left(), mesh.right(), mesh.bottom(), mesh.top()].concat();
-    let pairs = nodes.iter().flat_map(|&n| {
-        let v = value(mesh.coordinates()[n]);
-        [(dof(n, X), v[0]), (dof(n, Y), v[1])]
-    });
-    Dirichlet::new(pairs.collect()).unwrap()
-}
 
 /// Numbers in scientific notation, for messages.
 fn list(values: &[f64]) -> String {
@@ -68,24 +47,25 @@ fn unknown_counts_and_grading_of_the_presets() {
 
 #[test]
 fn patch_test_reproduces_an_affine_deformation_on_a_distorted_mesh() {
-    let mesh = Mesh::new(MeshSpec::new(3, 2, 2, 0.8, 3.0, 2.0))
-        .unwrap()
-        .perturbed(distortion(0.08));
-    let g = [[0.1, 0.2], [-0.15, 0.05]];
-    let affine = |[x, y]: [f64; 2]| [g[0][0] * x + g[0][1] * y, g[1][0] * x + g[1][1] * y];
-    let bc = boundary_values(&mesh, affine);
-    let mut system = System::new(mesh.clone(), &homogeneous_material()).unwrap();
-    let mut u = vec![0.0; mesh.num_dofs()];
-    let report = Newton::new(NewtonSettings::default())
-        .solve(&mut system, &mut u, &bc)
-        .unwrap();
-    let worst = (0..mesh.num_nodes())
-        .map(|n| {
-            let exact = affine(mesh.coordinates()[n]);
-            (u[2 * n] - exact[0]).abs().max((u[2 * n + 1] - exact[1]).abs())
-        })
-        .fold(0.0, f64::max);
-    assert!(worst < 1e-12, "patch test error {worst:e} ({report:?})");
+    for element in [ElementKind::Displacement, ElementKind::Mixed] {
+        let spec = MeshSpec::new(3, 2, 2, 0.8, 3.0, 2.0).with_element(element);
+        let mesh = Mesh::new(spec).unwrap().perturbed(distortion(0.08));
+        let g = [[0.1, 0.2], [-0.15, 0.05]];
+        let affine = |[x, y]: [f64; 2]| [g[0][0] * x + g[0][1] * y, g[1][0] * x + g[1][1] * y];
+        let bc = boundary_values(&mesh, affine);
+        let mut system = System::new(mesh.clone(), &homogeneous_material()).unwrap();
+        let mut u = vec![0.0; mesh.num_dofs()];
+        let report = Newton::new(NewtonSettings::default())
+            .solve(&mut system, &mut u, &bc)
+            .unwrap();
+        let worst = (0..mesh.num_nodes())
+            .map(|n| {
+                let exact = affine(mesh.coordinates()[n]);
+                (u[2 * n] - exact[0]).abs().max((u[2 * n + 1] - exact[1]).abs())
+            })
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-12, "{element:?}: patch test error {worst:e} ({report:?})");
+    }
 }
 
 #[test]
@@ -311,37 +291,6 @@ fn small_strain_solution(eps: f64) -> impl Fn([f64; 2]) -> [f64; 2] {
     move |[x, y]| [eps * x.exp() * y.sin(), eps * x.exp() * y.cos()]
 }
 
-/// `||u_h - u||_L2 / ||u||_L2` with a 4x4 Gauss rule per element.
-fn relative_l2_error(system: &System, u: &[f64], exact: &impl Fn([f64; 2]) -> [f64; 2]) -> f64 {
-    let (r, s) = (0.339_981_043_584_856_3, 0.861_136_311_594_052_6);
-    let (wr, ws) = (0.652_145_154_862_546_1, 0.347_854_845_137_453_9);
-    let rule = [(-s, ws), (-r, wr), (r, wr), (s, ws)];
-    let coordinates = system.mesh().coordinates();
-    let (mut error, mut total) = (0.0, 0.0);
-    for (e, nodes) in system.mesh().elements().iter().enumerate() {
-        let ue = system.element_displacements(e, u);
-        for &(xi, wx) in &rule {
-            for &(eta, wy) in &rule {
-                let n = shape_functions([xi, eta]);
-                // Affine elements on this uniform mesh: det(dX/dxi) is constant, area / 4.
-                let weight = wx * wy * system.geometry()[e].area() / 4.0;
-                let mut point = [0.0; 2];
-                let mut uh = [0.0; 2];
-                for a in 0..9 {
-                    for c in 0..2 {
-                        point[c] += n[a] * coordinates[nodes[a]][c];
-                        uh[c] += n[a] * ue[2 * a + c];
-                    }
-                }
-                let v = exact(point);
-                error += weight * ((uh[0] - v[0]).powi(2) + (uh[1] - v[1]).powi(2));
-                total += weight * (v[0] * v[0] + v[1] * v[1]);
-            }
-        }
-    }
-    (error / total).sqrt()
-}
-
 #[test]
 fn q2_displacement_converges_at_third_order_in_l2() {
     let exact = small_strain_solution(1e-7);
@@ -361,7 +310,7 @@ fn q2_displacement_converges_at_third_order_in_l2() {
             let mut system = System::new(mesh, &homogeneous_material()).unwrap();
             let mut u = vec![0.0; system.num_dofs()];
             Newton::new(settings).solve(&mut system, &mut u, &bc).unwrap();
-            relative_l2_error(&system, &u, &exact)
+            error_norms(&system, &u, &exact, &|_| [0.0; 4]).relative_l2()
         })
         .collect();
     let rates: Vec<f64> = errors.windows(2).map(|w| (w[0] / w[1]).log2()).collect();

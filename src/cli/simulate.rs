@@ -3,7 +3,7 @@
 use super::common::{report_files, ParamArgs};
 use clap::{Args, ValueEnum};
 use fiberfold::fem::memory::{available_bytes, MemoryEstimate};
-use fiberfold::mesh::MeshSpec;
+use fiberfold::mesh::{ElementKind, MeshSpec};
 use fiberfold::protocol::mode_number;
 use fiberfold::studies::simulate::{self, Progress, SimulateOptions, SimulateStudy};
 use fiberfold::{Error, Result};
@@ -19,6 +19,25 @@ pub enum MeshPreset {
     Fine,
     /// 400 x (8 + 90) elements, h0 = 0.125: 315,594 unknowns.
     Extra,
+}
+
+/// The finite element.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum ElementChoice {
+    /// Q2 displacements, full 3x3 integration; locks as K/mu grows (use it up to K/mu ~ 100).
+    Displacement,
+    /// Q2 displacements with a discontinuous linear pressure condensed per element (Q2/P1disc):
+    /// no locking up to K/mu = 10^6, same unknowns, about the same cost per iteration.
+    Mixed,
+}
+
+impl From<ElementChoice> for ElementKind {
+    fn from(choice: ElementChoice) -> Self {
+        match choice {
+            ElementChoice::Displacement => ElementKind::Displacement,
+            ElementChoice::Mixed => ElementKind::Mixed,
+        }
+    }
 }
 
 /// Mesh of the half domain 0 <= X <= 50, -50 <= Y <= 1: a preset, optionally modified.
@@ -42,6 +61,9 @@ pub struct MeshArgs {
     /// Growth ratio of consecutive substrate elements in [1, 2], instead of --h0.
     #[arg(long, allow_negative_numbers = true)]
     pub grading: Option<f64>,
+    /// Finite element on the mesh.
+    #[arg(long, value_enum, default_value_t = ElementChoice::Displacement)]
+    pub element: ElementChoice,
 }
 
 impl MeshArgs {
@@ -52,7 +74,8 @@ impl MeshArgs {
             MeshPreset::Fine => MeshSpec::fine(),
             MeshPreset::Extra => MeshSpec::extra(),
         }
-        .with_overrides(self.nx, self.layer_elements, self.substrate_elements, self.h0);
+        .with_overrides(self.nx, self.layer_elements, self.substrate_elements, self.h0)
+        .with_element(self.element.into());
         if let Some(r) = self.grading {
             if !(1.0..=2.0).contains(&r) {
                 return Err(Error::invalid("grading", r, "[1, 2]"));

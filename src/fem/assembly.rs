@@ -13,10 +13,11 @@
 
 use super::added::{AddedEnergy, Block, NoAddedEnergy};
 use super::boundary::Dirichlet;
-use super::element::{self, ElementGeometry, ElementState, ElementVector, DOFS};
+use super::element::{self, ElementGeometry, ElementMatrix, ElementState, ElementVector, DOFS};
+use super::mixed::MixedElement;
 use crate::error::{Error, Result};
 use crate::material::{Bilayer, Tissue};
-use crate::mesh::{Mesh, Region};
+use crate::mesh::{ElementKind, Mesh, Region};
 use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -98,15 +99,18 @@ pub struct System {
     mesh: Mesh,
     materials: Vec<Tissue>,
     geometry: Vec<ElementGeometry>,
+    /// Pressure spaces of the mixed element (empty for the displacement element).
+    mixed: Vec<MixedElement>,
     pattern: Option<Pattern>,
     /// Element-matrix entries of the last assembly (reused to avoid reallocating).
     entries: Vec<f64>,
 }
 
 impl System {
-    /// The layer's material in layer elements, the substrate's in substrate elements.
+    /// The layer's material in layer elements, the substrate's in substrate elements, with the
+    /// element the mesh's spec names.
     pub fn new(mesh: Mesh, materials: &Bilayer) -> Result<Self> {
-        let tissues = mesh
+        let tissues: Vec<Tissue> = mesh
             .regions()
             .iter()
             .map(|region| match region {
@@ -119,11 +123,20 @@ impl System {
             .elements()
             .iter()
             .map(|nodes| ElementGeometry::new(&nodes.map(|n| coordinates[n])))
-            .collect::<Result<_>>()?;
+            .collect::<Result<Vec<_>>>()?;
+        let mixed = match mesh.spec().element {
+            ElementKind::Displacement => Vec::new(),
+            ElementKind::Mixed => geometry
+                .iter()
+                .zip(&tissues)
+                .map(|(g, t)| MixedElement::new(g, t))
+                .collect(),
+        };
         Ok(System {
             mesh,
             materials: tissues,
             geometry,
+            mixed,
             pattern: None,
             entries: Vec::new(),
         })
@@ -142,6 +155,25 @@ impl System {
     /// The reference geometry of every element.
     pub fn geometry(&self) -> &[ElementGeometry] {
         &self.geometry
+    }
+
+    /// The mixed element's pressure spaces, one per element (empty for the displacement element).
+    pub fn mixed_elements(&self) -> &[MixedElement] {
+        &self.mixed
+    }
+
+    /// Element `e`'s force, energy and smallest `J` at its nodal displacements `u`, and its
+    /// tangent into `stiffness` when given, by the mesh's element.
+    pub fn element_state(
+        &self,
+        e: usize,
+        u: &ElementVector,
+        stiffness: Option<&mut ElementMatrix>,
+    ) -> Result<ElementState> {
+        match self.mixed.get(e) {
+            Some(mixed) => Ok(mixed.evaluate(&self.geometry[e], u, stiffness)?.state),
+            None => element::evaluate(&self.geometry[e], &self.materials[e], u, stiffness),
+        }
     }
 
     /// Number of unknowns before boundary conditions.
@@ -290,12 +322,7 @@ impl System {
         let slots: [Slot; DOFS] = std::array::from_fn(|i| pattern.slots[2 * nodes[i / 2] + i % 2]);
         let needs_tangent = !chunk.is_empty() || lift.is_some();
         let mut k = [[0.0; DOFS]; DOFS];
-        let state = element::evaluate(
-            &self.geometry[e],
-            &self.materials[e],
-            &self.element_displacements(e, u),
-            needs_tangent.then_some(&mut k),
-        )?;
+        let state = self.element_state(e, &self.element_displacements(e, u), needs_tangent.then_some(&mut k))?;
         let mut lifted = [0.0; DOFS];
         if let Some(lift) = lift {
             for (b, slot) in slots.iter().enumerate() {

@@ -61,6 +61,8 @@ pub struct ElementGeometry {
     gradients: [[[f64; 2]; NODES]; GAUSS_POINTS],
     /// Gauss weight times `det(dX/dxi)`.
     weights: [f64; GAUSS_POINTS],
+    /// Reference position `X` of each Gauss point.
+    points: [[f64; 2]; GAUSS_POINTS],
 }
 
 impl ElementGeometry {
@@ -68,7 +70,12 @@ impl ElementGeometry {
     pub fn new(nodes: &[[f64; 2]; NODES]) -> Result<Self> {
         let mut gradients = [[[0.0; 2]; NODES]; GAUSS_POINTS];
         let mut weights = [0.0; GAUSS_POINTS];
+        let mut points = [[0.0; 2]; GAUSS_POINTS];
         for (g, (xi, w)) in gauss_rule().into_iter().enumerate() {
+            for (x, n) in nodes.iter().zip(shape_functions(xi)) {
+                points[g][0] += n * x[0];
+                points[g][1] += n * x[1];
+            }
             let dn = shape_derivatives(xi);
             // j[I][r] = dX_I / dxi_r.
             let mut j = [[0.0; 2]; 2];
@@ -95,7 +102,11 @@ impl ElementGeometry {
             }
             weights[g] = w * det;
         }
-        Ok(ElementGeometry { gradients, weights })
+        Ok(ElementGeometry {
+            gradients,
+            weights,
+            points,
+        })
     }
 
     /// Reference area of the element.
@@ -106,6 +117,16 @@ impl ElementGeometry {
     /// Quadrature weights (Gauss weight times reference Jacobian).
     pub fn weights(&self) -> &[f64; GAUSS_POINTS] {
         &self.weights
+    }
+
+    /// Reference positions of the Gauss points.
+    pub fn points(&self) -> &[[f64; 2]; GAUSS_POINTS] {
+        &self.points
+    }
+
+    /// `dN_a/dX` at Gauss point `g`.
+    pub fn gradients(&self, g: usize) -> &[[f64; 2]; NODES] {
+        &self.gradients[g]
     }
 
     /// `F = I + Grad u` at Gauss point `g`, row-major `[F11, F12, F21, F22]`.
@@ -180,7 +201,7 @@ pub fn evaluate<M: Hyperelastic>(
 
 /// `K_ai,bk += w G_aJ A_iJkL G_bL` at one Gauss point, on and above the diagonal only (`A` has
 /// major symmetry, so `K` is symmetric).
-fn add_tangent(k: &mut ElementMatrix, grads: &[[f64; 2]; NODES], a4: &[[f64; 4]; 4], w: f64) {
+pub(super) fn add_tangent(k: &mut ElementMatrix, grads: &[[f64; 2]; NODES], a4: &[[f64; 4]; 4], w: f64) {
     // ag[b][2i+J][k] = w sum_L A_iJkL G_bL.
     let ag: [[[f64; 2]; 4]; NODES] = std::array::from_fn(|b| {
         std::array::from_fn(|ij| {
@@ -201,7 +222,7 @@ fn add_tangent(k: &mut ElementMatrix, grads: &[[f64; 2]; NODES], a4: &[[f64; 4];
 }
 
 /// Copies the upper triangle of `K` onto the lower one.
-fn mirror_upper_triangle(k: &mut ElementMatrix) {
+pub(super) fn mirror_upper_triangle(k: &mut ElementMatrix) {
     for r in 1..DOFS {
         let (above, below) = k.split_at_mut(r);
         for (entry, upper_row) in below[0].iter_mut().zip(above.iter()) {
@@ -211,13 +232,13 @@ fn mirror_upper_triangle(k: &mut ElementMatrix) {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::material::{Bilayer, Tissue};
     use crate::parameters::Parameters;
 
     /// A curved, distorted element and a non-trivial displacement.
-    fn distorted() -> ([[f64; 2]; NODES], ElementVector) {
+    pub(in crate::fem) fn distorted() -> ([[f64; 2]; NODES], ElementVector) {
         let nodes = std::array::from_fn(|a| {
             let (x, y) = ((a % 3) as f64 - 1.0, (a / 3) as f64 - 1.0);
             [1.3 * x + 0.2 * y + 0.05 * y * y, 0.9 * y + 0.1 * x * y - 0.07 * x * x]

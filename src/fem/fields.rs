@@ -18,6 +18,9 @@ pub struct CellFields {
     pub cauchy: Vec<[f64; 4]>,
     /// Von Mises equivalent of the Cauchy stress.
     pub von_mises: Vec<f64>,
+    /// Hydrostatic pressure `-(s11 + s22 + s33) / 3`; with the mixed element, from its
+    /// condensed pressure.
+    pub pressure: Vec<f64>,
     /// Stretch `sqrt(I4_i) = |F N_i|` along each fibre direction `N_{1,2} = (cos beta, +-sin beta)`;
     /// kinematic, so defined in the layer too (which carries no fibres).
     pub fibre_stretch: [Vec<f64>; 2],
@@ -30,11 +33,25 @@ pub fn cell_fields(system: &System, materials: &Bilayer, u: &[f64]) -> Result<Ce
     let fibres: &[FibreFamily; 2] = &materials.substrate.fibres;
     let mut fields = CellFields::default();
     for (e, (geometry, material)) in system.geometry().iter().zip(system.materials()).enumerate() {
-        let f: Tensor2 = geometry.deformation_gradient(CENTRE, &system.element_displacements(e, u));
-        let sigma = material.cauchy(&f)?;
+        let u_e = system.element_displacements(e, u);
+        let f: Tensor2 = geometry.deformation_gradient(CENTRE, &u_e);
+        let sigma = match system.mixed_elements().get(e) {
+            None => material.cauchy(&f)?,
+            Some(mixed) => {
+                // sigma = sigma_rest + p / J I, `p` the condensed `kappa ln J` (`fem::mixed`).
+                let pressure = mixed.evaluate(geometry, &u_e, None)?.pressure;
+                let p: f64 = mixed.basis(CENTRE).iter().zip(&pressure).map(|(a, b)| a * b).sum();
+                let mut sigma = mixed.rest().cauchy(&f)?;
+                for i in [0, 2, 3] {
+                    sigma[i] += p / jacobian(&f);
+                }
+                sigma
+            }
+        };
         fields.jacobian.push(jacobian(&f));
         fields.cauchy.push(sigma);
         fields.von_mises.push(von_mises(&sigma));
+        fields.pressure.push(-(sigma[0] + sigma[2] + sigma[3]) / 3.0);
         for (stretch, family) in fields.fibre_stretch.iter_mut().zip(fibres) {
             stretch.push(family.stretch_invariant(&f).sqrt());
         }

@@ -12,6 +12,7 @@ pub mod element;
 pub mod fields;
 pub mod linear_solver;
 pub mod memory;
+pub mod mixed;
 pub mod newton;
 
 pub use assembly::{Assembled, System};

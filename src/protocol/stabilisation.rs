@@ -16,7 +16,7 @@
 
 use crate::error::{Error, Result};
 use crate::fem::added::{AddedEnergy, Block, Diagonal};
-use crate::fem::element::{self, DOFS};
+use crate::fem::element::DOFS;
 use crate::fem::System;
 use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
@@ -68,8 +68,8 @@ impl Stabilisation {
         let mesh = system.mesh();
         let mut stiffness = vec![0.0; mesh.num_dofs()];
         let mut k = [[0.0; DOFS]; DOFS];
-        for (e, (geometry, material)) in system.geometry().iter().zip(system.materials()).enumerate() {
-            element::evaluate(geometry, material, &[0.0; DOFS], Some(&mut k))?;
+        for e in 0..mesh.elements().len() {
+            system.element_state(e, &[0.0; DOFS], Some(&mut k))?;
             let nodes = &mesh.elements()[e];
             for (i, row) in k.iter().enumerate() {
                 stiffness[2 * nodes[i / 2] + i % 2] += row[i];

@@ -1,7 +1,11 @@
 //! Helpers shared by the integration tests (each test crate uses some of them).
 #![allow(dead_code)]
 
+use fiberfold::fem::boundary::{X, Y};
+use fiberfold::fem::element::{shape_derivatives, shape_functions};
+use fiberfold::fem::{dof, Dirichlet, System};
 use fiberfold::material::Bilayer;
+use fiberfold::mesh::Mesh;
 use fiberfold::Parameters;
 use std::path::PathBuf;
 use std::process::{Command, Output};
@@ -120,4 +124,99 @@ pub fn map_points(dir: &std::path::Path) -> Vec<serde_json::Value> {
         p.as_object_mut().unwrap().remove("seconds");
     }
     points
+}
+
+/// A smooth distortion of every node, curving the element edges.
+pub fn distortion(amplitude: f64) -> impl Fn([f64; 2]) -> [f64; 2] {
+    move |[x, y]| {
+        [
+            amplitude * (1.7 * x + 0.9 * y).sin(),
+            amplitude * (1.3 * x - 2.1 * y).cos(),
+        ]
+    }
+}
+
+/// Prescribes `value(X)` on every boundary node.
+pub fn boundary_values(mesh: &Mesh, value: impl Fn([f64; 2]) -> [f64; 2]) -> Dirichlet {
+    let nodes = [mesh.left(), mesh.right(), mesh.bottom(), mesh.top()].concat();
+    let pairs = nodes.iter().flat_map(|&n| {
+        let v = value(mesh.coordinates()[n]);
+        [(dof(n, X), v[0]), (dof(n, Y), v[1])]
+    });
+    Dirichlet::new(pairs.collect()).unwrap()
+}
+
+/// Norms of the error of a finite-element displacement against an exact one.
+pub struct ErrorNorms {
+    /// `||u_h - u||_L2`.
+    pub l2: f64,
+    /// `|u_h - u|_H1 = ||Grad u_h - Grad u||_L2`.
+    pub h1: f64,
+    /// `||u||_L2`.
+    pub exact_l2: f64,
+}
+
+impl ErrorNorms {
+    pub fn relative_l2(&self) -> f64 {
+        self.l2 / self.exact_l2
+    }
+}
+
+/// [`ErrorNorms`] of the full displacement `u` against `exact` (and its gradient
+/// `[du1/dX, du1/dY, du2/dX, du2/dY]`), with a 4x4 Gauss rule per element.
+pub fn error_norms(
+    system: &System,
+    u: &[f64],
+    exact: &dyn Fn([f64; 2]) -> [f64; 2],
+    exact_gradient: &dyn Fn([f64; 2]) -> [f64; 4],
+) -> ErrorNorms {
+    let (r, s) = (0.339_981_043_584_856_3, 0.861_136_311_594_052_6);
+    let (wr, ws) = (0.652_145_154_862_546_1, 0.347_854_845_137_453_9);
+    let rule = [(-s, ws), (-r, wr), (r, wr), (s, ws)];
+    let coordinates = system.mesh().coordinates();
+    let mut norms = ErrorNorms {
+        l2: 0.0,
+        h1: 0.0,
+        exact_l2: 0.0,
+    };
+    for (e, nodes) in system.mesh().elements().iter().enumerate() {
+        let ue = system.element_displacements(e, u);
+        for &(xi, wx) in &rule {
+            for &(eta, wy) in &rule {
+                let (n, dn) = (shape_functions([xi, eta]), shape_derivatives([xi, eta]));
+                // j[I][r] = dX_I / dxi_r.
+                let (mut point, mut uh, mut j) = ([0.0; 2], [0.0; 2], [[0.0; 2]; 2]);
+                for a in 0..9 {
+                    for c in 0..2 {
+                        point[c] += n[a] * coordinates[nodes[a]][c];
+                        uh[c] += n[a] * ue[2 * a + c];
+                        j[c][0] += coordinates[nodes[a]][c] * dn[a][0];
+                        j[c][1] += coordinates[nodes[a]][c] * dn[a][1];
+                    }
+                }
+                let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+                let mut grad = [0.0; 4];
+                for a in 0..9 {
+                    let g = [
+                        (dn[a][0] * j[1][1] - dn[a][1] * j[1][0]) / det,
+                        (-dn[a][0] * j[0][1] + dn[a][1] * j[0][0]) / det,
+                    ];
+                    for c in 0..2 {
+                        grad[2 * c] += ue[2 * a + c] * g[0];
+                        grad[2 * c + 1] += ue[2 * a + c] * g[1];
+                    }
+                }
+                let weight = wx * wy * det;
+                let (v, dv) = (exact(point), exact_gradient(point));
+                norms.l2 += weight * ((uh[0] - v[0]).powi(2) + (uh[1] - v[1]).powi(2));
+                norms.h1 += weight * grad.iter().zip(&dv).map(|(a, b)| (a - b).powi(2)).sum::<f64>();
+                norms.exact_l2 += weight * (v[0] * v[0] + v[1] * v[1]);
+            }
+        }
+    }
+    ErrorNorms {
+        l2: norms.l2.sqrt(),
+        h1: norms.h1.sqrt(),
+        exact_l2: norms.exact_l2.sqrt(),
+    }
 }

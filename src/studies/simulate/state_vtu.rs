@@ -29,6 +29,7 @@ pub fn cell_arrays(fields: CellFields) -> Vec<DataArray> {
         DataArray::scalars("J", fields.jacobian),
         DataArray::symmetric_tensors("cauchy_stress", &fields.cauchy),
         DataArray::scalars("von_mises", fields.von_mises),
+        DataArray::scalars("pressure", fields.pressure),
         DataArray::scalars("fibre_stretch_1", stretch_1),
         DataArray::scalars("fibre_stretch_2", stretch_2),
         DataArray::scalars("layer", fields.layer),

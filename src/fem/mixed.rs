@@ -1,0 +1,221 @@
+//! The mixed Q2/P1-discontinuous element for nearly incompressible tissue: biquadratic
+//! displacements and, per element, a linear pressure `p = p_0 + p_1 (X - X_c)/h + p_2 (Y - Y_c)/h`
+//! discontinuous across elements, condensed element by element.
+//!
+//! Why this pair: Q2/P1disc is inf-sup stable on quadrilaterals (Boffi, Brezzi and Fortin, *Mixed
+//! Finite Element Methods*, sect. 8.6.3), converges at the optimal rates of Q2 in displacement,
+//! and with the pressure unmapped (linear in `X`, not in `xi`) keeps them on distorted elements.
+//! Its pressure lives on one element, so it is eliminated there and the global system keeps the
+//! displacement element's unknowns, pattern and solver. Taylor-Hood Q2/Q1 is stable too, but its
+//! continuous pressure adds global unknowns and turns every factorisation into a saddle point.
+//!
+//! The energy of every tissue is `W(F) = W_rest(F) + kappa/2 (ln J)^2`
+//! ([`crate::material::Tissue::volumetric_split`]). The Hu-Washizu form with `p` conjugate to
+//! `ln J`, `Pi(u, p) = int W_rest(F) + p ln J - p^2 / (2 kappa) dV`, is stationary in `p` at
+//! `p = kappa P(ln J)`, the L2 projection of `ln J` onto the element's pressures (`M p = kappa g`,
+//! `M_ij = int phi_i phi_j`, `g_i = int phi_i ln J`). Condensed, the element's energy is
+//! `E(u) = int W_rest(F) dV + kappa/2 g^T M^-1 g`: a displacement-only energy whose volumetric
+//! part sees `ln J` only through 3 moments per element (9 Gauss-point constraints lock the
+//! displacement element). Its force is `int (P_rest + p F^-T) : Grad du` and its tangent
+//! `int Grad du : (A_rest + p d(F^-T)/dF) : Grad du + kappa (dg/du)^T M^-1 (dg/du)`.
+//!
+//! Stability is read from the condensed tangent. The saddle-point matrix of `Pi`,
+//! `S = [[K_uu, B^T], [B, -M/kappa]]` (`B = dg/du`), has by Haynsworth's inertia additivity
+//! `In(S) = In(-M/kappa) + In(K_uu + kappa B^T M^-1 B)`: with `M` positive definite, `S` has
+//! exactly one negative eigenvalue per pressure unknown more than the condensed tangent. Counting
+//! the condensed tangent's negative pivots is therefore counting `S`'s and subtracting the
+//! pressure block's known inertia; `tests::saddle_point_inertia_is_the_condensed_plus_pressures`
+//! checks it.
+
+use super::element::{
+    add_tangent, mirror_upper_triangle, ElementGeometry, ElementMatrix, ElementState, ElementVector, DOFS, GAUSS_POINTS,
+};
+use crate::error::{Error, Result};
+use crate::material::{cofactor, jacobian, StrainEnergy, Tensor2, Tissue};
+
+/// Pressure unknowns per element: a linear polynomial in `X`.
+pub const PRESSURES: usize = 3;
+
+/// One mixed element's pressure space and the split of its tissue.
+#[derive(Clone, Debug)]
+pub struct MixedElement {
+    /// `phi_i` at each Gauss point.
+    basis: [[f64; PRESSURES]; GAUSS_POINTS],
+    /// Inverse of the pressure mass matrix `M_ij = int phi_i phi_j dV`.
+    mass_inverse: [[f64; PRESSURES]; PRESSURES],
+    /// The tissue without its bulk term.
+    rest: Tissue,
+    /// The bulk modulus `kappa` of `kappa/2 (ln J)^2`.
+    bulk: f64,
+}
+
+/// What a mixed element returns besides [`ElementState`]: its pressure coefficients.
+#[derive(Clone, Copy, Debug)]
+pub struct MixedState {
+    pub state: ElementState,
+    /// `p = kappa P(ln J)` in the element's basis.
+    pub pressure: [f64; PRESSURES],
+}
+
+impl MixedElement {
+    /// The element of `tissue` on `geometry`, with the pressure basis centred at the element's
+    /// centroid and scaled by `sqrt(area)` (a well-conditioned `M`).
+    pub fn new(geometry: &ElementGeometry, tissue: &Tissue) -> Self {
+        let (points, weights) = (geometry.points(), geometry.weights());
+        let area = geometry.area();
+        let centroid: [f64; 2] =
+            std::array::from_fn(|c| points.iter().zip(weights).map(|(x, w)| w * x[c]).sum::<f64>() / area);
+        let h = area.sqrt();
+        let basis: [[f64; PRESSURES]; GAUSS_POINTS] =
+            std::array::from_fn(|g| [1.0, (points[g][0] - centroid[0]) / h, (points[g][1] - centroid[1]) / h]);
+        let mass: [[f64; PRESSURES]; PRESSURES] = std::array::from_fn(|i| {
+            std::array::from_fn(|j| (0..GAUSS_POINTS).map(|g| weights[g] * basis[g][i] * basis[g][j]).sum())
+        });
+        let (rest, bulk) = tissue.volumetric_split();
+        MixedElement {
+            basis,
+            mass_inverse: inverse3(&mass),
+            rest,
+            bulk,
+        }
+    }
+
+    /// `phi_i` at Gauss point `g`.
+    pub fn basis(&self, g: usize) -> &[f64; PRESSURES] {
+        &self.basis[g]
+    }
+
+    /// The tissue without its bulk term.
+    pub fn rest(&self) -> &Tissue {
+        &self.rest
+    }
+
+    /// Force, energy and pressure at nodal displacements `u`, and the condensed tangent into
+    /// `stiffness` when given (overwritten, symmetric). `J <= 0` at a Gauss point is an error.
+    pub fn evaluate(
+        &self,
+        geometry: &ElementGeometry,
+        u: &ElementVector,
+        mut stiffness: Option<&mut ElementMatrix>,
+    ) -> Result<MixedState> {
+        let mut gradients = [[0.0; 4]; GAUSS_POINTS];
+        let mut jacobians = [0.0; GAUSS_POINTS];
+        let mut inverse_transposes = [[0.0; 4]; GAUSS_POINTS];
+        // g_i = int phi_i ln J and B_i = dg_i/du.
+        let mut moments = [0.0; PRESSURES];
+        let mut moment_derivatives = [[0.0; DOFS]; PRESSURES];
+        for g in 0..GAUSS_POINTS {
+            let f = geometry.deformation_gradient(g, u);
+            let j = jacobian(&f);
+            if !(j > 0.0 && j.is_finite()) {
+                return Err(Error::NonPositiveJacobian { jacobian: j });
+            }
+            let inverse_transpose = cofactor(&f).map(|c| c / j);
+            let (w, phi) = (geometry.weights()[g], &self.basis[g]);
+            for (a, grad) in geometry.gradients(g).iter().enumerate() {
+                // d ln J / d u_ai = F^-T_iJ dN_a/dX_J.
+                let dx = inverse_transpose[0] * grad[0] + inverse_transpose[1] * grad[1];
+                let dy = inverse_transpose[2] * grad[0] + inverse_transpose[3] * grad[1];
+                for (row, &phi_i) in moment_derivatives.iter_mut().zip(phi) {
+                    row[2 * a] += w * phi_i * dx;
+                    row[2 * a + 1] += w * phi_i * dy;
+                }
+            }
+            for (moment, &phi_i) in moments.iter_mut().zip(phi) {
+                *moment += w * phi_i * j.ln();
+            }
+            (gradients[g], jacobians[g], inverse_transposes[g]) = (f, j, inverse_transpose);
+        }
+        // p = kappa M^-1 g; the condensed volumetric energy is kappa/2 g^T M^-1 g = g . p / 2.
+        let pressure = multiply3(&self.mass_inverse, &moments).map(|x| self.bulk * x);
+        let mut state = ElementState {
+            force: [0.0; DOFS],
+            energy: 0.5 * dot3(&moments, &pressure),
+            min_jacobian: jacobians.iter().copied().fold(f64::INFINITY, f64::min),
+        };
+        if let Some(k) = stiffness.as_deref_mut() {
+            *k = [[0.0; DOFS]; DOFS];
+        }
+        for g in 0..GAUSS_POINTS {
+            let (w, grads) = (geometry.weights()[g], geometry.gradients(g));
+            let (f, j, inverse_transpose) = (&gradients[g], jacobians[g], &inverse_transposes[g]);
+            let p = dot3(&self.basis[g], &pressure);
+            let rest_stress = match stiffness.as_deref_mut() {
+                Some(k) => {
+                    let mut response = self.rest.plane_response(f);
+                    add_pressure_curvature(&mut response.tangent, inverse_transpose, p, j);
+                    add_tangent(k, grads, &response.tangent, w);
+                    state.energy += w * response.energy;
+                    response.stress
+                }
+                None => {
+                    let (energy, stress) = self.rest.plane_stress(f);
+                    state.energy += w * energy;
+                    stress
+                }
+            };
+            let stress: Tensor2 = std::array::from_fn(|i| rest_stress[i] + p * inverse_transpose[i]);
+            for (a, grad) in grads.iter().enumerate() {
+                state.force[2 * a] += w * (stress[0] * grad[0] + stress[1] * grad[1]);
+                state.force[2 * a + 1] += w * (stress[2] * grad[0] + stress[3] * grad[1]);
+            }
+        }
+        if let Some(k) = stiffness {
+            mirror_upper_triangle(k);
+            // + kappa B^T M^-1 B.
+            let scaled: [[f64; DOFS]; PRESSURES] = std::array::from_fn(|i| {
+                std::array::from_fn(|c| {
+                    self.bulk
+                        * (0..PRESSURES)
+                            .map(|l| self.mass_inverse[i][l] * moment_derivatives[l][c])
+                            .sum::<f64>()
+                })
+            });
+            for (r, row) in k.iter_mut().enumerate() {
+                for (c, entry) in row.iter_mut().enumerate() {
+                    *entry += (0..PRESSURES)
+                        .map(|i| moment_derivatives[i][r] * scaled[i][c])
+                        .sum::<f64>();
+                }
+            }
+        }
+        Ok(MixedState { state, pressure })
+    }
+}
+
+/// `A += p d(F^-T)/dF`, with `d(F^-T)/dF = (d cof/dF) / J - F^-T (x) F^-T`.
+fn add_pressure_curvature(tangent: &mut [[f64; 4]; 4], inverse_transpose: &Tensor2, p: f64, j: f64) {
+    for (row, &a) in tangent.iter_mut().zip(inverse_transpose) {
+        for (entry, &b) in row.iter_mut().zip(inverse_transpose) {
+            *entry -= p * a * b;
+        }
+    }
+    // d cof/dF of cof = [F22, -F21, -F12, F11].
+    let s = p / j;
+    tangent[0][3] += s;
+    tangent[3][0] += s;
+    tangent[1][2] -= s;
+    tangent[2][1] -= s;
+}
+
+fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn multiply3(m: &[[f64; 3]; 3], v: &[f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|i| dot3(&m[i], v))
+}
+
+/// Inverse of a 3x3 matrix by cofactors (the pressure mass matrix, positive definite).
+fn inverse3(m: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    let cof = |i: usize, j: usize| {
+        let (r0, r1) = ((i + 1) % 3, (i + 2) % 3);
+        let (c0, c1) = ((j + 1) % 3, (j + 2) % 3);
+        m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0]
+    };
+    let det = (0..3).map(|j| m[0][j] * cof(0, j)).sum::<f64>();
+    std::array::from_fn(|i| std::array::from_fn(|j| cof(j, i) / det))
+}
+
+#[cfg(test)]
+mod tests;
