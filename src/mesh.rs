@@ -12,7 +12,7 @@
 use crate::error::{Error, Result};
 use crate::numerics::density::equidistribute;
 use crate::numerics::grading::geometric_ratio;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Thickness of the stiff layer: the unit of length.
 pub const LAYER_THICKNESS: f64 = 1.0;
@@ -27,7 +27,7 @@ pub enum Region {
 }
 
 /// The finite element on the mesh (both interpolate displacements with Q2).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ElementKind {
     /// Q2 displacements, full 3x3 integration ([`crate::fem::element`]); locks as `K / mu` grows.

@@ -6,7 +6,7 @@
 mod common;
 
 use common::scratch;
-use fiberfold::mesh::MeshSpec;
+use fiberfold::mesh::{ElementKind, MeshSpec};
 use fiberfold::protocol::{Protocol, StepControl, StepRecord};
 use fiberfold::studies::crease_threshold::{crease_threshold, CreaseThresholdStudy, BIOT_STRAIN};
 use fiberfold::studies::simulate;
@@ -231,6 +231,7 @@ fn the_crease_onset_of_a_half_space_is_the_same_for_every_fold_length() {
             layer: 8,
             substrate: 20,
             ratio: 8.0,
+            element: ElementKind::Displacement,
         },
         fold_lengths: vec![0.5, 1.0],
         scan: Scan {

@@ -538,6 +538,7 @@ fn crease_run(
             layer: layer_elements,
             substrate: substrate_elements,
             ratio,
+            element: fiberfold::mesh::ElementKind::Displacement,
         },
         fold_lengths: folds,
         scan: Scan {

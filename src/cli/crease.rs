@@ -1,6 +1,7 @@
 //! `fiberfold crease`: the crease onset of the bilayer (energy criterion), with a mesh check.
 
 use super::common::{report_files, ParamArgs};
+use super::simulate::ElementChoice;
 use clap::Args;
 use fiberfold::studies::crease::{self, CreaseMesh, CreaseStudy, Scan};
 use fiberfold::Result;
@@ -53,6 +54,10 @@ pub struct CreaseArgs {
     #[arg(long, default_value_t = 8.0, allow_negative_numbers = true)]
     pub ratio: f64,
 
+    /// Finite element (mixed for nearly incompressible tissue, K/mu above about 100).
+    #[arg(long, value_enum, default_value_t = ElementChoice::Displacement)]
+    pub element: ElementChoice,
+
     /// Skip the recomputation of the onset on a mesh refined twice in every direction.
     #[arg(long)]
     pub no_convergence: bool,
@@ -71,6 +76,7 @@ pub fn run(args: &CreaseArgs) -> Result<()> {
             layer: args.layer_elements,
             substrate: args.substrate_elements,
             ratio: args.ratio,
+            element: args.element.into(),
         },
         fold_lengths: args.fold.clone(),
         scan: Scan {

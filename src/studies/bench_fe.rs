@@ -5,7 +5,7 @@
 
 use super::simulate::{curve, Monitor, PhaseTotals};
 use crate::error::{Error, Result};
-use crate::mesh::MeshSpec;
+use crate::mesh::{ElementKind, MeshSpec};
 use crate::parameters::Parameters;
 use crate::protocol::{wavenumber_of_waves, Protocol};
 use serde::Serialize;
@@ -169,11 +169,12 @@ impl FeBench {
     }
 }
 
-/// Per-call cost of the solver's kernels on one mesh, at the homogeneous state of `d = 0.1`
-/// (medians of 5 calls).
+/// Per-call cost of the solver's kernels on one mesh with one element, at the homogeneous state
+/// of `d = 0.1` (medians of 5 calls).
 #[derive(Clone, Debug, Serialize)]
 pub struct KernelRow {
     pub mesh: String,
+    pub element: ElementKind,
     pub free_unknowns: usize,
     /// Stored entries of the lower triangle of `K_ff` and of the factor.
     pub tangent_entries: usize,
@@ -190,7 +191,7 @@ pub struct Kernels {
     pub rows: Vec<KernelRow>,
 }
 
-/// Times the kernels on each mesh.
+/// Times the kernels on each mesh, with the displacement and the mixed element.
 pub fn kernels(params: &Parameters, meshes: &[(&str, MeshSpec)]) -> Result<Kernels> {
     use crate::fem::{model_conditions, SparseLdlt, System};
     use crate::homogeneous::homogeneous_state;
@@ -198,8 +199,11 @@ pub fn kernels(params: &Parameters, meshes: &[(&str, MeshSpec)]) -> Result<Kerne
     use crate::protocol::bifurcation::homogeneous_displacement;
     let materials = Bilayer::new(params);
     let mut rows = Vec::new();
-    for &(name, spec) in meshes {
-        let mut system = System::new(crate::mesh::Mesh::new(spec)?, &materials)?;
+    for (&(name, spec), element) in meshes
+        .iter()
+        .flat_map(|m| [ElementKind::Displacement, ElementKind::Mixed].map(|e| (m, e)))
+    {
+        let mut system = System::new(crate::mesh::Mesh::new(spec.with_element(element))?, &materials)?;
         let d = 0.1;
         let bc = model_conditions(system.mesh(), d)?;
         let u = homogeneous_displacement(system.mesh(), &homogeneous_state(&materials, d)?);
@@ -219,6 +223,7 @@ pub fn kernels(params: &Parameters, meshes: &[(&str, MeshSpec)]) -> Result<Kerne
         })?;
         rows.push(KernelRow {
             mesh: name.to_string(),
+            element,
             free_unknowns: k.nrows(),
             tangent_entries: k.compute_nnz(),
             factor_entries: solver.factor_size(),
@@ -245,13 +250,14 @@ fn median_ms(mut f: impl FnMut() -> Result<()>) -> Result<f64> {
 
 impl fmt::Display for Kernels {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        writeln!(f, "| mesh | free unknowns | nnz(K) lower | factor entries | tangent + residual assembly ms | residual only ms | LDLT ms | solve ms | assembly / LDLT |")?;
-        writeln!(f, "|---|---|---|---|---|---|---|---|---|")?;
+        writeln!(f, "| mesh | element | free unknowns | nnz(K) lower | factor entries | tangent + residual assembly ms | residual only ms | LDLT ms | solve ms | assembly / LDLT |")?;
+        writeln!(f, "|---|---|---|---|---|---|---|---|---|---|")?;
         for r in &self.rows {
             writeln!(
                 f,
-                "| {} | {} | {} | {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.0} % |",
+                "| {} | {} | {} | {} | {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.0} % |",
                 r.mesh,
+                r.element.name(),
                 r.free_unknowns,
                 r.tangent_entries,
                 r.factor_entries,

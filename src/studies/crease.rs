@@ -14,7 +14,7 @@
 use super::Tick;
 use crate::error::{Error, Result};
 use crate::material::Bilayer;
-use crate::mesh::{MeshSpec, XRefinement};
+use crate::mesh::{ElementKind, MeshSpec, XRefinement};
 use crate::numerics::roots::brent;
 use crate::output::{ensure_dir, plot::save_panels, write_json, CsvWriter, Figure, LineStyle, Series};
 use crate::parameters::Parameters;
@@ -32,6 +32,9 @@ pub struct CreaseMesh {
     pub layer: usize,
     pub substrate: usize,
     pub ratio: f64,
+    /// The element (displacement unless given).
+    #[serde(default)]
+    pub element: ElementKind,
 }
 
 impl CreaseMesh {
@@ -51,6 +54,7 @@ impl CreaseMesh {
             offset: 0.0,
             period: 4.0 * self.size,
         })
+        .with_element(self.element)
     }
 
     /// Twice the elements in every direction.
@@ -99,6 +103,7 @@ impl Default for CreaseStudy {
                 layer: 4,
                 substrate: 20,
                 ratio: 8.0,
+                element: ElementKind::Displacement,
             },
             fold_lengths: vec![0.5, 1.0, 2.0],
             scan: Scan {
