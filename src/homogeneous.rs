@@ -1,5 +1,6 @@
 //! The homogeneously compressed state (paper eq. 4, Fig. 2): `x = (lambda_1 X, lambda_2 Y)` in
-//! each layer with `lambda_1 = 1 - d` and `lambda_2` such that `sigma_22 = 0`.
+//! each layer with `lambda_1 = 1 - d` and `lambda_2` such that `sigma_22 = 0`; in incompressible
+//! layers `lambda_2 = 1 / lambda_1` and the pressure multiplier makes `sigma_22` vanish.
 
 use crate::error::{Error, Result};
 use crate::material::{Bilayer, CauchyStress, Hyperelastic, Tensor2};
@@ -71,12 +72,39 @@ pub fn transverse_stretch<M: Hyperelastic>(material: &M, lambda1: f64) -> Result
 pub fn homogeneous_state(materials: &Bilayer, d: f64) -> Result<HomogeneousState> {
     validate_compression("d", d)?;
     let lambda1 = 1.0 - d;
+    if materials.incompressible {
+        return Ok(HomogeneousState {
+            d,
+            lambda1,
+            lambda2_layer: 1.0 / lambda1,
+            lambda2_substrate: 1.0 / lambda1,
+        });
+    }
     Ok(HomogeneousState {
         d,
         lambda1,
         lambda2_layer: transverse_stretch(&materials.layer, lambda1)?,
         lambda2_substrate: transverse_stretch(&materials.substrate, lambda1)?,
     })
+}
+
+/// The pressure `p` (conjugate to `ln J`: `P = P_rest + p F^-T`) that makes `P_22`, hence
+/// `sigma_22`, vanish at the diagonal `f` of an incompressible layer: `p = -lambda_2 P_rest,22`.
+pub fn constraint_pressure<M: Hyperelastic>(rest: &M, f: &Tensor2) -> Result<f64> {
+    Ok(-f[3] * rest.first_piola(f)?[3])
+}
+
+/// Cauchy stress of a layer in the homogeneous state, with the pressure of an incompressible one.
+fn homogeneous_cauchy<M: Hyperelastic>(material: &M, f: &Tensor2, incompressible: bool) -> Result<CauchyStress> {
+    let mut sigma = material.cauchy(f)?;
+    if incompressible {
+        // sigma = sigma_rest + p / J I, J = 1.
+        let p = constraint_pressure(material, f)?;
+        for i in [0, 2, 3] {
+            sigma[i] += p;
+        }
+    }
+    Ok(sigma)
 }
 
 /// One row of the homogeneous-state table: stretches, Jacobians and Cauchy stresses.
@@ -90,10 +118,11 @@ pub struct HomogeneousRow {
 impl HomogeneousRow {
     pub fn new(materials: &Bilayer, d: f64) -> Result<Self> {
         let state = homogeneous_state(materials, d)?;
+        let incompressible = materials.incompressible;
         Ok(HomogeneousRow {
             state,
-            layer_stress: materials.layer.cauchy(&state.layer_gradient())?,
-            substrate_stress: materials.substrate.cauchy(&state.substrate_gradient())?,
+            layer_stress: homogeneous_cauchy(&materials.layer, &state.layer_gradient(), incompressible)?,
+            substrate_stress: homogeneous_cauchy(&materials.substrate, &state.substrate_gradient(), incompressible)?,
         })
     }
 }
@@ -200,6 +229,28 @@ mod tests {
         let s = homogeneous_state(&Bilayer::new(&p), 0.3).unwrap();
         assert!((s.lambda2_substrate - 1.0 / 0.7).abs() < 1e-4);
         assert!((s.lambda2_layer - 1.0 / 0.7).abs() < 1e-4);
+    }
+
+    /// Incompressible: `lambda_2 = 1 / lambda_1`, `sigma_22 = 0` by the pressure, and for a
+    /// neo-Hookean layer the closed form `sigma_11 = mu (lambda_1^2 - lambda_2^2)`.
+    #[test]
+    fn incompressible_state_is_isochoric_and_traction_free() {
+        let p = Parameters {
+            incompressible: true,
+            ..Parameters::default()
+        };
+        let m = Bilayer::new(&p);
+        let row = HomogeneousRow::new(&m, 0.3).unwrap();
+        assert!((row.state.lambda2_layer * 0.7 - 1.0).abs() < 1e-15);
+        assert!((row.state.lambda2_substrate * 0.7 - 1.0).abs() < 1e-15);
+        assert!(row.layer_stress[2].abs() < 1e-13 && row.substrate_stress[2].abs() < 1e-13);
+        let (l1, l2) = (0.7, 1.0 / 0.7);
+        let expected = p.mu_l * (l1 * l1 - l2 * l2);
+        assert!(
+            (row.layer_stress[0] - expected).abs() < 1e-12,
+            "{} vs {expected}",
+            row.layer_stress[0]
+        );
     }
 
     #[test]

@@ -36,6 +36,10 @@ pub struct Parameters {
     pub beta: f64,
     /// When true, fibres carry no load while `I4 < lambda_f^2`.
     pub tension_only: bool,
+    /// When true, both layers are exactly incompressible (`J = 1`, enforced by a pressure
+    /// multiplier) and `K_l`, `K_s` are not used.
+    #[serde(default)]
+    pub incompressible: bool,
 }
 
 impl Default for Parameters {
@@ -52,12 +56,13 @@ impl Default for Parameters {
             lambda_f: 1.0,
             beta: 0.0,
             tension_only: false,
+            incompressible: false,
         }
     }
 }
 
 /// The parameter names, in the order they are printed.
-pub const PARAMETER_NAMES: [&str; 10] = [
+pub const PARAMETER_NAMES: [&str; 11] = [
     "mu_l",
     "K_l",
     "mu_s",
@@ -68,7 +73,13 @@ pub const PARAMETER_NAMES: [&str; 10] = [
     "lambda_f",
     "beta",
     "tension_only",
+    "incompressible",
 ];
+
+/// The parameters that are `true` or `false` (the others are numbers).
+pub fn is_boolean(key: &str) -> bool {
+    matches!(key, "tension_only" | "incompressible")
+}
 
 impl Parameters {
     /// Reads a TOML file; keys not given keep their Table 1 defaults.
@@ -104,7 +115,7 @@ impl Parameters {
             return Err(unknown_parameter(key));
         }
         let text = value.trim();
-        let value = if key == "tension_only" {
+        let value = if is_boolean(key) {
             toml::Value::Boolean(parse_bool(key, text)?)
         } else {
             toml::Value::Float(parse_number(key, text)?)
@@ -113,11 +124,12 @@ impl Parameters {
     }
 
     fn set_value(&mut self, key: &str, value: toml::Value) -> Result<()> {
-        if key == "tension_only" {
-            self.tension_only = match value {
+        if is_boolean(key) {
+            let flag = match value {
                 toml::Value::Boolean(b) => b,
                 other => return Err(Error::invalid(key, other, "true or false")),
             };
+            *self.flag_mut(key)? = flag;
             return Ok(());
         }
         let number = match value {
@@ -127,6 +139,20 @@ impl Parameters {
         };
         *self.number_mut(key)? = number;
         Ok(())
+    }
+
+    /// The `true`/`false` parameter called `key` ([`is_boolean`]).
+    pub fn flag(&self, key: &str) -> Result<bool> {
+        self.clone().flag_mut(key).map(|flag| *flag)
+    }
+
+    /// Mutable access to the `true`/`false` parameter called `key` ([`is_boolean`]).
+    pub fn flag_mut(&mut self, key: &str) -> Result<&mut bool> {
+        match key {
+            "tension_only" => Ok(&mut self.tension_only),
+            "incompressible" => Ok(&mut self.incompressible),
+            _ => Err(unknown_parameter(key)),
+        }
     }
 
     /// The numeric parameter called `key` (the names of `PARAMETER_NAMES`).

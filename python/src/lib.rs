@@ -7,7 +7,7 @@ use fiberfold::homogeneous::HomogeneousRow;
 use fiberfold::material::Bilayer;
 use fiberfold::mesh::MeshSpec;
 use fiberfold::output::vtu::{vtk_cell, write_vtu, DataArray};
-use fiberfold::parameters::{validate_compression, Parameters, PARAMETER_NAMES};
+use fiberfold::parameters::{is_boolean, validate_compression, Parameters, PARAMETER_NAMES};
 use fiberfold::stability::discrete::DiscreteOptions;
 use fiberfold::stability::{Method, StabilityAnalysis, K_MAX};
 use fiberfold::studies::homogeneous::{columns, CSV_HEADER};
@@ -50,16 +50,16 @@ struct PyParameters {
 }
 
 /// Sets `key` of `p` from a Python value: a number (not a bool) for the moduli, fractions and
-/// angle, a bool for `tension_only`.
+/// angle, a bool for `tension_only` and `incompressible`.
 fn set_parameter(p: &mut Parameters, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
-    if key == "tension_only" {
+    if is_boolean(key) {
         if !value.is_instance_of::<PyBool>() {
             return Err(PyTypeError::new_err(format!(
-                "`tension_only` must be a bool, not {}",
+                "`{key}` must be a bool, not {}",
                 value.get_type().name()?
             )));
         }
-        p.tension_only = value.extract()?;
+        *p.flag_mut(key).map_err(to_py)? = value.extract()?;
         return Ok(());
     }
     let numeric =
@@ -118,8 +118,8 @@ impl PyParameters {
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let dict = PyDict::new(py);
         for name in PARAMETER_NAMES {
-            if name == "tension_only" {
-                dict.set_item(name, self.inner.tension_only)?;
+            if is_boolean(name) {
+                dict.set_item(name, self.inner.flag(name).map_err(to_py)?)?;
             } else {
                 dict.set_item(name, self.inner.number(name).map_err(to_py)?)?;
             }
@@ -128,8 +128,9 @@ impl PyParameters {
     }
 
     fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
-        if name == "tension_only" {
-            return Ok(PyBool::new(py, self.inner.tension_only).to_owned().into_any());
+        if is_boolean(name) {
+            let flag = self.inner.flag(name).map_err(to_py)?;
+            return Ok(PyBool::new(py, flag).to_owned().into_any());
         }
         match self.inner.number(name) {
             Ok(v) => Ok(PyFloat::new(py, v).into_any()),
@@ -146,12 +147,9 @@ impl PyParameters {
     fn __repr__(&self) -> String {
         let fields: Vec<String> = PARAMETER_NAMES
             .iter()
-            .map(|&name| match name {
-                "tension_only" => format!(
-                    "tension_only={}",
-                    if self.inner.tension_only { "True" } else { "False" }
-                ),
-                _ => format!("{name}={}", self.inner.number(name).unwrap_or(f64::NAN)),
+            .map(|&name| match self.inner.flag(name) {
+                Ok(flag) => format!("{name}={}", if flag { "True" } else { "False" }),
+                Err(_) => format!("{name}={}", self.inner.number(name).unwrap_or(f64::NAN)),
             })
             .collect();
         format!("Parameters({})", fields.join(", "))

@@ -17,7 +17,8 @@ pub struct ParamArgs {
     /// (defaults): mu_l (10), K_l (30), mu_s (1), K_s (3), phi_m (0.9), phi_f (0.1, the volume
     /// fraction of EACH of the two fibre families: Table 1's 0.1 read as eq. 3 does; the paper's
     /// text says 0.05 per family), mu_f (10), lambda_f (1), beta (0, radians), tension_only
-    /// (false). Moduli in units of mu_s.
+    /// (false), incompressible (false: exactly incompressible layers, J = 1, K_l and K_s unused;
+    /// finite-element commands then need --element mixed). Moduli in units of mu_s.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
 }

@@ -31,7 +31,7 @@ use super::element::{
     add_tangent, mirror_upper_triangle, ElementGeometry, ElementMatrix, ElementState, ElementVector, DOFS, GAUSS_POINTS,
 };
 use crate::error::{Error, Result};
-use crate::material::{cofactor, jacobian, StrainEnergy, Tensor2, Tissue};
+use crate::material::{add_pressure, cofactor, jacobian, StrainEnergy, Tissue};
 
 /// Pressure unknowns per element: a linear polynomial in `X`.
 pub const PRESSURES: usize = 3;
@@ -100,7 +100,6 @@ impl MixedElement {
     ) -> Result<MixedState> {
         let mut gradients = [[0.0; 4]; GAUSS_POINTS];
         let mut jacobians = [0.0; GAUSS_POINTS];
-        let mut inverse_transposes = [[0.0; 4]; GAUSS_POINTS];
         // g_i = int phi_i ln J and B_i = dg_i/du.
         let mut moments = [0.0; PRESSURES];
         let mut moment_derivatives = [[0.0; DOFS]; PRESSURES];
@@ -124,7 +123,7 @@ impl MixedElement {
             for (moment, &phi_i) in moments.iter_mut().zip(phi) {
                 *moment += w * phi_i * j.ln();
             }
-            (gradients[g], jacobians[g], inverse_transposes[g]) = (f, j, inverse_transpose);
+            (gradients[g], jacobians[g]) = (f, j);
         }
         // p = kappa M^-1 g; the condensed volumetric energy is kappa/2 g^T M^-1 g = g . p / 2.
         let pressure = multiply3(&self.mass_inverse, &moments).map(|x| self.bulk * x);
@@ -138,23 +137,23 @@ impl MixedElement {
         }
         for g in 0..GAUSS_POINTS {
             let (w, grads) = (geometry.weights()[g], geometry.gradients(g));
-            let (f, j, inverse_transpose) = (&gradients[g], jacobians[g], &inverse_transposes[g]);
+            let f = &gradients[g];
             let p = dot3(&self.basis[g], &pressure);
-            let rest_stress = match stiffness.as_deref_mut() {
+            let stress = match stiffness.as_deref_mut() {
                 Some(k) => {
                     let mut response = self.rest.plane_response(f);
-                    add_pressure_curvature(&mut response.tangent, inverse_transpose, p, j);
+                    add_pressure(&mut response.stress, Some(&mut response.tangent), f, p);
                     add_tangent(k, grads, &response.tangent, w);
                     state.energy += w * response.energy;
                     response.stress
                 }
                 None => {
-                    let (energy, stress) = self.rest.plane_stress(f);
+                    let (energy, mut stress) = self.rest.plane_stress(f);
+                    add_pressure(&mut stress, None, f, p);
                     state.energy += w * energy;
                     stress
                 }
             };
-            let stress: Tensor2 = std::array::from_fn(|i| rest_stress[i] + p * inverse_transpose[i]);
             for (a, grad) in grads.iter().enumerate() {
                 state.force[2 * a] += w * (stress[0] * grad[0] + stress[1] * grad[1]);
                 state.force[2 * a + 1] += w * (stress[2] * grad[0] + stress[3] * grad[1]);
@@ -181,21 +180,6 @@ impl MixedElement {
         }
         Ok(MixedState { state, pressure })
     }
-}
-
-/// `A += p d(F^-T)/dF`, with `d(F^-T)/dF = (d cof/dF) / J - F^-T (x) F^-T`.
-fn add_pressure_curvature(tangent: &mut [[f64; 4]; 4], inverse_transpose: &Tensor2, p: f64, j: f64) {
-    for (row, &a) in tangent.iter_mut().zip(inverse_transpose) {
-        for (entry, &b) in row.iter_mut().zip(inverse_transpose) {
-            *entry -= p * a * b;
-        }
-    }
-    // d cof/dF of cof = [F22, -F21, -F12, F11].
-    let s = p / j;
-    tangent[0][3] += s;
-    tangent[3][0] += s;
-    tangent[1][2] -= s;
-    tangent[2][1] -= s;
 }
 
 fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {

@@ -65,6 +65,29 @@ pub fn differentiated_stress<M: StrainEnergy + ?Sized>(m: &M, f: &Tensor2) -> (f
     (w, [g[0], g[1], g[2], g[3]])
 }
 
+/// Adds the terms of a pressure `p` conjugate to `ln J` (an energy `p ln J`, the multiplier of
+/// incompressibility or the mixed element's pressure): `P += p F^-T` and, when given,
+/// `A += p d(F^-T)/dF = p ((d cof/dF) / J - F^-T (x) F^-T)`.
+pub fn add_pressure(stress: &mut Tensor2, tangent: Option<&mut Tensor4>, f: &Tensor2, p: f64) {
+    let j = jacobian(f);
+    let inverse_transpose = cofactor(f).map(|c| c / j);
+    for (s, it) in stress.iter_mut().zip(&inverse_transpose) {
+        *s += p * it;
+    }
+    if let Some(tangent) = tangent {
+        for (row, &a) in tangent.iter_mut().zip(&inverse_transpose) {
+            for (entry, &b) in row.iter_mut().zip(&inverse_transpose) {
+                *entry -= p * a * b;
+            }
+        }
+        // d cof/dF of cof = [F22, -F21, -F12, F11].
+        tangent[0][3] += p / j;
+        tangent[3][0] += p / j;
+        tangent[1][2] -= p / j;
+        tangent[2][1] -= p / j;
+    }
+}
+
 /// `dJ/dF`, the cofactor of a plane `F`: `[F22, -F21, -F12, F11]`.
 pub(crate) fn cofactor(f: &Tensor2) -> Tensor2 {
     [f[3], -f[2], -f[1], f[0]]

@@ -77,6 +77,9 @@ impl StrainEnergy for Tissue {
 pub struct Bilayer {
     pub layer: NeoHookean,
     pub substrate: FibreReinforced,
+    /// Both layers exactly incompressible: `J = 1` is a constraint, and the energies above are
+    /// the parts without bulk term (their bulk moduli are zero).
+    pub incompressible: bool,
 }
 
 impl Bilayer {
@@ -87,20 +90,22 @@ impl Bilayer {
             direction: [p.beta.cos(), sign * p.beta.sin()],
             tension_only: p.tension_only,
         };
+        let bulk = |k: f64| if p.incompressible { 0.0 } else { k };
         Bilayer {
             layer: NeoHookean {
                 mu: p.mu_l,
-                bulk: p.K_l,
+                bulk: bulk(p.K_l),
             },
             substrate: FibreReinforced {
                 matrix: NeoHookean {
                     mu: p.mu_s,
-                    bulk: p.K_s,
+                    bulk: bulk(p.K_s),
                 },
                 matrix_fraction: p.phi_m,
                 fibre_fraction: p.phi_f,
                 fibres: [family(1.0), family(-1.0)],
             },
+            incompressible: p.incompressible,
         }
     }
 

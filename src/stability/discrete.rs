@@ -72,6 +72,9 @@ pub fn negative_eigenvalues(
     k: f64,
     options: &DiscreteOptions,
 ) -> Option<usize> {
+    if layer.incompressible_ratio.is_some() || substrate.incompressible_ratio.is_some() {
+        return incompressible_negative_eigenvalues(layer, substrate, k, options);
+    }
     let y = options.nodes_of_elements(k, slowest_decay(substrate)?);
     let elements = y.len() - 1;
     let unknowns = 2 * (2 * elements + 1);
@@ -106,6 +109,74 @@ pub fn negative_eigenvalues(
                         }
                     }
                     stiffness.add(4 * e + p, 4 * e + q, value * weight * jac);
+                }
+            }
+        }
+    }
+    stiffness.constrain(0);
+    stiffness.constrain(1);
+    stiffness.negative_eigenvalues()
+}
+
+/// [`negative_eigenvalues`] of two incompressible layers with the same `r = lambda_2 / lambda_1`.
+/// The constraint `b' = -r k a` is solved for `a = -b' / (r k)`, so `g = (a, a', b, b')` follows
+/// from `b` and its first two derivatives: `b` is interpolated by C1 cubic Hermite elements
+/// (`b` and `b'`, hence `a`, continuous), and the stiffness is positive definite exactly while the
+/// constrained second variation is.
+fn incompressible_negative_eigenvalues(
+    layer: &IncrementalModuli,
+    substrate: &IncrementalModuli,
+    k: f64,
+    options: &DiscreteOptions,
+) -> Option<usize> {
+    let r = layer.incompressible_ratio?;
+    if substrate.incompressible_ratio != Some(r) {
+        return None;
+    }
+    let y = options.nodes_of_elements(k, slowest_decay(substrate)?);
+    let elements = y.len() - 1;
+    let mut stiffness = SymmetricBanded::zeros(2 * (elements + 1), 3);
+    // 4-point Gauss-Legendre on [0, 1] (exact for the degree-6 products of cubics).
+    let (inner, outer) = (0.339_981_043_584_856_3, 0.861_136_311_594_052_6);
+    let (w_inner, w_outer) = (0.652_145_154_862_546_1, 0.347_854_845_137_453_9);
+    let gauss = [(-outer, w_outer), (-inner, w_inner), (inner, w_inner), (outer, w_outer)]
+        .map(|(x, w)| (0.5 * (x + 1.0), 0.5 * w));
+    for e in 0..elements {
+        let (y0, y1) = (y[e], y[e + 1]);
+        let form = if y0 >= 0.0 { layer } else { substrate }.energy_form(k);
+        let h = y1 - y0;
+        for &(t, weight) in &gauss {
+            let t: f64 = t;
+            // Hermite cubics on [y0, y1] for (b_0, b'_0, b_1, b'_1), and their Y-derivatives.
+            let n = [
+                1.0 - 3.0 * t * t + 2.0 * t.powi(3),
+                h * (t - 2.0 * t * t + t.powi(3)),
+                3.0 * t * t - 2.0 * t.powi(3),
+                h * (t.powi(3) - t * t),
+            ];
+            let dn = [
+                (6.0 * t * t - 6.0 * t) / h,
+                1.0 - 4.0 * t + 3.0 * t * t,
+                (6.0 * t - 6.0 * t * t) / h,
+                3.0 * t * t - 2.0 * t,
+            ];
+            let ddn = [
+                (12.0 * t - 6.0) / (h * h),
+                (6.0 * t - 4.0) / h,
+                (6.0 - 12.0 * t) / (h * h),
+                (6.0 * t - 2.0) / h,
+            ];
+            // Rows of B: g = (a, a', b, b') = (-b' / (r k), -b'' / (r k), b, b').
+            let b: [[f64; 4]; 4] = [dn.map(|x| -x / (r * k)), ddn.map(|x| -x / (r * k)), n, dn];
+            for p in 0..4 {
+                for q in 0..=p {
+                    let mut value = 0.0;
+                    for (row, form_row) in b.iter().zip(&form) {
+                        for (column, &c) in b.iter().zip(form_row) {
+                            value += row[p] * c * column[q];
+                        }
+                    }
+                    stiffness.add(2 * e + p, 2 * e + q, value * weight * h);
                 }
             }
         }

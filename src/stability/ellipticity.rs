@@ -1,5 +1,6 @@
-//! Strong ellipticity: `min over unit a, n of (a x n) : A : (a x n) > 0`. Beyond its loss the
-//! material itself is unstable and a wrinkling answer is meaningless.
+//! Strong ellipticity: `min over unit a, n of (a x n) : A : (a x n) > 0`, over `a` with
+//! `n . F^-1 a = 0` in an incompressible layer. Beyond its loss the material itself is unstable
+//! and a wrinkling answer is meaningless.
 
 use super::IncrementalModuli;
 
@@ -12,8 +13,17 @@ pub fn ellipticity_margin(m: &IncrementalModuli) -> f64 {
         let q11 = m.c11 * c * c + m.c66 * s * s;
         let q22 = m.c99 * c * c + m.c22 * s * s;
         let q12 = (m.c12 + m.c69) * c * s;
-        let mean = 0.5 * (q11 + q22);
-        mean - (0.25 * (q11 - q22).powi(2) + q12 * q12).sqrt()
+        match m.incompressible_ratio {
+            // The one admissible direction: a perpendicular to F^-T n ~ (c, s / r).
+            Some(r) => {
+                let (a1, a2) = (-s, r * c);
+                (q11 * a1 * a1 + 2.0 * q12 * a1 * a2 + q22 * a2 * a2) / (a1 * a1 + a2 * a2)
+            }
+            None => {
+                let mean = 0.5 * (q11 + q22);
+                mean - (0.25 * (q11 - q22).powi(2) + q12 * q12).sqrt()
+            }
+        }
     };
     const SAMPLES: usize = 60;
     let step = std::f64::consts::PI / SAMPLES as f64;
@@ -54,6 +64,7 @@ mod tests {
             c66: mu,
             c69: mu,
             c99: mu,
+            incompressible_ratio: None,
         };
         assert!((ellipticity_margin(&m) - mu).abs() < 1e-12);
     }

@@ -6,7 +6,7 @@ use super::ellipticity::ellipticity_margin;
 use super::exact::{bifurcation_determinant, surface_impedance};
 use super::{IncrementalModuli, Method};
 use crate::error::{Error, Result};
-use crate::homogeneous::homogeneous_state;
+use crate::homogeneous::{constraint_pressure, homogeneous_state};
 use crate::material::Bilayer;
 use crate::numerics::minimize::brent_minimize;
 use crate::numerics::roots::brent;
@@ -111,9 +111,17 @@ impl StabilityAnalysis {
     /// Incremental moduli of layer and substrate at the homogeneous state of compression `d`.
     pub fn moduli(&self, d: f64) -> Result<(IncrementalModuli, IncrementalModuli)> {
         let state = homogeneous_state(&self.materials, d)?;
+        let (layer, substrate) = (state.layer_gradient(), state.substrate_gradient());
+        if self.materials.incompressible {
+            let (l, s) = (&self.materials.layer, &self.materials.substrate);
+            return Ok((
+                IncrementalModuli::incompressible(l, &layer, constraint_pressure(l, &layer)?)?,
+                IncrementalModuli::incompressible(s, &substrate, constraint_pressure(s, &substrate)?)?,
+            ));
+        }
         Ok((
-            IncrementalModuli::at(&self.materials.layer, &state.layer_gradient())?,
-            IncrementalModuli::at(&self.materials.substrate, &state.substrate_gradient())?,
+            IncrementalModuli::at(&self.materials.layer, &layer)?,
+            IncrementalModuli::at(&self.materials.substrate, &substrate)?,
         ))
     }
 

@@ -316,3 +316,100 @@ fn a_soft_nearly_incompressible_layer_buckles_at_short_waves_at_biot() {
     // K/mu = 1000: within 2e-4 of the incompressible 0.5437.
     assert!((onset.lambda1_c - 0.5437).abs() < 2e-4, "{}", onset.lambda1_c);
 }
+
+/// `plain_bilayer` made exactly incompressible.
+fn incompressible_bilayer(mu_l: f64, mu_s: f64) -> Parameters {
+    Parameters {
+        incompressible: true,
+        ..plain_bilayer(mu_l, mu_s, 3.0)
+    }
+}
+
+/// Biot (1963): an incompressible neo-Hookean half-space in plane strain wrinkles where
+/// `z = lambda_1 / lambda_2 = lambda_1^2` solves `z^3 + z^2 + 3 z - 1 = 0`, at every `k`.
+#[test]
+fn exactly_incompressible_half_space_is_biot_at_every_k_with_both_solvers() {
+    let z = crate::numerics::roots::brent(
+        "Biot's cubic",
+        |z| Ok(z * z * z + z * z + 3.0 * z - 1.0),
+        0.1,
+        0.5,
+        1e-15,
+    )
+    .unwrap();
+    let d_biot = 1.0 - z.sqrt();
+    let exact = StabilityAnalysis::new(&incompressible_bilayer(1.0, 1.0), Method::Exact).unwrap();
+    for k in [0.1, 0.5, 1.0, 3.0] {
+        let d = exact.critical_compression(k).unwrap();
+        assert!((d - d_biot).abs() < 1e-7, "k = {k}: {d} vs Biot {d_biot}");
+    }
+    assert_eq!(exact.onset().unwrap().minimum, Minimum::Flat);
+    assert_eq!(
+        exact.ellipticity_loss(),
+        None,
+        "incompressible neo-Hookean stays elliptic"
+    );
+    let discrete = StabilityAnalysis::new(&incompressible_bilayer(1.0, 1.0), fine_discrete()).unwrap();
+    let d = discrete.critical_compression(1.0).unwrap();
+    assert!((d - d_biot).abs() < 1e-4, "discrete {d} vs Biot {d_biot}");
+}
+
+/// The same law as the compressible film, `k0 H = (3 mu_s/mu_l)^(1/3)` and
+/// `d_c = (1/4)(3 mu_s/mu_l)^(2/3)`, within 2 % at `mu_l / mu_s = 10^3`, by both solvers.
+#[test]
+fn incompressible_thin_film_follows_the_wrinkling_law() {
+    let ratio: f64 = 1e3;
+    let (k_theory, d_theory) = ((3.0 / ratio).cbrt(), 0.25 * (3.0 / ratio).powf(2.0 / 3.0));
+    let mut analysis = StabilityAnalysis::new(&incompressible_bilayer(ratio, 1.0), Method::Exact).unwrap();
+    analysis.k_range = (0.005, 2.0);
+    let onset = analysis.onset().unwrap();
+    assert!(
+        (onset.k0 / k_theory - 1.0).abs() < 0.02,
+        "k0 = {} vs {k_theory}",
+        onset.k0
+    );
+    assert!(
+        (onset.d_c / d_theory - 1.0).abs() < 0.02,
+        "d_c = {} vs {d_theory}",
+        onset.d_c
+    );
+    let discrete = StabilityAnalysis::new(&incompressible_bilayer(ratio, 1.0), fine_discrete()).unwrap();
+    let d = discrete.critical_compression(onset.k0).unwrap();
+    assert!(
+        (d / onset.d_c - 1.0).abs() < 1e-3,
+        "discrete {d} vs exact {}",
+        onset.d_c
+    );
+}
+
+/// The incompressible formulation is the limit of the compressible one as `K / mu -> inf`
+/// (Table 1's contrast and fibres at 45 degrees).
+#[test]
+fn compressible_moduli_tend_to_the_incompressible_ones() {
+    let base = Parameters {
+        beta: FRAC_PI_4,
+        ..Parameters::default()
+    };
+    let exact = |p: &Parameters| {
+        StabilityAnalysis::new(p, Method::Exact)
+            .unwrap()
+            .critical_compression(0.6)
+            .unwrap()
+    };
+    let incompressible = exact(&Parameters {
+        incompressible: true,
+        ..base.clone()
+    });
+    let gaps: Vec<f64> = [1e3, 1e5]
+        .iter()
+        .map(|&ratio| {
+            let nearly = Parameters {
+                K_l: ratio * base.mu_l,
+                K_s: ratio * base.mu_s,
+                ..base.clone()
+            };
+            (exact(&nearly) - incompressible).abs()
+        })
+        .collect();
+    assert!(gaps[1] < 1e-4 && gaps[1] < 0.05 * gaps[0], "{gaps:?}");
+}

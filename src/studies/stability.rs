@@ -215,7 +215,7 @@ impl SweepStudy {
     /// Parameter sets for every point, all validated before any work starts.
     fn parameter_sets(&self, base: &Parameters) -> Result<Vec<(Option<f64>, f64, Parameters)>> {
         let numeric = |key: &str| {
-            if key == "tension_only" || !PARAMETER_NAMES.contains(&key) {
+            if crate::parameters::is_boolean(key) || !PARAMETER_NAMES.contains(&key) {
                 Err(Error::invalid(
                     "param",
                     key,

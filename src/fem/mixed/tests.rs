@@ -113,11 +113,11 @@ fn saddle_point_inertia_is_the_condensed_plus_pressures() {
     let (mut k_uu, mut b) = (DMatrix::zeros(DOFS, DOFS), DMatrix::zeros(PRESSURES, DOFS));
     for g in 0..GAUSS_POINTS {
         let f = geometry.deformation_gradient(g, &u);
-        let j = jacobian(&f);
-        let inverse_transpose = cofactor(&f).map(|c| c / j);
+        let inverse_transpose = cofactor(&f).map(|c| c / jacobian(&f));
         let p = dot3(mixed.basis(g), &evaluated.pressure);
-        let mut a = mixed.rest().plane_response(&f).tangent;
-        add_pressure_curvature(&mut a, &inverse_transpose, p, j);
+        let mut response = mixed.rest().plane_response(&f);
+        add_pressure(&mut response.stress, Some(&mut response.tangent), &f, p);
+        let a = response.tangent;
         let w = geometry.weights()[g];
         let grads = geometry.gradients(g);
         let dfdu = |r: usize, ij: usize| {

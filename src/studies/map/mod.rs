@@ -52,7 +52,7 @@ impl Axis {
     /// Checks the name (a numeric parameter), the range and the number of points; `flag` is the
     /// CLI's prefix (`x` or `y`).
     fn validate(&self, flag: &str) -> Result<()> {
-        if self.name == "tension_only" || Parameters::default().number(&self.name).is_err() {
+        if crate::parameters::is_boolean(&self.name) || Parameters::default().number(&self.name).is_err() {
             return Err(Error::invalid(
                 flag,
                 &self.name,
