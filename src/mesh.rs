@@ -12,6 +12,7 @@
 use crate::error::{Error, Result};
 use crate::numerics::density::equidistribute;
 use crate::numerics::grading::geometric_ratio;
+use crate::parameters::Parameters;
 use serde::{Deserialize, Serialize};
 
 /// Thickness of the stiff layer: the unit of length.
@@ -46,6 +47,19 @@ impl ElementKind {
             "mixed" => Ok(ElementKind::Mixed),
             other => Err(Error::invalid("element", other, "displacement or mixed")),
         }
+    }
+
+    /// Whether this element can model the tissue of `params`: exactly incompressible tissue
+    /// needs the mixed element (the displacement element cannot keep `J = 1`).
+    pub fn check_for(self, params: &Parameters) -> Result<()> {
+        if params.incompressible && self != ElementKind::Mixed {
+            return Err(Error::invalid(
+                "element",
+                self.name(),
+                "mixed when incompressible = true (the displacement element cannot keep J = 1)",
+            ));
+        }
+        Ok(())
     }
 
     /// The name [`ElementKind::from_name`] reads.

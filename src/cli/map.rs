@@ -1,6 +1,7 @@
 //! `fiberfold map`: the instability map over two parameters, resumable and shardable.
 
 use super::common::{progress, report_files, ParamArgs};
+use super::simulate::ElementChoice;
 use clap::Args;
 use fiberfold::output::lock::OutputLock;
 use fiberfold::studies::crease::CreaseMesh;
@@ -49,6 +50,11 @@ pub struct MapArgs {
     /// scales with it, keeping the base K/mu: Table 1's Poisson ratio).
     #[arg(long)]
     pub free_bulk: bool,
+
+    /// Finite element of the crease search and the nonlinear runs (mixed for nearly
+    /// incompressible tissue, K/mu above about 100, and for incompressible = true).
+    #[arg(long, value_enum, default_value_t = ElementChoice::Displacement)]
+    pub element: ElementChoice,
 
     /// Nonlinear run: wavelengths 2 pi/k0 across the half domain (2 x waves an integer).
     #[arg(long, default_value_t = 4.0, allow_negative_numbers = true)]
@@ -124,6 +130,7 @@ impl MapArgs {
                     nx: self.crease_nx,
                     layer: self.crease_layer_elements,
                     substrate: self.crease_substrate_elements,
+                    element: self.element.into(),
                     ..defaults.crease_mesh
                 },
                 fold_lengths: self.fold.clone(),

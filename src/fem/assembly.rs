@@ -14,7 +14,7 @@
 use super::added::{AddedEnergy, Block, NoAddedEnergy};
 use super::boundary::Dirichlet;
 use super::element::{self, ElementGeometry, ElementMatrix, ElementState, ElementVector, DOFS};
-use super::mixed::MixedElement;
+use super::mixed::{MixedElement, Volumetric, PRESSURES};
 use crate::error::{Error, Result};
 use crate::material::{Bilayer, Tissue};
 use crate::mesh::{ElementKind, Mesh, Region};
@@ -22,6 +22,10 @@ use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
+
+/// The factor on the incompressibility penalty (10^2 times the largest shear modulus) with
+/// which the tangent's inertia is counted: `fem::mixed` explains why it must be large.
+pub const STABILITY_PENALTY: f64 = 1e3;
 
 /// Source of pattern identifiers, unique across systems.
 static NEXT_PATTERN: AtomicUsize = AtomicUsize::new(0);
@@ -101,6 +105,12 @@ pub struct System {
     geometry: Vec<ElementGeometry>,
     /// Pressure spaces of the mixed element (empty for the displacement element).
     mixed: Vec<MixedElement>,
+    /// Whether the tissue is exactly incompressible: the unknowns' vector then ends with
+    /// [`PRESSURES`] multipliers per element ([`crate::fem::mixed`]).
+    constrained: bool,
+    /// The factor on the constraint's penalty in assemblies (raised while the multipliers
+    /// converge slowly, [`STABILITY_PENALTY`] inside [`System::assemble_for_stability`]).
+    penalty_scale: f64,
     pattern: Option<Pattern>,
     /// Element-matrix entries of the last assembly (reused to avoid reallocating).
     entries: Vec<f64>,
@@ -108,8 +118,15 @@ pub struct System {
 
 impl System {
     /// The layer's material in layer elements, the substrate's in substrate elements, with the
-    /// element the mesh's spec names.
+    /// element the mesh's spec names. Incompressible tissue needs the mixed element.
     pub fn new(mesh: Mesh, materials: &Bilayer) -> Result<Self> {
+        if materials.incompressible && mesh.spec().element != ElementKind::Mixed {
+            return Err(Error::invalid(
+                "element",
+                mesh.spec().element.name(),
+                "mixed for incompressible tissue",
+            ));
+        }
         let tissues: Vec<Tissue> = mesh
             .regions()
             .iter()
@@ -124,12 +141,18 @@ impl System {
             .iter()
             .map(|nodes| ElementGeometry::new(&nodes.map(|n| coordinates[n])))
             .collect::<Result<Vec<_>>>()?;
+        // The augmentation penalty of exact incompressibility: far above every stress.
+        // The augmentation penalties of exact incompressibility (`fem::mixed`).
+        let shear = materials.layer.mu.max(materials.substrate.matrix.mu);
+        let constraint = materials
+            .incompressible
+            .then_some(Volumetric::Constraint { penalty: 1e2 * shear });
         let mixed = match mesh.spec().element {
             ElementKind::Displacement => Vec::new(),
             ElementKind::Mixed => geometry
                 .iter()
                 .zip(&tissues)
-                .map(|(g, t)| MixedElement::new(g, t))
+                .map(|(g, t)| MixedElement::new(g, t, constraint))
                 .collect(),
         };
         Ok(System {
@@ -137,6 +160,8 @@ impl System {
             materials: tissues,
             geometry,
             mixed,
+            constrained: materials.incompressible,
+            penalty_scale: 1.0,
             pattern: None,
             entries: Vec::new(),
         })
@@ -162,23 +187,94 @@ impl System {
         &self.mixed
     }
 
-    /// Element `e`'s force, energy and smallest `J` at its nodal displacements `u`, and its
-    /// tangent into `stiffness` when given, by the mesh's element.
+    /// Element `e`'s force, energy and smallest `J` at its nodal displacements `u` (and
+    /// multipliers `lambda`, used by incompressible elements only), and its tangent into
+    /// `stiffness` when given, by the mesh's element.
     pub fn element_state(
         &self,
         e: usize,
         u: &ElementVector,
+        lambda: &[f64; PRESSURES],
         stiffness: Option<&mut ElementMatrix>,
     ) -> Result<ElementState> {
         match self.mixed.get(e) {
-            Some(mixed) => Ok(mixed.evaluate(&self.geometry[e], u, stiffness)?.state),
+            Some(mixed) => Ok(mixed
+                .evaluate(&self.geometry[e], u, lambda, self.penalty_scale, stiffness)?
+                .state),
             None => element::evaluate(&self.geometry[e], &self.materials[e], u, stiffness),
         }
     }
 
-    /// Number of unknowns before boundary conditions.
+    /// Number of unknowns: two displacements per node, then, for incompressible tissue, the
+    /// multipliers of every element.
     pub fn num_dofs(&self) -> usize {
         self.mesh.num_dofs()
+            + if self.constrained {
+                PRESSURES * self.mixed.len()
+            } else {
+                0
+            }
+    }
+
+    /// Element `e`'s multipliers in the full vector `u` (zero without the constraint).
+    pub fn element_multipliers(&self, e: usize, u: &[f64]) -> [f64; PRESSURES] {
+        if !self.constrained {
+            return [0.0; PRESSURES];
+        }
+        let start = self.mesh.num_dofs() + PRESSURES * e;
+        std::array::from_fn(|i| u[start + i])
+    }
+
+    /// The method of multipliers' step at `u`: the largest `|M^-1 g|` over the elements (the
+    /// constraint's violation) and the change `p - lambda = kappa M^-1 g` of every multiplier
+    /// (in the order of the multipliers in `u`). `None` without the constraint.
+    pub fn multiplier_step(&self, u: &[f64]) -> Result<Option<(f64, Vec<f64>)>> {
+        if !self.constrained {
+            return Ok(None);
+        }
+        let states = (0..self.mixed.len())
+            .into_par_iter()
+            .with_min_len(64)
+            .map(|e| {
+                let lambda = self.element_multipliers(e, u);
+                self.mixed[e].evaluate(
+                    &self.geometry[e],
+                    &self.element_displacements(e, u),
+                    &lambda,
+                    self.penalty_scale,
+                    None,
+                )
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let violation = states
+            .iter()
+            .flat_map(|state| state.projected_log_j)
+            .fold(0.0f64, |v, x| v.max(x.abs()));
+        let change = states
+            .iter()
+            .enumerate()
+            .flat_map(|(e, state)| {
+                let lambda = self.element_multipliers(e, u);
+                (0..PRESSURES).map(move |i| state.pressure[i] - lambda[i])
+            })
+            .collect();
+        Ok(Some((violation, change)))
+    }
+
+    /// The full vector of the displacement `u` (one entry per mesh unknown) at a homogeneous
+    /// state: `u`, followed for incompressible tissue by the multipliers that keep
+    /// `sigma_22 = 0` in each layer (`p_layer`, `p_substrate`, constant per element).
+    pub fn with_homogeneous_multipliers(&self, mut u: Vec<f64>, p_layer: f64, p_substrate: f64) -> Vec<f64> {
+        if self.constrained {
+            for region in self.mesh.regions() {
+                let p = match region {
+                    Region::Layer => p_layer,
+                    Region::Substrate => p_substrate,
+                };
+                u.extend([p, 0.0, 0.0]);
+            }
+        }
+        u
     }
 
     /// Nodal displacements of element `e` from the global vector `u`.
@@ -208,6 +304,32 @@ impl System {
         with_tangent: bool,
     ) -> Result<Assembled> {
         self.assemble_with(u, bc, lift, with_tangent, &NoAddedEnergy)
+    }
+
+    /// The tangent (and residual) of the strain energy plus `added` whose inertia is the
+    /// stability of `u`: [`System::assemble_with`], for exactly incompressible tissue with the
+    /// constraint's stability penalty ([`crate::fem::mixed`]).
+    pub fn assemble_for_stability(&mut self, u: &[f64], bc: &Dirichlet, added: &dyn AddedEnergy) -> Result<Assembled> {
+        let scale = std::mem::replace(&mut self.penalty_scale, STABILITY_PENALTY);
+        let assembled = self.assemble_with(u, bc, None, true, added);
+        self.penalty_scale = scale;
+        assembled
+    }
+
+    /// The factor on the constraint's penalty.
+    pub fn penalty_scale(&self) -> f64 {
+        self.penalty_scale
+    }
+
+    /// Sets the factor on the constraint's penalty (Newton's method raises it while the
+    /// multipliers converge slowly).
+    pub fn set_penalty_scale(&mut self, scale: f64) {
+        self.penalty_scale = scale;
+    }
+
+    /// Whether the tissue is exactly incompressible (multipliers follow the displacements).
+    pub fn is_constrained(&self) -> bool {
+        self.constrained
     }
 
     /// [`System::assemble`] of the strain energy plus `added` (whose groups join the pattern).
@@ -322,7 +444,12 @@ impl System {
         let slots: [Slot; DOFS] = std::array::from_fn(|i| pattern.slots[2 * nodes[i / 2] + i % 2]);
         let needs_tangent = !chunk.is_empty() || lift.is_some();
         let mut k = [[0.0; DOFS]; DOFS];
-        let state = self.element_state(e, &self.element_displacements(e, u), needs_tangent.then_some(&mut k))?;
+        let state = self.element_state(
+            e,
+            &self.element_displacements(e, u),
+            &self.element_multipliers(e, u),
+            needs_tangent.then_some(&mut k),
+        )?;
         let mut lifted = [0.0; DOFS];
         if let Some(lift) = lift {
             for (b, slot) in slots.iter().enumerate() {
@@ -353,7 +480,7 @@ impl System {
     /// The cached pattern for `bc`'s prescribed unknowns and the added `groups`, rebuilt when
     /// either changes.
     fn pattern_for(&mut self, bc: &Dirichlet, groups: &[Vec<usize>]) -> Result<&Pattern> {
-        let n = self.num_dofs();
+        let n = self.mesh.num_dofs();
         if let Some(&bad) = bc.dofs().iter().chain(groups.iter().flatten()).find(|&&d| d >= n) {
             return Err(Error::invalid(
                 "prescribed or coupled unknown",

@@ -39,7 +39,9 @@ pub fn cell_fields(system: &System, materials: &Bilayer, u: &[f64]) -> Result<Ce
             None => material.cauchy(&f)?,
             Some(mixed) => {
                 // sigma = sigma_rest + p / J I, `p` the condensed `kappa ln J` (`fem::mixed`).
-                let pressure = mixed.evaluate(geometry, &u_e, None)?.pressure;
+                let pressure = mixed
+                    .evaluate(geometry, &u_e, &system.element_multipliers(e, u), 1.0, None)?
+                    .pressure;
                 let p: f64 = mixed.basis(CENTRE).iter().zip(&pressure).map(|(a, b)| a * b).sum();
                 let mut sigma = mixed.rest().cauchy(&f)?;
                 for i in [0, 2, 3] {

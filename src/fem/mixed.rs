@@ -26,6 +26,26 @@
 //! the condensed tangent's negative pivots is therefore counting `S`'s and subtracting the
 //! pressure block's known inertia; `tests::saddle_point_inertia_is_the_condensed_plus_pressures`
 //! checks it.
+//!
+//! Exact incompressibility (`J = 1`, no bulk term) cannot be condensed per element: the
+//! pressure is then a multiplier `lambda` per element, carried in the unknowns' vector after
+//! the displacements ([`crate::fem::System::num_dofs`]) and found by the method of multipliers
+//! (augmented Lagrangian, Uzawa): for fixed `lambda`, the element's energy is
+//! `int W_rest dV + lambda . g + kappa/2 g^T M^-1 g` with a penalty `kappa` a hundred times the
+//! largest shear modulus (small enough for Newton's method to converge in a few steps), whose
+//! minimiser Newton's method finds; then `lambda <- p = lambda + kappa M^-1 g`
+//! ([`crate::fem::Newton`] repeats both, with Aitken's relaxation and a tenfold penalty whenever
+//! an update fails to halve the violation, until `|M^-1 g| <= 1e-7`: the element-mean `ln J`
+//! and its gradient vanish to solver tolerance). At the solution `g = 0`,
+//! the energy is `int W_rest dV`, the pressure `lambda`, and neither depends on `kappa`. The
+//! tangent is the condensed one with `kappa` for the bulk modulus, the Schur complement of
+//! `[[K_uu, B^T], [B, -M/kappa]]`; as above it has one negative eigenvalue fewer per pressure
+//! than that matrix, which tends to the exact saddle point `[[K_uu, B^T], [B, 0]]` as `kappa`
+//! grows: its inertia is that of the constrained displacements once `kappa` exceeds the
+//! curvature of `K_uu` off the constraint (Finsler's lemma), of the order of the stresses. The
+//! inertia is therefore counted on the tangent with a penalty 10^5 times the largest shear
+//! modulus ([`crate::fem::System::assemble_for_stability`]); the coarse-mesh bifurcation no
+//! longer moves beyond 10^4 times.
 
 use super::element::{
     add_tangent, mirror_upper_triangle, ElementGeometry, ElementMatrix, ElementState, ElementVector, DOFS, GAUSS_POINTS,
@@ -36,6 +56,16 @@ use crate::material::{add_pressure, cofactor, jacobian, StrainEnergy, Tissue};
 /// Pressure unknowns per element: a linear polynomial in `X`.
 pub const PRESSURES: usize = 3;
 
+/// How an element's volume change is resisted.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Volumetric {
+    /// By the bulk term `kappa/2 (ln J)^2`, condensed exactly.
+    Bulk(f64),
+    /// By the constraint `J = 1`, with multipliers and an augmentation penalty (times the
+    /// scale [`MixedElement::evaluate`] is given).
+    Constraint { penalty: f64 },
+}
+
 /// One mixed element's pressure space and the split of its tissue.
 #[derive(Clone, Debug)]
 pub struct MixedElement {
@@ -45,22 +75,25 @@ pub struct MixedElement {
     mass_inverse: [[f64; PRESSURES]; PRESSURES],
     /// The tissue without its bulk term.
     rest: Tissue,
-    /// The bulk modulus `kappa` of `kappa/2 (ln J)^2`.
-    bulk: f64,
+    volumetric: Volumetric,
 }
 
-/// What a mixed element returns besides [`ElementState`]: its pressure coefficients.
+/// What a mixed element returns besides [`ElementState`].
 #[derive(Clone, Copy, Debug)]
 pub struct MixedState {
     pub state: ElementState,
-    /// `p = kappa P(ln J)` in the element's basis.
+    /// The pressure `p` in the element's basis: `kappa M^-1 g` (bulk) or
+    /// `lambda + kappa M^-1 g` (constraint; the multipliers' next iterate).
     pub pressure: [f64; PRESSURES],
+    /// `M^-1 g`, the L2 projection of `ln J` onto the pressures (zero under the constraint).
+    pub projected_log_j: [f64; PRESSURES],
 }
 
 impl MixedElement {
     /// The element of `tissue` on `geometry`, with the pressure basis centred at the element's
-    /// centroid and scaled by `sqrt(area)` (a well-conditioned `M`).
-    pub fn new(geometry: &ElementGeometry, tissue: &Tissue) -> Self {
+    /// centroid and scaled by `sqrt(area)` (a well-conditioned `M`); `constraint` makes it
+    /// exactly incompressible with those penalties (the tissue's bulk modulus is then unused).
+    pub fn new(geometry: &ElementGeometry, tissue: &Tissue, constraint: Option<Volumetric>) -> Self {
         let (points, weights) = (geometry.points(), geometry.weights());
         let area = geometry.area();
         let centroid: [f64; 2] =
@@ -76,7 +109,7 @@ impl MixedElement {
             basis,
             mass_inverse: inverse3(&mass),
             rest,
-            bulk,
+            volumetric: constraint.unwrap_or(Volumetric::Bulk(bulk)),
         }
     }
 
@@ -90,12 +123,21 @@ impl MixedElement {
         &self.rest
     }
 
-    /// Force, energy and pressure at nodal displacements `u`, and the condensed tangent into
-    /// `stiffness` when given (overwritten, symmetric). `J <= 0` at a Gauss point is an error.
+    /// How the element resists volume change.
+    pub fn volumetric(&self) -> Volumetric {
+        self.volumetric
+    }
+
+    /// Force, energy and pressure at nodal displacements `u` (and multipliers `lambda` under the
+    /// constraint; unused otherwise), and the condensed tangent into `stiffness` when given
+    /// (overwritten, symmetric); the constraint's penalty is multiplied by `penalty_scale`.
+    /// `J <= 0` at a Gauss point is an error.
     pub fn evaluate(
         &self,
         geometry: &ElementGeometry,
         u: &ElementVector,
+        lambda: &[f64; PRESSURES],
+        penalty_scale: f64,
         mut stiffness: Option<&mut ElementMatrix>,
     ) -> Result<MixedState> {
         let mut gradients = [[0.0; 4]; GAUSS_POINTS];
@@ -125,19 +167,31 @@ impl MixedElement {
             }
             (gradients[g], jacobians[g]) = (f, j);
         }
-        // p = kappa M^-1 g; the condensed volumetric energy is kappa/2 g^T M^-1 g = g . p / 2.
-        let pressure = multiply3(&self.mass_inverse, &moments).map(|x| self.bulk * x);
+        let projected_log_j = multiply3(&self.mass_inverse, &moments);
+        let (modulus, pressure, volumetric_energy) = match self.volumetric {
+            // p = kappa M^-1 g; the condensed energy kappa/2 g^T M^-1 g = g . p / 2.
+            Volumetric::Bulk(kappa) => {
+                let p = projected_log_j.map(|x| kappa * x);
+                (kappa, p, 0.5 * dot3(&moments, &p))
+            }
+            // p = lambda + kappa M^-1 g; energy lambda . g + kappa/2 g^T M^-1 g.
+            Volumetric::Constraint { penalty } => {
+                let penalty = penalty * penalty_scale;
+                let p = std::array::from_fn(|i| lambda[i] + penalty * projected_log_j[i]);
+                let energy = dot3(lambda, &moments) + 0.5 * penalty * dot3(&moments, &projected_log_j);
+                (penalty, p, energy)
+            }
+        };
         let mut state = ElementState {
             force: [0.0; DOFS],
-            energy: 0.5 * dot3(&moments, &pressure),
+            energy: volumetric_energy,
             min_jacobian: jacobians.iter().copied().fold(f64::INFINITY, f64::min),
         };
         if let Some(k) = stiffness.as_deref_mut() {
             *k = [[0.0; DOFS]; DOFS];
         }
-        for g in 0..GAUSS_POINTS {
+        for (g, f) in gradients.iter().enumerate() {
             let (w, grads) = (geometry.weights()[g], geometry.gradients(g));
-            let f = &gradients[g];
             let p = dot3(&self.basis[g], &pressure);
             let stress = match stiffness.as_deref_mut() {
                 Some(k) => {
@@ -164,7 +218,7 @@ impl MixedElement {
             // + kappa B^T M^-1 B.
             let scaled: [[f64; DOFS]; PRESSURES] = std::array::from_fn(|i| {
                 std::array::from_fn(|c| {
-                    self.bulk
+                    modulus
                         * (0..PRESSURES)
                             .map(|l| self.mass_inverse[i][l] * moment_derivatives[l][c])
                             .sum::<f64>()
@@ -178,7 +232,11 @@ impl MixedElement {
                 }
             }
         }
-        Ok(MixedState { state, pressure })
+        Ok(MixedState {
+            state,
+            pressure,
+            projected_log_j,
+        })
     }
 }
 

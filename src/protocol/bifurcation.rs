@@ -9,10 +9,11 @@
 //! with the same factor; its wavenumber is the dominant cosine of its top-surface `u_y`.
 
 use crate::error::{Error, Result};
+use crate::fem::added::NoAddedEnergy;
 use crate::fem::boundary::{dof, X, Y};
 use crate::fem::linear_solver::inverse_iteration;
-use crate::fem::{model_conditions, SparseLdlt, System};
-use crate::homogeneous::{homogeneous_state, HomogeneousState};
+use crate::fem::{model_conditions, Assembled, SparseLdlt, System};
+use crate::homogeneous::{constraint_pressure, homogeneous_state, HomogeneousState};
 use crate::material::Bilayer;
 use crate::mesh::{Mesh, MeshSpec};
 use faer::sparse::SparseColMat;
@@ -78,6 +79,18 @@ pub fn homogeneous_displacement(mesh: &Mesh, state: &HomogeneousState) -> Vec<f6
     u
 }
 
+/// The full unknowns of `system` at the homogeneous `state`: [`homogeneous_displacement`], and
+/// for incompressible tissue the multipliers that keep each layer free of `sigma_22`.
+pub fn homogeneous_unknowns(system: &System, materials: &Bilayer, state: &HomogeneousState) -> Result<Vec<f64>> {
+    let u = homogeneous_displacement(system.mesh(), state);
+    if !materials.incompressible {
+        return Ok(u);
+    }
+    let p_layer = constraint_pressure(&materials.layer, &state.layer_gradient())?;
+    let p_substrate = constraint_pressure(&materials.substrate, &state.substrate_gradient())?;
+    Ok(system.with_homogeneous_multipliers(u, p_layer, p_substrate))
+}
+
 /// The homogeneous path of one mesh with its (reused) sparse factorisation.
 struct HomogeneousPath<'a> {
     materials: &'a Bilayer,
@@ -97,9 +110,15 @@ impl HomogeneousPath<'_> {
     /// Assembles and factorises `K_ff` at the homogeneous state `d`: negative pivots and `K_ff`.
     fn factorise(&mut self, d: f64) -> Result<(usize, SparseColMat<usize, f64>)> {
         let bc = model_conditions(self.system.mesh(), d)?;
-        let u = homogeneous_displacement(self.system.mesh(), &homogeneous_state(self.materials, d)?);
-        let assembled = self.system.assemble(&u, &bc, None, true)?;
-        let relative = assembled.residual_norm() / assembled.force_norm().max(f64::MIN_POSITIVE);
+        let u = homogeneous_unknowns(&self.system, self.materials, &homogeneous_state(self.materials, d)?)?;
+        let assembled = self.system.assemble_for_stability(&u, &bc, &NoAddedEnergy)?;
+        // The equilibrium check with the iteration's penalty: the stability penalty amplifies the
+        // round-off of ln J = 0.
+        let relative_residual = |a: &Assembled| a.residual_norm() / a.force_norm().max(f64::MIN_POSITIVE);
+        let relative = match self.system.is_constrained() {
+            true => relative_residual(&self.system.assemble(&u, &bc, None, false)?),
+            false => relative_residual(&assembled),
+        };
         if relative > 1e-8 {
             return Err(Error::Solver(format!(
                 "the homogeneous state at d = {d} is not a discrete equilibrium (relative residual {relative:.2e})"

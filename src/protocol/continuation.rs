@@ -251,7 +251,8 @@ impl Continuation {
                     if self.history.len() > PREDICTOR_POINTS {
                         self.history.pop_front();
                     }
-                    if report.tangent_steps <= c.easy_iterations {
+                    // A pass after an update of the multipliers takes a step or so of its own.
+                    if report.tangent_steps <= c.easy_iterations + report.multiplier_updates {
                         self.step = (self.step * c.grow).min(c.max);
                     }
                     started = Instant::now();

@@ -11,7 +11,7 @@
 //! against the domain and large against the elements): it changes sign at the creasing
 //! threshold, `eps_c ~ 0.35` for an incompressible neo-Hookean solid, far below Biot's 0.456.
 
-use super::bifurcation::homogeneous_displacement;
+use super::bifurcation::homogeneous_unknowns;
 use crate::error::{Error, Result};
 use crate::fem::added::NoAddedEnergy;
 use crate::fem::boundary::{dof, X};
@@ -58,7 +58,6 @@ pub fn crease_energy(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_leng
     let mesh = Mesh::new(spec)?;
     let mu = materials.layer.mu;
     let state = homogeneous_state(materials, strain)?;
-    let mut u = homogeneous_displacement(&mesh, &state);
     let model = model_conditions(&mesh, strain)?;
     let folded: Vec<usize> = mesh
         .top()
@@ -74,6 +73,7 @@ pub fn crease_energy(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_leng
         settings
     });
     let mut system = System::new(mesh, materials)?;
+    let mut u = homogeneous_unknowns(&system, materials, &state)?;
     let flat_energy = system.assemble(&u, &model, None, false)?.energy;
     let mut newton = Newton::new(NewtonSettings {
         max_iterations: 25,

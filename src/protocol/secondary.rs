@@ -12,6 +12,7 @@ use super::bifurcation::{dominant_cosine, top_uy};
 use super::continuation::StepRecord;
 use super::surface::surface_profile;
 use crate::error::Result;
+use crate::fem::added::NoAddedEnergy;
 use crate::fem::linear_solver::inverse_iteration;
 use crate::fem::{model_conditions, SparseLdlt, System};
 use crate::material::Bilayer;
@@ -58,7 +59,7 @@ pub fn mode_nearest_zero(
 ) -> Result<(Vec<f64>, f64)> {
     let bc = model_conditions(system.mesh(), d)?;
     let k = system
-        .assemble(u, &bc, None, true)?
+        .assemble_for_stability(u, &bc, &NoAddedEnergy)?
         .tangent
         .expect("assembled with the tangent");
     let solver = solver.get_or_insert_with(|| SparseLdlt::new(k.symbolic()));

@@ -16,7 +16,8 @@
 
 use crate::error::{Error, Result};
 use crate::fem::added::{AddedEnergy, Block, Diagonal};
-use crate::fem::element::DOFS;
+use crate::fem::element::{self, DOFS};
+use crate::fem::mixed::PRESSURES;
 use crate::fem::System;
 use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
@@ -63,13 +64,19 @@ pub struct Stabilisation {
 }
 
 impl Stabilisation {
-    /// The damper of `system`, proportional to the diagonal of its stiffness at `u = 0`.
+    /// The damper of `system`, proportional to the diagonal of its stiffness at `u = 0`. With
+    /// the mixed element, the stiffness of the energy without its volumetric part: volume
+    /// change is a constraint or nearly one, and damping it by `kappa` would hold the
+    /// displacements against the pressure on short steps.
     pub fn new(system: &System, materials: &Bilayer, settings: StabilisationSettings) -> Result<Self> {
         let mesh = system.mesh();
         let mut stiffness = vec![0.0; mesh.num_dofs()];
         let mut k = [[0.0; DOFS]; DOFS];
         for e in 0..mesh.elements().len() {
-            system.element_state(e, &[0.0; DOFS], Some(&mut k))?;
+            match system.mixed_elements().get(e) {
+                Some(mixed) => element::evaluate(&system.geometry()[e], mixed.rest(), &[0.0; DOFS], Some(&mut k))?,
+                None => system.element_state(e, &[0.0; DOFS], &[0.0; PRESSURES], Some(&mut k))?,
+            };
             let nodes = &mesh.elements()[e];
             for (i, row) in k.iter().enumerate() {
                 stiffness[2 * nodes[i / 2] + i % 2] += row[i];
@@ -149,9 +156,10 @@ impl Damper<'_> {
         Damper { factor: 0.0, ..self }
     }
 
-    /// Work of the damping forces on the step ending at `u`: `factor |u - reference|_c^2`.
+    /// Work of the damping forces on the step ending at `u`: `factor |u - reference|_c^2`
+    /// (over the displacements; multipliers are not damped).
     pub fn dissipation(&self, u: &[f64]) -> f64 {
-        let sum: f64 = (0..u.len())
+        let sum: f64 = (0..self.stiffness.len())
             .map(|i| self.stiffness[i] * (u[i] - self.reference[i]).powi(2))
             .sum();
         self.factor * sum
@@ -172,7 +180,7 @@ impl AddedEnergy for Damper<'_> {
             return None;
         }
         let curvature: Vec<f64> = self.stiffness.iter().map(|c| self.factor * c).collect();
-        let gradient: Vec<f64> = (0..u.len())
+        let gradient: Vec<f64> = (0..self.stiffness.len())
             .map(|i| curvature[i] * (u[i] - self.reference[i]))
             .collect();
         let energy = 0.5

@@ -4,7 +4,7 @@
 //! (3) displacement control to `d_max` ([`Continuation`]). `A_init = 0` runs the perfect system.
 
 use super::augmentation::Augmentation;
-use super::bifurcation::homogeneous_displacement;
+use super::bifurcation::homogeneous_unknowns;
 use super::continuation::{Continuation, Event, StepControl, StepRecord};
 use super::imperfection::{mode_number, wavenumber_of_waves, Imperfection};
 use super::stabilisation::StabilisationSettings;
@@ -175,7 +175,7 @@ pub fn run(
     )))?;
     let perfect = Mesh::new(spec)?;
     let mut system = System::new(perfect.clone(), materials)?;
-    let mut u = vec![0.0; perfect.num_dofs()];
+    let mut u = vec![0.0; system.num_dofs()];
     let bc = model_conditions(&perfect, d0)?;
     let mut report = newton
         .solve(&mut system, &mut u, &bc)
@@ -228,12 +228,8 @@ pub fn run(
         .then(|| Augmentation::new(&system, materials, protocol.contact, protocol.stabilisation))
         .transpose()?;
     // The first step is predicted along the homogeneous path's du/dd (central difference).
-    let homogeneous = |d: f64| -> Result<Vec<f64>> {
-        Ok(homogeneous_displacement(
-            system.mesh(),
-            &homogeneous_state(materials, d)?,
-        ))
-    };
+    let homogeneous =
+        |d: f64| -> Result<Vec<f64>> { homogeneous_unknowns(&system, materials, &homogeneous_state(materials, d)?) };
     let h = 1e-3;
     let (ahead, behind) = (homogeneous(d0 + h)?, homogeneous(d0 - h)?);
     let slope = ahead.iter().zip(&behind).map(|(a, b)| (a - b) / (2.0 * h)).collect();

@@ -196,7 +196,7 @@ pub fn kernels(params: &Parameters, meshes: &[(&str, MeshSpec)]) -> Result<Kerne
     use crate::fem::{model_conditions, SparseLdlt, System};
     use crate::homogeneous::homogeneous_state;
     use crate::material::Bilayer;
-    use crate::protocol::bifurcation::homogeneous_displacement;
+    use crate::protocol::bifurcation::homogeneous_unknowns;
     let materials = Bilayer::new(params);
     let mut rows = Vec::new();
     for (&(name, spec), element) in meshes
@@ -206,7 +206,7 @@ pub fn kernels(params: &Parameters, meshes: &[(&str, MeshSpec)]) -> Result<Kerne
         let mut system = System::new(crate::mesh::Mesh::new(spec.with_element(element))?, &materials)?;
         let d = 0.1;
         let bc = model_conditions(system.mesh(), d)?;
-        let u = homogeneous_displacement(system.mesh(), &homogeneous_state(&materials, d)?);
+        let u = homogeneous_unknowns(&system, &materials, &homogeneous_state(&materials, d)?)?;
         let assembled = system.assemble(&u, &bc, None, true)?;
         let k = assembled.tangent.expect("assembled with the tangent");
         let tangent_assembly_ms = median_ms(|| system.assemble(&u, &bc, None, true).map(|_| ()))?;

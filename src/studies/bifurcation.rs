@@ -13,7 +13,7 @@ use crate::mesh::{Mesh, MeshSpec};
 use crate::output::vtu::DataArray;
 use crate::output::{write_json, CsvWriter, Figure, LineStyle, Series};
 use crate::parameters::Parameters;
-use crate::protocol::bifurcation::homogeneous_displacement;
+use crate::protocol::bifurcation::homogeneous_unknowns;
 use crate::protocol::{find_bifurcation, Bifurcation, BifurcationSettings};
 use crate::stability::{Method, StabilityAnalysis};
 use serde::Serialize;
@@ -88,6 +88,7 @@ pub struct BifurcationReport {
 pub fn run(params: &Parameters, study: &BifurcationStudy, out: &Path) -> Result<BifurcationReport> {
     params.validate()?;
     study.mesh.validate()?;
+    study.mesh.element.check_for(params)?;
     crate::output::ensure_dir(out)?;
     let start = Instant::now();
     let materials = Bilayer::new(params);
@@ -148,10 +149,11 @@ fn write_mode(out: &Path, materials: &Bilayer, spec: MeshSpec, found: &Bifurcati
     for &(x, uy) in &surface {
         table.append(&[x, uy])?;
     }
-    let u = homogeneous_displacement(&mesh, &homogeneous_state(materials, found.d)?);
     let system = System::new(mesh, materials)?;
+    let u = homogeneous_unknowns(&system, materials, &homogeneous_state(materials, found.d)?)?;
     let vtu = out.join("mode.vtu");
-    let mode = DataArray::plane_vectors("mode", found.mode.chunks(2).map(|c| [c[0], c[1]]));
+    let nodal = &found.mode[..system.mesh().num_dofs()];
+    let mode = DataArray::plane_vectors("mode", nodal.chunks(2).map(|c| [c[0], c[1]]));
     write_state(&vtu, &system, materials, &u, vec![mode])?;
     let figure = Figure::new(
         format!(

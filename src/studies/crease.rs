@@ -125,7 +125,8 @@ impl CreaseStudy {
         if !(s.from.is_finite() && s.from > 0.0 && s.to < 1.0 && s.from < s.to) {
             return Err(Error::invalid("d-from", s.from, "(0, d-to) with d-to < 1"));
         }
-        if !(s.step.is_finite() && s.step > 0.0 && s.step <= s.to - s.from) {
+        // A step of exactly d-to - d-from as typed (0.37 - 0.32 is 0.0499...9 in binary) is allowed.
+        if !(s.step.is_finite() && s.step > 0.0 && s.step <= (s.to - s.from) * (1.0 + 1e-12)) {
             return Err(Error::invalid("d-step", s.step, "(0, d-to - d-from]"));
         }
         if !(s.tolerance.is_finite() && s.tolerance > 0.0 && s.tolerance < s.step) {
@@ -294,6 +295,7 @@ fn halve_towards(
 pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<CreaseReport> {
     params.validate()?;
     study.validate()?;
+    study.mesh.element.check_for(params)?;
     let start = std::time::Instant::now();
     let materials = Bilayer::new(params);
     let spec = study.mesh.spec(study.longest());

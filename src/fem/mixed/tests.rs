@@ -1,4 +1,5 @@
 use super::*;
+use crate::fem::element::ElementMatrix;
 use crate::fem::element::{self, tests::distorted, NODES};
 use crate::material::Bilayer;
 use crate::parameters::Parameters;
@@ -18,7 +19,7 @@ fn substrate() -> Tissue {
 fn mixed_on_distorted(tissue: &Tissue) -> (ElementGeometry, MixedElement, ElementVector) {
     let (nodes, u) = distorted();
     let geometry = ElementGeometry::new(&nodes).unwrap();
-    let mixed = MixedElement::new(&geometry, tissue);
+    let mixed = MixedElement::new(&geometry, tissue, None);
     (geometry, mixed, u)
 }
 
@@ -26,14 +27,20 @@ fn mixed_on_distorted(tissue: &Tissue) -> (ElementGeometry, MixedElement, Elemen
 fn condensed_tangent_matches_central_differences_of_the_force() {
     let (geometry, mixed, u) = mixed_on_distorted(&substrate());
     let mut k = [[0.0; DOFS]; DOFS];
-    mixed.evaluate(&geometry, &u, Some(&mut k)).unwrap();
+    mixed
+        .evaluate(&geometry, &u, &[0.0; PRESSURES], 1.0, Some(&mut k))
+        .unwrap();
     let h = 1e-6;
     let (mut worst, mut scale) = (0.0f64, 0.0f64);
     for j in 0..DOFS {
         let force_at = |s: f64| {
             let mut v = u;
             v[j] += s * h;
-            mixed.evaluate(&geometry, &v, None).unwrap().state.force
+            mixed
+                .evaluate(&geometry, &v, &[0.0; PRESSURES], 1.0, None)
+                .unwrap()
+                .state
+                .force
         };
         let (plus, minus) = (force_at(1.0), force_at(-1.0));
         for i in 0..DOFS {
@@ -47,13 +54,21 @@ fn condensed_tangent_matches_central_differences_of_the_force() {
 #[test]
 fn force_is_the_gradient_of_the_condensed_energy() {
     let (geometry, mixed, u) = mixed_on_distorted(&substrate());
-    let force = mixed.evaluate(&geometry, &u, None).unwrap().state.force;
+    let force = mixed
+        .evaluate(&geometry, &u, &[0.0; PRESSURES], 1.0, None)
+        .unwrap()
+        .state
+        .force;
     let h = 1e-6;
     for j in 0..DOFS {
         let energy_at = |s: f64| {
             let mut v = u;
             v[j] += s * h;
-            mixed.evaluate(&geometry, &v, None).unwrap().state.energy
+            mixed
+                .evaluate(&geometry, &v, &[0.0; PRESSURES], 1.0, None)
+                .unwrap()
+                .state
+                .energy
         };
         let fd = (energy_at(1.0) - energy_at(-1.0)) / (2.0 * h);
         assert!(
@@ -71,14 +86,14 @@ fn homogeneous_deformation_gives_the_displacement_element_s_energy_and_pressure(
     let tissue = substrate();
     let (nodes, _) = distorted();
     let geometry = ElementGeometry::new(&nodes).unwrap();
-    let mixed = MixedElement::new(&geometry, &tissue);
+    let mixed = MixedElement::new(&geometry, &tissue, None);
     let f = [0.83, 0.11, -0.07, 1.12];
     let u: ElementVector = std::array::from_fn(|i| {
         let (x, c) = (nodes[i / 2], i % 2);
         (f[2 * c] - if c == 0 { 1.0 } else { 0.0 }) * x[0] + (f[2 * c + 1] - if c == 1 { 1.0 } else { 0.0 }) * x[1]
     });
     let displacement = element::evaluate(&geometry, &tissue, &u, None).unwrap();
-    let condensed = mixed.evaluate(&geometry, &u, None).unwrap();
+    let condensed = mixed.evaluate(&geometry, &u, &[0.0; PRESSURES], 1.0, None).unwrap();
     assert!((displacement.energy - condensed.state.energy).abs() < 1e-12 * displacement.energy.abs());
     for (a, b) in displacement.force.iter().zip(&condensed.state.force) {
         assert!((a - b).abs() < 1e-11, "{a} vs {b}");
@@ -97,7 +112,7 @@ fn saddle_point_inertia_is_the_condensed_plus_pressures() {
     let tissue = Bilayer::new(&Parameters::default()).layer_tissue();
     let (nodes, _) = distorted();
     let geometry = ElementGeometry::new(&nodes).unwrap();
-    let mixed = MixedElement::new(&geometry, &tissue);
+    let mixed = MixedElement::new(&geometry, &tissue, None);
     // A strong lateral compression with a wrinkle-like shear, nodes 0 and 1 held (no rigid modes).
     let u: ElementVector = std::array::from_fn(|i| {
         let x = nodes[i / 2];
@@ -108,7 +123,9 @@ fn saddle_point_inertia_is_the_condensed_plus_pressures() {
         }
     });
     let mut condensed = [[0.0; DOFS]; DOFS];
-    let evaluated = mixed.evaluate(&geometry, &u, Some(&mut condensed)).unwrap();
+    let evaluated = mixed
+        .evaluate(&geometry, &u, &[0.0; PRESSURES], 1.0, Some(&mut condensed))
+        .unwrap();
     // The uncondensed blocks at the same state, built here from their definitions.
     let (mut k_uu, mut b) = (DMatrix::zeros(DOFS, DOFS), DMatrix::zeros(PRESSURES, DOFS));
     for g in 0..GAUSS_POINTS {
@@ -168,4 +185,41 @@ fn saddle_point_inertia_is_the_condensed_plus_pressures() {
     assert!(condensed_negatives > 0, "the test state should be unstable");
     assert_eq!(negatives(saddle), condensed_negatives + PRESSURES);
     assert_eq!(NODES * 2, DOFS);
+}
+
+/// The constraint mode (multipliers `lambda`, penalty `kappa`): force and tangent are the
+/// derivatives of its energy `int W_rest + lambda . g + kappa/2 g^T M^-1 g`, and the pressure is
+/// `lambda + kappa M^-1 g`.
+#[test]
+fn constraint_mode_derivatives_match_central_differences() {
+    let tissue = substrate();
+    let (nodes, u) = distorted();
+    let geometry = ElementGeometry::new(&nodes).unwrap();
+    let mixed = MixedElement::new(&geometry, &tissue, Some(Volumetric::Constraint { penalty: 40.0 }));
+    let lambda = [0.7, -0.3, 0.2];
+    let evaluate =
+        |v: &ElementVector, k: Option<&mut ElementMatrix>| mixed.evaluate(&geometry, v, &lambda, 2.5, k).unwrap();
+    let mut k = [[0.0; DOFS]; DOFS];
+    let state = evaluate(&u, Some(&mut k));
+    let expected: [f64; PRESSURES] = std::array::from_fn(|i| lambda[i] + 2.5 * 40.0 * state.projected_log_j[i]);
+    assert!(state.pressure.iter().zip(&expected).all(|(a, b)| (a - b).abs() < 1e-12));
+    let h = 1e-6;
+    let (mut worst_force, mut worst_tangent, mut scale) = (0.0f64, 0.0f64, 0.0f64);
+    for j in 0..DOFS {
+        let shifted = |s: f64| {
+            let mut v = u;
+            v[j] += s * h;
+            evaluate(&v, None)
+        };
+        let (plus, minus) = (shifted(1.0), shifted(-1.0));
+        let fd_force = (plus.state.energy - minus.state.energy) / (2.0 * h);
+        worst_force = worst_force.max((fd_force - state.state.force[j]).abs() / (1.0 + state.state.force[j].abs()));
+        for (i, row) in k.iter().enumerate() {
+            let fd = (plus.state.force[i] - minus.state.force[i]) / (2.0 * h);
+            worst_tangent = worst_tangent.max((fd - row[j]).abs());
+            scale = scale.max(row[j].abs());
+        }
+    }
+    assert!(worst_force < 1e-7, "force vs energy {worst_force:e}");
+    assert!(worst_tangent <= 1e-7 * scale, "{worst_tangent} vs {scale}");
 }

@@ -103,7 +103,8 @@ pub struct MapSettings {
     /// run stops at 1 %, where the path stops being quasi-static).
     pub snap_budget: f64,
 
-    /// The crease search ([`CreaseStudy`], without its mesh check).
+    /// The crease search ([`CreaseStudy`], without its mesh check); its mesh's element is the
+    /// nonlinear run's too.
     pub crease_mesh: CreaseMesh,
     pub fold_lengths: Vec<f64>,
     pub crease_scan: Scan,
@@ -231,6 +232,16 @@ impl MapStudy {
             return Err(Error::invalid("y", &self.y.name, "a parameter other than --x"));
         }
         self.settings.validate()?;
+        self.settings.crease_mesh.element.check_for(&self.base)?;
+        for axis in [&self.x, &self.y] {
+            if self.base.incompressible && axis.name.starts_with("K_") {
+                return Err(Error::invalid(
+                    if std::ptr::eq(axis, &self.x) { "x" } else { "y" },
+                    &axis.name,
+                    "a parameter incompressible tissue uses (K_l and K_s do not enter when incompressible = true)",
+                ));
+            }
+        }
         for (_, parameters) in self.grid()? {
             parameters.validate()?;
         }

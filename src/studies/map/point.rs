@@ -143,6 +143,7 @@ fn wave_mesh(settings: &MapSettings, k0: f64) -> MeshSpec {
         length,
         settings.depth,
     )
+    .with_element(settings.crease_mesh.element)
 }
 
 /// Computes the point `(ix, iy)` with `parameters`: [`first_instability`], then the nonlinear

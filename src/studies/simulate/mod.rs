@@ -297,6 +297,7 @@ impl From<&MeshSpec> for MeshSummary {
 pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Monitor) -> Result<SimulationSummary> {
     params.validate()?;
     study.validate()?;
+    study.mesh.element.check_for(params)?;
     let _lock = crate::output::lock::OutputLock::acquire(out)?;
     let start = Instant::now();
     let materials = Bilayer::new(params);

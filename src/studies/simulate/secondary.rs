@@ -100,7 +100,8 @@ impl SecondaryTracker {
         for (i, ((d, u), change)) in self.states.iter().zip(changes.iter_mut()).enumerate() {
             let (mode, eigenvalue) = mode_nearest_zero(&mut system, u, *d, INVERSE_ITERATIONS, &mut solver)?;
             let path = out.join(format!("secondary_mode_{i}.vtu"));
-            let array = DataArray::plane_vectors("mode", mode.chunks(2).map(|c| [c[0], c[1]]));
+            let nodal = &mode[..mesh.num_dofs()];
+            let array = DataArray::plane_vectors("mode", nodal.chunks(2).map(|c| [c[0], c[1]]));
             write_state(&path, &system, materials, u, vec![array])?;
             let uy = top_uy(mesh, &mode);
             if i == 0 {

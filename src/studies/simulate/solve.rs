@@ -108,7 +108,7 @@ fn finish(
     let state = StateFields {
         points: mesh.coordinates().to_vec(),
         cells: mesh.elements().to_vec(),
-        displacement: u.chunks(2).map(|c| [c[0], c[1]]).collect(),
+        displacement: u[..mesh.num_dofs()].chunks(2).map(|c| [c[0], c[1]]).collect(),
         cell: cell_fields(system, materials, u)?,
     };
     let curve = recorder.into_curve(outcome.stopped);

@@ -1,0 +1,228 @@
+//! Exactly incompressible tissue (`incompressible = true`) in the finite elements, against
+//! independent facts: the closed-form homogeneous state with its pressure, the patch test,
+//! Biot's half-space, the linear theory of the bilayer, Hong, Zhao and Suo's crease, and
+//! one-line refusals of what cannot work.
+
+mod common;
+
+use common::{boundary_values, distortion, fiberfold, scratch};
+use fiberfold::fem::{model_conditions, Newton, NewtonSettings, System};
+use fiberfold::homogeneous::constraint_pressure;
+use fiberfold::material::Bilayer;
+use fiberfold::mesh::{ElementKind, Mesh, MeshSpec};
+use fiberfold::numerics::roots::brent;
+use fiberfold::studies::crease::{crease, CreaseMesh, CreaseStudy, Scan};
+use fiberfold::Parameters;
+
+/// An incompressible neo-Hookean solid throughout (no fibres, layer = substrate when `mu_l = 1`).
+fn incompressible(mu_l: f64) -> Parameters {
+    Parameters {
+        mu_l,
+        phi_m: 1.0,
+        phi_f: 0.0,
+        incompressible: true,
+        ..Parameters::default()
+    }
+}
+
+/// Biot's critical compression of the incompressible neo-Hookean half-space in plane strain:
+/// `z = lambda_1^2` solves `z^3 + z^2 + 3 z - 1 = 0`.
+fn biot() -> f64 {
+    let z = brent(
+        "Biot's cubic",
+        |z| Ok(z * z * z + z * z + 3.0 * z - 1.0),
+        0.1,
+        0.5,
+        1e-15,
+    )
+    .unwrap();
+    1.0 - z.sqrt()
+}
+
+/// `fiberfold bifurcation --element mixed` with `args`: its JSON summary.
+fn bifurcation(name: &str, args: &[&str]) -> serde_json::Value {
+    let out = scratch(name);
+    let mut all = vec!["bifurcation", "--element", "mixed", "--out", out.to_str().unwrap()];
+    all.extend(args);
+    let output = fiberfold(&all);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    serde_json::from_str(&std::fs::read_to_string(out.join("bifurcation.json")).unwrap()).unwrap()
+}
+
+/// From rest, Newton's method with the multiplier updates reaches the closed-form state:
+/// `lambda_2 = 1 / lambda_1` in both layers and the pressure that frees `sigma_22`.
+#[test]
+fn compressed_incompressible_bilayer_reaches_the_closed_form_state() {
+    let params = Parameters {
+        incompressible: true,
+        ..Parameters::default()
+    };
+    let materials = Bilayer::new(&params);
+    let mesh = Mesh::new(MeshSpec::new(4, 2, 4, 0.5, 4.0, 6.0).with_element(ElementKind::Mixed)).unwrap();
+    let mut system = System::new(mesh.clone(), &materials).unwrap();
+    let d = 0.2;
+    let mut u = vec![0.0; system.num_dofs()];
+    let report = Newton::new(NewtonSettings::default())
+        .solve(&mut system, &mut u, &model_conditions(&mesh, d).unwrap())
+        .unwrap();
+    assert!(report.multiplier_updates > 0, "{report:?}");
+    let depth = mesh.spec().depth;
+    for (n, &[_, y]) in mesh.coordinates().iter().enumerate() {
+        let expected = (1.0 / (1.0 - d) - 1.0) * (y + depth);
+        assert!(
+            (u[2 * n + 1] - expected).abs() < 1e-7,
+            "node {n}: {} vs {expected}",
+            u[2 * n + 1]
+        );
+    }
+    let f = [1.0 - d, 0.0, 0.0, 1.0 / (1.0 - d)];
+    let p_layer = constraint_pressure(&materials.layer, &f).unwrap();
+    let p_substrate = constraint_pressure(&materials.substrate, &f).unwrap();
+    for (e, region) in mesh.regions().iter().enumerate() {
+        let lambda = system.element_multipliers(e, &u);
+        let p = match region {
+            fiberfold::mesh::Region::Layer => p_layer,
+            fiberfold::mesh::Region::Substrate => p_substrate,
+        };
+        // The multipliers stop within penalty x tolerance of their limit: 1e3 x 1e-7.
+        assert!((lambda[0] - p).abs() < 2e-4, "element {e}: {lambda:?} vs {p}");
+        assert!(
+            lambda[1].abs() < 2e-4 && lambda[2].abs() < 2e-4,
+            "element {e}: {lambda:?}"
+        );
+    }
+}
+
+/// An isochoric affine deformation on a curved mesh is reproduced exactly.
+#[test]
+fn patch_test_with_the_constraint() {
+    let mesh = Mesh::new(MeshSpec::new(3, 2, 2, 0.8, 3.0, 2.0).with_element(ElementKind::Mixed))
+        .unwrap()
+        .perturbed(distortion(0.08));
+    // det(I + G) = 1.
+    let g = [[0.1, 0.2], [-0.15, 0.0]];
+    let g11 = (1.0 + g[0][1] * g[1][0]) / (1.0 + g[0][0]) - 1.0;
+    let affine = |[x, y]: [f64; 2]| [g[0][0] * x + g[0][1] * y, g[1][0] * x + g11 * y];
+    let mut system = System::new(mesh.clone(), &Bilayer::new(&incompressible(1.0))).unwrap();
+    let mut u = vec![0.0; system.num_dofs()];
+    Newton::new(NewtonSettings::default())
+        .solve(&mut system, &mut u, &boundary_values(&mesh, affine))
+        .unwrap();
+    let worst = (0..mesh.num_nodes())
+        .map(|n| {
+            let exact = affine(mesh.coordinates()[n]);
+            (u[2 * n] - exact[0]).abs().max((u[2 * n + 1] - exact[1]).abs())
+        })
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-10, "patch test error {worst:e}");
+}
+
+/// Coarse mesh, no fibres, `mu_l = 10`: within 2e-4 of the linear theory.
+#[test]
+fn incompressible_bilayer_bifurcation_agrees_with_the_linear_theory() {
+    let summary = bifurcation(
+        "incompressible-bilayer",
+        &["--set", "phi_m=1", "--set", "phi_f=0", "--set", "incompressible=true"],
+    );
+    assert_eq!(summary["mesh"]["element"], "mixed");
+    let difference = summary["relative_difference"].as_f64().unwrap();
+    assert!(difference.abs() < 2e-4, "FE vs theory {difference:e}");
+}
+
+/// A homogeneous incompressible half-space (the coarse mesh, 50 H deep): Biot's value within
+/// 0.5 %.
+#[test]
+fn incompressible_half_space_bifurcates_at_biot() {
+    let summary = bifurcation(
+        "incompressible-half-space",
+        &[
+            "--set",
+            "mu_l=1",
+            "--set",
+            "phi_m=1",
+            "--set",
+            "phi_f=0",
+            "--set",
+            "incompressible=true",
+        ],
+    );
+    let d = summary["d_bifurcation"].as_f64().unwrap();
+    assert!((d / biot() - 1.0).abs() < 5e-3, "{d} vs Biot {}", biot());
+}
+
+/// Hong, Zhao and Suo: a crease in an incompressible neo-Hookean half-space pays off at a
+/// compressive strain of about 0.354; on a small mesh within [0.34, 0.37] (the converged value
+/// is in README), well below Biot's 0.456.
+#[test]
+fn incompressible_half_space_creases_at_hong_zhao_suo() {
+    let study = CreaseStudy {
+        mesh: CreaseMesh {
+            size: 12.0,
+            nx: 24,
+            layer: 2,
+            substrate: 10,
+            ratio: 8.0,
+            element: ElementKind::Mixed,
+        },
+        fold_lengths: vec![1.0],
+        scan: Scan {
+            from: 0.32,
+            to: 0.37,
+            step: 0.05,
+            tolerance: 1e-3,
+        },
+        convergence: false,
+        lowest_only: false,
+    };
+    let report = crease(&incompressible(1.0), &study, &|| {}).unwrap();
+    let d = report.d_crease.unwrap();
+    assert!((0.34..=0.37).contains(&d), "d_crease {d}");
+    assert!(d < biot() - 0.08);
+}
+
+/// What cannot work is refused in one line with exit code 2, before anything is written.
+#[test]
+fn incompressibility_with_a_contradictory_setting_is_refused() {
+    let out = scratch("incompressible-refusals");
+    let target = out.join("run");
+    let cases: [(&[&str], &str); 3] = [
+        (&["simulate", "--waves", "4", "--set", "incompressible=true"], "element"),
+        (&["crease", "--set", "incompressible=true"], "element"),
+        (
+            &[
+                "map",
+                "--x",
+                "K_l",
+                "--x-from",
+                "10",
+                "--x-to",
+                "100",
+                "--x-points",
+                "2",
+                "--y",
+                "mu_l",
+                "--y-from",
+                "1",
+                "--y-to",
+                "10",
+                "--y-points",
+                "2",
+                "--set",
+                "incompressible=true",
+                "--element",
+                "mixed",
+            ],
+            "`x`",
+        ),
+    ];
+    for (args, names) in cases {
+        let mut all: Vec<&str> = args.to_vec();
+        all.extend(["--out", target.to_str().unwrap()]);
+        let output = fiberfold(&all);
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{args:?}: {stderr}");
+        assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
+        assert!(stderr.contains(names), "{stderr}");
+        assert!(!target.exists(), "{args:?} wrote {}", target.display());
+    }
+}
