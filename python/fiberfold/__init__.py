@@ -169,6 +169,7 @@ def simulate(
     inertia: bool = True,
     force: bool = False,
     progress: Optional[Callable[[Dict[str, Any]], None]] = None,
+    element: str = "displacement",
 ) -> Simulation:
     """The paper's finite-element protocol, exactly as ``fiberfold simulate`` with the same
     options (see ``fiberfold simulate --help`` for each; the defaults are the CLI's).
@@ -177,15 +178,16 @@ def simulate(
     ``k = m pi / 50``. ``mesh`` is ``"coarse"``, ``"fine"`` or ``"extra"``, modified by ``nx``,
     ``layer_elements``, ``substrate_elements`` and ``h0``. ``progress`` is called with a dict
     (``event``: ``"stage"``, ``"step"`` or ``"cut"``; ``d``, ``A``, ``message``...) after every
-    stage, accepted state and cut. Raises :class:`SolverError` (with ``result``, the path so
-    far) if the path stops before ``d_max``.
+    stage, accepted state and cut. ``element`` is ``"displacement"`` or ``"mixed"`` (needed for
+    nearly and exactly incompressible tissue). Raises :class:`SolverError` (with ``result``, the
+    path so far) if the path stops before ``d_max``.
     """
     if progress is not None and not callable(progress):
         raise TypeError("progress must be callable")
     columns, summary, state, stopped = _fiberfold.simulate_run(
         _check_parameters(params), mesh, nx, layer_elements, substrate_elements, h0, waves, k, d_max,
         imperfection, max_step, min_step, max_newton_iterations, refine_troughs, refine_width,
-        imperfection2, imperfection2_waves, contact, eta, inertia, force, progress,
+        imperfection2, imperfection2_waves, contact, eta, inertia, force, progress, element,
     )
     result = Simulation(columns, json.loads(summary), state, stopped)
     if stopped is not None:
@@ -195,16 +197,18 @@ def simulate(
     return result
 
 
-def bifurcation(params: Parameters, mesh: str = "coarse", out: Optional[str] = None) -> Dict[str, Any]:
+def bifurcation(
+    params: Parameters, mesh: str = "coarse", out: Optional[str] = None, element: str = "displacement"
+) -> Dict[str, Any]:
     """The exact bifurcation of the discretised perfect system (``fiberfold bifurcation``):
     the content of ``bifurcation.json`` (``d_bifurcation``, ``k_mode``, the linear theory's
     minimum, ...). Its files (mode VTU and figure) go to ``out``, or to a temporary folder that
-    is removed."""
+    is removed. ``element``: ``"displacement"`` or ``"mixed"``."""
     params = _check_parameters(params)
     if out is not None:
-        return json.loads(_fiberfold.bifurcation_run(params, str(out), mesh))
+        return json.loads(_fiberfold.bifurcation_run(params, str(out), mesh, element))
     with tempfile.TemporaryDirectory() as folder:
-        return json.loads(_fiberfold.bifurcation_run(params, folder, mesh))
+        return json.loads(_fiberfold.bifurcation_run(params, folder, mesh, element))
 
 
 def crease(
@@ -221,6 +225,7 @@ def crease(
     substrate_elements: int = 20,
     ratio: float = 8.0,
     convergence: bool = True,
+    element: str = "displacement",
 ) -> Dict[str, Any]:
     """The crease onset (``fiberfold crease``): where a seeded crease of reference length ``a``
     (each of ``folds``, units of H) first lowers the energy below the flat state's (Hong, Zhao
@@ -230,6 +235,6 @@ def crease(
     return json.loads(
         _fiberfold.crease_run(
             _check_parameters(params), [float(a) for a in folds], d_from, d_to, d_step, tolerance, size, nx,
-            layer_elements, substrate_elements, ratio, convergence,
+            layer_elements, substrate_elements, ratio, convergence, element,
         )
     )

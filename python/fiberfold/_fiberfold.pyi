@@ -77,8 +77,9 @@ def simulate_run(
     inertia: bool,
     force: bool,
     progress: Optional[Callable[[Dict[str, Any]], None]],
+    element: str,
 ) -> Tuple[Dict[str, npt.NDArray[np.float64]], str, State, Optional[str]]: ...
-def bifurcation_run(params: Parameters, out: str, mesh: str = ...) -> str: ...
+def bifurcation_run(params: Parameters, out: str, mesh: str = ..., element: str = ...) -> str: ...
 def crease_run(
     params: Parameters,
     folds: List[float],
@@ -92,4 +93,5 @@ def crease_run(
     substrate_elements: int,
     ratio: float,
     convergence: bool,
+    element: str,
 ) -> str: ...

@@ -5,7 +5,7 @@
 
 use fiberfold::homogeneous::HomogeneousRow;
 use fiberfold::material::Bilayer;
-use fiberfold::mesh::MeshSpec;
+use fiberfold::mesh::{ElementKind, MeshSpec};
 use fiberfold::output::vtu::{vtk_cell, write_vtu, DataArray};
 use fiberfold::parameters::{is_boolean, validate_compression, Parameters, PARAMETER_NAMES};
 use fiberfold::stability::discrete::DiscreteOptions;
@@ -374,7 +374,7 @@ fn shaped<'py>(py: Python<'py>, array: &DataArray) -> Bound<'py, PyAny> {
 #[pyfunction]
 #[pyo3(signature = (params, mesh, nx, layer_elements, substrate_elements, h0, waves, k, d_max, imperfection,
     max_step, min_step, max_newton_iterations, refine_troughs, refine_width, imperfection2, imperfection2_waves,
-    contact, eta, inertia, force, progress))]
+    contact, eta, inertia, force, progress, element))]
 #[allow(clippy::too_many_arguments)]
 fn simulate_run<'py>(
     py: Python<'py>,
@@ -400,10 +400,12 @@ fn simulate_run<'py>(
     inertia: bool,
     force: bool,
     progress: Option<Py<PyAny>>,
+    element: &str,
 ) -> PyResult<(Bound<'py, PyDict>, String, PyState, Option<String>)> {
     let spec = MeshSpec::preset(mesh)
         .map_err(to_py)?
-        .with_overrides(nx, layer_elements, substrate_elements, h0);
+        .with_overrides(nx, layer_elements, substrate_elements, h0)
+        .with_element(ElementKind::from_name(element).map_err(to_py)?);
     let options = SimulateOptions {
         mesh: spec,
         waves,
@@ -497,11 +499,13 @@ fn simulate_run<'py>(
 /// The exact bifurcation of the discretised perfect system (`fiberfold bifurcation`), written
 /// into `out`; returns `bifurcation.json` as JSON text.
 #[pyfunction]
-#[pyo3(signature = (params, out, mesh = "coarse"))]
-fn bifurcation_run(py: Python<'_>, params: &PyParameters, out: PathBuf, mesh: &str) -> PyResult<String> {
+#[pyo3(signature = (params, out, mesh = "coarse", element = "displacement"))]
+fn bifurcation_run(py: Python<'_>, params: &PyParameters, out: PathBuf, mesh: &str, element: &str) -> PyResult<String> {
     use fiberfold::studies::bifurcation::{run, BifurcationStudy};
     let study = BifurcationStudy {
-        mesh: MeshSpec::preset(mesh).map_err(to_py)?,
+        mesh: MeshSpec::preset(mesh)
+            .map_err(to_py)?
+            .with_element(ElementKind::from_name(element).map_err(to_py)?),
         settings: Default::default(),
     };
     let p = params.inner.clone();
@@ -511,7 +515,7 @@ fn bifurcation_run(py: Python<'_>, params: &PyParameters, out: PathBuf, mesh: &s
 
 /// The crease onset (`fiberfold crease`), in memory: `crease.json` as JSON text.
 #[pyfunction]
-#[pyo3(signature = (params, folds, d_from, d_to, d_step, tolerance, size, nx, layer_elements, substrate_elements, ratio, convergence))]
+#[pyo3(signature = (params, folds, d_from, d_to, d_step, tolerance, size, nx, layer_elements, substrate_elements, ratio, convergence, element))]
 #[allow(clippy::too_many_arguments)]
 fn crease_run(
     py: Python<'_>,
@@ -527,6 +531,7 @@ fn crease_run(
     substrate_elements: usize,
     ratio: f64,
     convergence: bool,
+    element: &str,
 ) -> PyResult<String> {
     use fiberfold::studies::crease::{crease, CreaseMesh, CreaseStudy, Scan};
     let study = CreaseStudy {
@@ -536,7 +541,7 @@ fn crease_run(
             layer: layer_elements,
             substrate: substrate_elements,
             ratio,
-            element: fiberfold::mesh::ElementKind::Displacement,
+            element: ElementKind::from_name(element).map_err(to_py)?,
         },
         fold_lengths: folds,
         scan: Scan {

@@ -210,6 +210,22 @@ def test_bifurcation_of_the_discretised_perfect_system_meets_the_linear_theory()
     assert r["k_mode"] > 0
 
 
+def test_incompressible_tissue_with_the_mixed_element():
+    # Exactly incompressible, no fibres: Biot's half-space in the linear theory, and the FE
+    # bifurcation of the bilayer within 2e-4 of it with the mixed element, which it needs.
+    p = fiberfold.Parameters(phi_m=1.0, phi_f=0.0, incompressible=True)
+    assert p.incompressible is True
+    z = min(r.real for r in np.roots([1.0, 1.0, 3.0, -1.0]) if abs(r.imag) < 1e-12)  # Biot's cubic
+    assert abs(fiberfold.onset(p.replace(mu_l=1.0)).d_c - (1.0 - np.sqrt(z))) < 1e-7
+    r = fiberfold.bifurcation(p, mesh="coarse", element="mixed")
+    assert r["mesh"]["element"] == "mixed"
+    assert abs(r["relative_difference"]) < 2e-4
+    with pytest.raises(ValueError, match="element"):
+        fiberfold.bifurcation(p, mesh="coarse")
+    with pytest.raises(ValueError, match="element"):
+        fiberfold.bifurcation(p, mesh="coarse", element="hybrid")
+
+
 def test_crease_onset_of_a_soft_layer():
     p = fiberfold.Parameters(mu_l=1.5, K_l=4.5)
     r = fiberfold.crease(p, [1.0], d_from=0.2, d_to=0.3, nx=24, layer_elements=2, substrate_elements=12, convergence=False)
