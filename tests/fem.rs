@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{boundary_values, distortion, error_norms, homogeneous_material};
+use common::{boundary_values, distortion, error_norms, homogeneous_material, worst_nodal_error};
 use fiberfold::fem::boundary::{X, Y};
 use fiberfold::fem::linear_solver::multiply;
 use fiberfold::fem::{dof, model_conditions, Newton, NewtonError, NewtonSettings, System};
@@ -58,12 +58,7 @@ fn patch_test_reproduces_an_affine_deformation_on_a_distorted_mesh() {
         let report = Newton::new(NewtonSettings::default())
             .solve(&mut system, &mut u, &bc)
             .unwrap();
-        let worst = (0..mesh.num_nodes())
-            .map(|n| {
-                let exact = affine(mesh.coordinates()[n]);
-                (u[2 * n] - exact[0]).abs().max((u[2 * n + 1] - exact[1]).abs())
-            })
-            .fold(0.0, f64::max);
+        let worst = worst_nodal_error(&mesh, &u, affine);
         assert!(worst < 1e-12, "{element:?}: patch test error {worst:e} ({report:?})");
     }
 }

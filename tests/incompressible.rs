@@ -5,12 +5,12 @@
 
 mod common;
 
-use common::{boundary_values, distortion, fiberfold, scratch};
+use common::{boundary_values, distortion, fiberfold, scratch, worst_nodal_error};
 use fiberfold::fem::{model_conditions, Newton, NewtonSettings, System};
 use fiberfold::homogeneous::constraint_pressure;
 use fiberfold::material::Bilayer;
 use fiberfold::mesh::{ElementKind, Mesh, MeshSpec};
-use fiberfold::numerics::roots::brent;
+use fiberfold::stability::biot_compression;
 use fiberfold::studies::crease::{crease, CreaseMesh, CreaseStudy, Scan};
 use fiberfold::Parameters;
 
@@ -23,20 +23,6 @@ fn incompressible(mu_l: f64) -> Parameters {
         incompressible: true,
         ..Parameters::default()
     }
-}
-
-/// Biot's critical compression of the incompressible neo-Hookean half-space in plane strain:
-/// `z = lambda_1^2` solves `z^3 + z^2 + 3 z - 1 = 0`.
-fn biot() -> f64 {
-    let z = brent(
-        "Biot's cubic",
-        |z| Ok(z * z * z + z * z + 3.0 * z - 1.0),
-        0.1,
-        0.5,
-        1e-15,
-    )
-    .unwrap();
-    1.0 - z.sqrt()
 }
 
 /// `fiberfold bifurcation --element mixed` with `args`: its JSON summary.
@@ -108,12 +94,7 @@ fn patch_test_with_the_constraint() {
     Newton::new(NewtonSettings::default())
         .solve(&mut system, &mut u, &boundary_values(&mesh, affine))
         .unwrap();
-    let worst = (0..mesh.num_nodes())
-        .map(|n| {
-            let exact = affine(mesh.coordinates()[n]);
-            (u[2 * n] - exact[0]).abs().max((u[2 * n + 1] - exact[1]).abs())
-        })
-        .fold(0.0, f64::max);
+    let worst = worst_nodal_error(&mesh, &u, affine);
     assert!(worst < 1e-10, "patch test error {worst:e}");
 }
 
@@ -132,7 +113,7 @@ fn incompressible_bilayer_bifurcation_agrees_with_the_linear_theory() {
 /// A homogeneous incompressible half-space (the coarse mesh, 50 H deep): Biot's value within
 /// 0.5 %.
 #[test]
-fn incompressible_half_space_bifurcates_at_biot() {
+fn incompressible_half_space_bifurcates_at_biot_compression() {
     let summary = bifurcation(
         "incompressible-half-space",
         &[
@@ -147,7 +128,11 @@ fn incompressible_half_space_bifurcates_at_biot() {
         ],
     );
     let d = summary["d_bifurcation"].as_f64().unwrap();
-    assert!((d / biot() - 1.0).abs() < 5e-3, "{d} vs Biot {}", biot());
+    assert!(
+        (d / biot_compression() - 1.0).abs() < 5e-3,
+        "{d} vs Biot {}",
+        biot_compression()
+    );
 }
 
 /// Hong, Zhao and Suo: a crease in an incompressible neo-Hookean half-space pays off at a
@@ -177,7 +162,7 @@ fn incompressible_half_space_creases_at_hong_zhao_suo() {
     let report = crease(&incompressible(1.0), &study, &|| {}).unwrap();
     let d = report.d_crease.unwrap();
     assert!((0.34..=0.37).contains(&d), "d_crease {d}");
-    assert!(d < biot() - 0.08);
+    assert!(d < biot_compression() - 0.08);
 }
 
 /// What cannot work is refused in one line with exit code 2, before anything is written.

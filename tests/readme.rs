@@ -154,7 +154,11 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                     ("--substrate-elements", "10"),
                     ("--no-convergence", ""),
                 ];
-                let extra: &[(&str, &str)] = if command.contains("incompressible=true") { &small } else { &[] };
+                let extra: &[(&str, &str)] = if command.contains("incompressible=true") {
+                    &small
+                } else {
+                    &[]
+                };
                 let (dir, _) = run(command, extra);
                 let d = json(dir.join("crease.json"))["d_crease"].as_f64().unwrap();
                 assert!((0.33..0.38).contains(&d), "d_crease {d}");

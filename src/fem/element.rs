@@ -268,54 +268,48 @@ pub(super) mod tests {
         assert!((ElementGeometry::new(&square).unwrap().area() - 2.0).abs() < 1e-14);
     }
 
+    /// Checks at `u` that the force of `evaluate` is the central difference of its energy and
+    /// its tangent the central difference of its force.
+    pub(in crate::fem) fn assert_consistent_derivatives(
+        u: &ElementVector,
+        evaluate: impl Fn(&ElementVector, Option<&mut ElementMatrix>) -> ElementState,
+    ) {
+        let mut k = [[0.0; DOFS]; DOFS];
+        let state = evaluate(u, Some(&mut k));
+        let h = 1e-6;
+        let (mut worst_force, mut worst_tangent, mut scale) = (0.0f64, 0.0f64, 0.0f64);
+        for j in 0..DOFS {
+            let shifted = |s: f64| {
+                let mut v = *u;
+                v[j] += s * h;
+                evaluate(&v, None)
+            };
+            let (plus, minus) = (shifted(1.0), shifted(-1.0));
+            let force = (plus.energy - minus.energy) / (2.0 * h);
+            worst_force = worst_force.max((force - state.force[j]).abs() / (1.0 + state.force[j].abs()));
+            for (i, row) in k.iter().enumerate() {
+                worst_tangent = worst_tangent.max(((plus.force[i] - minus.force[i]) / (2.0 * h) - row[j]).abs());
+                scale = scale.max(row[j].abs());
+            }
+        }
+        assert!(worst_force < 1e-7, "force vs energy: {worst_force:e}");
+        assert!(
+            worst_tangent <= 1e-7 * scale,
+            "tangent vs force: {worst_tangent} vs {scale}"
+        );
+    }
+
     #[test]
-    fn tangent_matches_central_differences_of_the_force() {
+    fn force_and_tangent_are_the_derivatives_of_the_energy() {
         let p = Parameters {
             beta: 0.6,
             lambda_f: 0.9,
             ..Parameters::default()
         };
-        let material = Bilayer::new(&p).substrate_tissue();
         let (nodes, u) = distorted();
         let geometry = ElementGeometry::new(&nodes).unwrap();
-        let mut k = [[0.0; DOFS]; DOFS];
-        evaluate(&geometry, &material, &u, Some(&mut k)).unwrap();
-        let h = 1e-6;
-        let (mut worst, mut scale) = (0.0f64, 0.0f64);
-        for j in 0..DOFS {
-            let force_at = |s: f64| {
-                let mut v = u;
-                v[j] += s * h;
-                evaluate(&geometry, &material, &v, None).unwrap().force
-            };
-            let (plus, minus) = (force_at(1.0), force_at(-1.0));
-            for i in 0..DOFS {
-                worst = worst.max(((plus[i] - minus[i]) / (2.0 * h) - k[i][j]).abs());
-                scale = scale.max(k[i][j].abs());
-            }
-        }
-        assert!(worst <= 1e-7 * scale, "{worst} vs {scale}");
-    }
-
-    #[test]
-    fn force_is_the_gradient_of_the_energy() {
-        let material = Bilayer::new(&Parameters::default()).layer_tissue();
-        let (nodes, u) = distorted();
-        let geometry = ElementGeometry::new(&nodes).unwrap();
-        let force = evaluate(&geometry, &material, &u, None).unwrap().force;
-        let h = 1e-6;
-        for j in 0..DOFS {
-            let energy_at = |s: f64| {
-                let mut v = u;
-                v[j] += s * h;
-                evaluate(&geometry, &material, &v, None).unwrap().energy
-            };
-            let fd = (energy_at(1.0) - energy_at(-1.0)) / (2.0 * h);
-            assert!(
-                (fd - force[j]).abs() < 1e-7 * (1.0 + force[j].abs()),
-                "{j}: {fd} vs {}",
-                force[j]
-            );
+        for material in [Bilayer::new(&p).substrate_tissue(), Bilayer::new(&p).layer_tissue()] {
+            assert_consistent_derivatives(&u, |v, k| evaluate(&geometry, &material, v, k).unwrap());
         }
     }
 

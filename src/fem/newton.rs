@@ -238,8 +238,9 @@ impl Newton {
         bc: &Dirichlet,
         added: &dyn AddedEnergy,
     ) -> Result<NewtonReport, NewtonError> {
-        let start = u.to_vec();
+        let (start, scale) = (u.to_vec(), system.penalty_scale());
         let result = self.iterate_with_multipliers(system, u, bc, added);
+        system.set_penalty_scale(scale);
         if result.is_err() {
             u.copy_from_slice(&start);
         }
@@ -250,22 +251,10 @@ impl Newton {
     /// multipliers (the method of multipliers, [`crate::fem::mixed`]) until the constraint holds
     /// to [`CONSTRAINT_TOLERANCE`]. The updates are relaxed by Irons and Tuck's form of
     /// Aitken's acceleration: the iteration converges linearly, slowly where the pressure is
-    /// weakly controlled (elongated elements), and one extrapolation removes that slow mode.
+    /// weakly controlled (elongated or strongly distorted elements), and one extrapolation
+    /// removes that slow mode; an update that does not halve the violation raises the penalty
+    /// tenfold instead (up to [`MAX_PENALTY_SCALE`], reset by [`Newton::solve_with`]).
     fn iterate_with_multipliers(
-        &mut self,
-        system: &mut System,
-        u: &mut [f64],
-        bc: &Dirichlet,
-        added: &dyn AddedEnergy,
-    ) -> Result<NewtonReport, NewtonError> {
-        let scale = system.penalty_scale();
-        let result = self.update_multipliers(system, u, bc, added);
-        system.set_penalty_scale(scale);
-        result
-    }
-
-    /// The loop of [`Newton::iterate_with_multipliers`].
-    fn update_multipliers(
         &mut self,
         system: &mut System,
         u: &mut [f64],

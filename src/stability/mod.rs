@@ -19,6 +19,15 @@ mod search;
 pub use moduli::IncrementalModuli;
 pub use search::{Minimum, Onset, StabilityAnalysis, K_MAX};
 
+/// Biot (1963): the compression `d = 1 - lambda_1` at which an incompressible neo-Hookean
+/// half-space in plane strain wrinkles at every wavelength; `z = lambda_1 / lambda_2 =
+/// lambda_1^2` is the root in (0, 1) of `z^3 + z^2 + 3 z - 1 = 0` (0.456311).
+pub fn biot_compression() -> f64 {
+    let cubic = |z: f64| Ok(z * z * z + z * z + 3.0 * z - 1.0);
+    let z = crate::numerics::roots::brent("Biot's cubic", cubic, 0.0, 1.0, 1e-15).expect("one root in (0, 1)");
+    1.0 - z.sqrt()
+}
+
 /// Which solver computes `d_c(k)`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Method {

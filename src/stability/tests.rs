@@ -325,19 +325,11 @@ fn incompressible_bilayer(mu_l: f64, mu_s: f64) -> Parameters {
     }
 }
 
-/// Biot (1963): an incompressible neo-Hookean half-space in plane strain wrinkles where
-/// `z = lambda_1 / lambda_2 = lambda_1^2` solves `z^3 + z^2 + 3 z - 1 = 0`, at every `k`.
+/// Biot (1963): an incompressible neo-Hookean half-space in plane strain wrinkles at
+/// [`biot_compression`] (the root of Biot's cubic), at every `k`.
 #[test]
 fn exactly_incompressible_half_space_is_biot_at_every_k_with_both_solvers() {
-    let z = crate::numerics::roots::brent(
-        "Biot's cubic",
-        |z| Ok(z * z * z + z * z + 3.0 * z - 1.0),
-        0.1,
-        0.5,
-        1e-15,
-    )
-    .unwrap();
-    let d_biot = 1.0 - z.sqrt();
+    let d_biot = biot_compression();
     let exact = StabilityAnalysis::new(&incompressible_bilayer(1.0, 1.0), Method::Exact).unwrap();
     for k in [0.1, 0.5, 1.0, 3.0] {
         let d = exact.critical_compression(k).unwrap();

@@ -13,9 +13,6 @@ use crate::protocol::crease_seed::CreaseEnergy;
 use serde::Serialize;
 use std::path::Path;
 
-/// Biot's surface instability of an incompressible neo-Hookean half-space (plane strain).
-pub const BIOT_STRAIN: f64 = 0.456;
-
 /// One threshold computation: material, mesh, fold and the bracket searched.
 #[derive(Clone, Copy, Debug)]
 pub struct CreaseThresholdStudy {
@@ -102,7 +99,7 @@ pub fn crease_threshold(study: &CreaseThresholdStudy) -> Result<CreaseThreshold>
     })?;
     Ok(CreaseThreshold {
         strain,
-        biot_strain: BIOT_STRAIN,
+        biot_strain: crate::stability::biot_compression(),
         bulk_ratio: study.bulk_ratio,
         fold_length: study.fold_length,
         unknowns: study.mesh.num_dofs(),

@@ -146,6 +146,16 @@ pub fn boundary_values(mesh: &Mesh, value: impl Fn([f64; 2]) -> [f64; 2]) -> Dir
     Dirichlet::new(pairs.collect()).unwrap()
 }
 
+/// Largest nodal error `max |u_i - exact_i(X)|` of the displacement `u` on `mesh`.
+pub fn worst_nodal_error(mesh: &Mesh, u: &[f64], exact: impl Fn([f64; 2]) -> [f64; 2]) -> f64 {
+    (0..mesh.num_nodes())
+        .map(|n| {
+            let v = exact(mesh.coordinates()[n]);
+            (u[2 * n] - v[0]).abs().max((u[2 * n + 1] - v[1]).abs())
+        })
+        .fold(0.0, f64::max)
+}
+
 /// Norms of the error of a finite-element displacement against an exact one.
 pub struct ErrorNorms {
     /// `||u_h - u||_L2`.

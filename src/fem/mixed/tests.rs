@@ -1,6 +1,5 @@
 use super::*;
-use crate::fem::element::ElementMatrix;
-use crate::fem::element::{self, tests::distorted, NODES};
+use crate::fem::element::{self, tests::assert_consistent_derivatives, tests::distorted, NODES};
 use crate::material::Bilayer;
 use crate::parameters::Parameters;
 use nalgebra::{DMatrix, SymmetricEigen};
@@ -24,59 +23,11 @@ fn mixed_on_distorted(tissue: &Tissue) -> (ElementGeometry, MixedElement, Elemen
 }
 
 #[test]
-fn condensed_tangent_matches_central_differences_of_the_force() {
+fn condensed_force_and_tangent_are_the_derivatives_of_the_energy() {
     let (geometry, mixed, u) = mixed_on_distorted(&substrate());
-    let mut k = [[0.0; DOFS]; DOFS];
-    mixed
-        .evaluate(&geometry, &u, &[0.0; PRESSURES], 1.0, Some(&mut k))
-        .unwrap();
-    let h = 1e-6;
-    let (mut worst, mut scale) = (0.0f64, 0.0f64);
-    for j in 0..DOFS {
-        let force_at = |s: f64| {
-            let mut v = u;
-            v[j] += s * h;
-            mixed
-                .evaluate(&geometry, &v, &[0.0; PRESSURES], 1.0, None)
-                .unwrap()
-                .state
-                .force
-        };
-        let (plus, minus) = (force_at(1.0), force_at(-1.0));
-        for i in 0..DOFS {
-            worst = worst.max(((plus[i] - minus[i]) / (2.0 * h) - k[i][j]).abs());
-            scale = scale.max(k[i][j].abs());
-        }
-    }
-    assert!(worst <= 1e-7 * scale, "{worst} vs {scale}");
-}
-
-#[test]
-fn force_is_the_gradient_of_the_condensed_energy() {
-    let (geometry, mixed, u) = mixed_on_distorted(&substrate());
-    let force = mixed
-        .evaluate(&geometry, &u, &[0.0; PRESSURES], 1.0, None)
-        .unwrap()
-        .state
-        .force;
-    let h = 1e-6;
-    for j in 0..DOFS {
-        let energy_at = |s: f64| {
-            let mut v = u;
-            v[j] += s * h;
-            mixed
-                .evaluate(&geometry, &v, &[0.0; PRESSURES], 1.0, None)
-                .unwrap()
-                .state
-                .energy
-        };
-        let fd = (energy_at(1.0) - energy_at(-1.0)) / (2.0 * h);
-        assert!(
-            (fd - force[j]).abs() < 1e-6 * (1.0 + force[j].abs()),
-            "{j}: {fd} vs {}",
-            force[j]
-        );
-    }
+    assert_consistent_derivatives(&u, |v, k| {
+        mixed.evaluate(&geometry, v, &[0.0; PRESSURES], 1.0, k).unwrap().state
+    });
 }
 
 /// Under a uniform `F` the projection of `ln J` is exact, so the mixed element's energy, force
@@ -192,34 +143,12 @@ fn saddle_point_inertia_is_the_condensed_plus_pressures() {
 /// `lambda + kappa M^-1 g`.
 #[test]
 fn constraint_mode_derivatives_match_central_differences() {
-    let tissue = substrate();
     let (nodes, u) = distorted();
     let geometry = ElementGeometry::new(&nodes).unwrap();
-    let mixed = MixedElement::new(&geometry, &tissue, Some(Volumetric::Constraint { penalty: 40.0 }));
+    let mixed = MixedElement::new(&geometry, &substrate(), Some(Volumetric::Constraint { penalty: 40.0 }));
     let lambda = [0.7, -0.3, 0.2];
-    let evaluate =
-        |v: &ElementVector, k: Option<&mut ElementMatrix>| mixed.evaluate(&geometry, v, &lambda, 2.5, k).unwrap();
-    let mut k = [[0.0; DOFS]; DOFS];
-    let state = evaluate(&u, Some(&mut k));
+    let state = mixed.evaluate(&geometry, &u, &lambda, 2.5, None).unwrap();
     let expected: [f64; PRESSURES] = std::array::from_fn(|i| lambda[i] + 2.5 * 40.0 * state.projected_log_j[i]);
     assert!(state.pressure.iter().zip(&expected).all(|(a, b)| (a - b).abs() < 1e-12));
-    let h = 1e-6;
-    let (mut worst_force, mut worst_tangent, mut scale) = (0.0f64, 0.0f64, 0.0f64);
-    for j in 0..DOFS {
-        let shifted = |s: f64| {
-            let mut v = u;
-            v[j] += s * h;
-            evaluate(&v, None)
-        };
-        let (plus, minus) = (shifted(1.0), shifted(-1.0));
-        let fd_force = (plus.state.energy - minus.state.energy) / (2.0 * h);
-        worst_force = worst_force.max((fd_force - state.state.force[j]).abs() / (1.0 + state.state.force[j].abs()));
-        for (i, row) in k.iter().enumerate() {
-            let fd = (plus.state.force[i] - minus.state.force[i]) / (2.0 * h);
-            worst_tangent = worst_tangent.max((fd - row[j]).abs());
-            scale = scale.max(row[j].abs());
-        }
-    }
-    assert!(worst_force < 1e-7, "force vs energy {worst_force:e}");
-    assert!(worst_tangent <= 1e-7 * scale, "{worst_tangent} vs {scale}");
+    assert_consistent_derivatives(&u, |v, k| mixed.evaluate(&geometry, v, &lambda, 2.5, k).unwrap().state);
 }
