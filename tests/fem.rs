@@ -296,21 +296,24 @@ fn q2_displacement_converges_at_third_order_in_l2() {
         residual_tolerance: 1e-8,
         ..NewtonSettings::default()
     };
-    let errors: Vec<f64> = [2, 4, 8, 16]
-        .iter()
-        .map(|&n| {
-            // Unit square elements of size 1/n over [0, 1] x [-1, 1], both regions alike.
-            let mesh = Mesh::new(MeshSpec::new(n, n, n, 1.0 / n as f64, 1.0, 1.0)).unwrap();
-            let bc = boundary_values(&mesh, &exact);
-            let mut system = System::new(mesh, &homogeneous_material()).unwrap();
-            let mut u = vec![0.0; system.num_dofs()];
-            Newton::new(settings).solve(&mut system, &mut u, &bc).unwrap();
-            error_norms(&system, &u, &exact, &|_| [0.0; 4]).relative_l2()
-        })
-        .collect();
-    let rates: Vec<f64> = errors.windows(2).map(|w| (w[0] / w[1]).log2()).collect();
-    println!("relative L2 errors {}, rates {rates:?}", list(&errors));
-    assert!(rates.iter().all(|&r| r > 2.9), "rates {rates:?}");
+    for element in [ElementKind::Displacement, ElementKind::Mixed] {
+        let errors: Vec<f64> = [2, 4, 8, 16]
+            .iter()
+            .map(|&n| {
+                // Unit square elements of size 1/n over [0, 1] x [-1, 1], both regions alike.
+                let spec = MeshSpec::new(n, n, n, 1.0 / n as f64, 1.0, 1.0).with_element(element);
+                let mesh = Mesh::new(spec).unwrap();
+                let bc = boundary_values(&mesh, &exact);
+                let mut system = System::new(mesh, &homogeneous_material()).unwrap();
+                let mut u = vec![0.0; system.num_dofs()];
+                Newton::new(settings).solve(&mut system, &mut u, &bc).unwrap();
+                error_norms(&system, &u, &exact, &|_| [0.0; 4]).relative_l2()
+            })
+            .collect();
+        let rates: Vec<f64> = errors.windows(2).map(|w| (w[0] / w[1]).log2()).collect();
+        println!("{element:?}: relative L2 errors {}, rates {rates:?}", list(&errors));
+        assert!(rates.iter().all(|&r| r > 2.9), "{element:?}: rates {rates:?}");
+    }
 }
 
 #[test]

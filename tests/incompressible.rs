@@ -171,8 +171,22 @@ fn incompressibility_with_a_contradictory_setting_is_refused() {
     let out = scratch("incompressible-refusals");
     let target = out.join("run");
     let cases: [(&[&str], &str); 3] = [
-        (&["simulate", "--waves", "4", "--set", "incompressible=true"], "element"),
-        (&["crease", "--set", "incompressible=true"], "element"),
+        (
+            &[
+                "simulate",
+                "--waves",
+                "4",
+                "--set",
+                "incompressible=true",
+                "--element",
+                "displacement",
+            ],
+            "element",
+        ),
+        (
+            &["crease", "--set", "incompressible=true", "--element", "displacement"],
+            "element",
+        ),
         (
             &[
                 "map",

@@ -178,8 +178,8 @@ def simulate(
     ``k = m pi / 50``. ``mesh`` is ``"coarse"``, ``"fine"`` or ``"extra"``, modified by ``nx``,
     ``layer_elements``, ``substrate_elements`` and ``h0``. ``progress`` is called with a dict
     (``event``: ``"stage"``, ``"step"`` or ``"cut"``; ``d``, ``A``, ``message``...) after every
-    stage, accepted state and cut. ``element`` is ``"displacement"`` or ``"mixed"`` (needed for
-    nearly and exactly incompressible tissue). Raises :class:`SolverError` (with ``result``, the
+    stage, accepted state and cut. ``element`` is ``"displacement"`` (the default) or ``"mixed"``
+    (more accurate, and needed for nearly and exactly incompressible tissue). Raises :class:`SolverError` (with ``result``, the
     path so far) if the path stops before ``d_max``.
     """
     if progress is not None and not callable(progress):
@@ -203,7 +203,7 @@ def bifurcation(
     """The exact bifurcation of the discretised perfect system (``fiberfold bifurcation``):
     the content of ``bifurcation.json`` (``d_bifurcation``, ``k_mode``, the linear theory's
     minimum, ...). Its files (mode VTU and figure) go to ``out``, or to a temporary folder that
-    is removed. ``element``: ``"displacement"`` or ``"mixed"``."""
+    is removed. ``element``: ``"displacement"`` (default) or ``"mixed"``."""
     params = _check_parameters(params)
     if out is not None:
         return json.loads(_fiberfold.bifurcation_run(params, str(out), mesh, element))

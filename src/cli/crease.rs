@@ -54,7 +54,8 @@ pub struct CreaseArgs {
     #[arg(long, default_value_t = 8.0, allow_negative_numbers = true)]
     pub ratio: f64,
 
-    /// Finite element (mixed for nearly incompressible tissue, K/mu above about 100).
+    /// Finite element (mixed: the more accurate, and the only one for incompressible = true;
+    /// displacement, the default, locks above K/mu ~ 100).
     #[arg(long, value_enum, default_value_t = ElementChoice::Displacement)]
     pub element: ElementChoice,
 

@@ -51,8 +51,9 @@ pub struct MapArgs {
     #[arg(long)]
     pub free_bulk: bool,
 
-    /// Finite element of the crease search and the nonlinear runs (mixed for nearly
-    /// incompressible tissue, K/mu above about 100, and for incompressible = true).
+    /// Finite element of the crease search and the nonlinear runs (mixed: the more accurate,
+    /// and the only one for incompressible = true; displacement, the default, locks above
+    /// K/mu ~ 100).
     #[arg(long, value_enum, default_value_t = ElementChoice::Displacement)]
     pub element: ElementChoice,
 

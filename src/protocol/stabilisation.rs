@@ -17,7 +17,7 @@
 use crate::error::{Error, Result};
 use crate::fem::added::{AddedEnergy, Block, Diagonal};
 use crate::fem::element::{self, DOFS};
-use crate::fem::mixed::PRESSURES;
+use crate::fem::mixed::{Volumetric, PRESSURES};
 use crate::fem::System;
 use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
@@ -64,18 +64,20 @@ pub struct Stabilisation {
 }
 
 impl Stabilisation {
-    /// The damper of `system`, proportional to the diagonal of its stiffness at `u = 0`. With
-    /// the mixed element, the stiffness of the energy without its volumetric part: volume
-    /// change is a constraint or nearly one, and damping it by `kappa` would hold the
-    /// displacements against the pressure on short steps.
+    /// The damper of `system`, proportional to the diagonal of its stiffness at `u = 0`. Under
+    /// the incompressibility constraint, the stiffness of the energy without its volumetric
+    /// part: damping volume change by the penalty would hold the displacements against the
+    /// multipliers' updates on short steps.
     pub fn new(system: &System, materials: &Bilayer, settings: StabilisationSettings) -> Result<Self> {
         let mesh = system.mesh();
         let mut stiffness = vec![0.0; mesh.num_dofs()];
         let mut k = [[0.0; DOFS]; DOFS];
         for e in 0..mesh.elements().len() {
             match system.mixed_elements().get(e) {
-                Some(mixed) => element::evaluate(&system.geometry()[e], mixed.rest(), &[0.0; DOFS], Some(&mut k))?,
-                None => system.element_state(e, &[0.0; DOFS], &[0.0; PRESSURES], Some(&mut k))?,
+                Some(mixed) if matches!(mixed.volumetric(), Volumetric::Constraint { .. }) => {
+                    element::evaluate(&system.geometry()[e], mixed.rest(), &[0.0; DOFS], Some(&mut k))?
+                }
+                _ => system.element_state(e, &[0.0; DOFS], &[0.0; PRESSURES], Some(&mut k))?,
             };
             let nodes = &mesh.elements()[e];
             for (i, row) in k.iter().enumerate() {

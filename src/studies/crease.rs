@@ -32,8 +32,8 @@ pub struct CreaseMesh {
     pub layer: usize,
     pub substrate: usize,
     pub ratio: f64,
-    /// The element (displacement unless given).
-    #[serde(default)]
+    /// The element (displacement unless given, as in files written before it existed).
+    #[serde(default = "ElementKind::of_older_files")]
     pub element: ElementKind,
 }
 
@@ -103,7 +103,7 @@ impl Default for CreaseStudy {
                 layer: 4,
                 substrate: 20,
                 ratio: 8.0,
-                element: ElementKind::Displacement,
+                element: ElementKind::default(),
             },
             fold_lengths: vec![0.5, 1.0, 2.0],
             scan: Scan {
