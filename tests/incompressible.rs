@@ -170,7 +170,8 @@ fn incompressible_half_space_creases_at_hong_zhao_suo() {
 fn incompressibility_with_a_contradictory_setting_is_refused() {
     let out = scratch("incompressible-refusals");
     let target = out.join("run");
-    let cases: [(&[&str], &str); 3] = [
+    let cases: [(&[&str], &str); 4] = [
+        (&["reproduce", "--quick", "--set", "incompressible=true"], "incompressible"),
         (
             &[
                 "simulate",

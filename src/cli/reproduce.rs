@@ -35,6 +35,14 @@ const FIXED_ANGLE_PIECES: [&str; 4] = ["fig3", "fig4a", "bifurcation", "fig7"];
 
 pub fn run(args: &ReproduceArgs) -> Result<()> {
     let params = args.params.resolve()?;
+    if params.incompressible {
+        // The paper's figures and its finite elements (the displacement element) are compressible.
+        return Err(Error::invalid(
+            "incompressible",
+            true,
+            "false for reproduce (the paper's compressible model; use the other commands)",
+        ));
+    }
     let jobs = args
         .jobs
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
