@@ -171,7 +171,10 @@ fn incompressibility_with_a_contradictory_setting_is_refused() {
     let out = scratch("incompressible-refusals");
     let target = out.join("run");
     let cases: [(&[&str], &str); 4] = [
-        (&["reproduce", "--quick", "--set", "incompressible=true"], "incompressible"),
+        (
+            &["reproduce", "--quick", "--set", "incompressible=true"],
+            "incompressible",
+        ),
         (
             &[
                 "simulate",

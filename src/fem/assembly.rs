@@ -23,8 +23,15 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
-/// The factor on the incompressibility penalty (10^2 times the largest shear modulus) with
-/// which the tangent's inertia is counted: `fem::mixed` explains why it must be large.
+/// Bulk moduli above this many times the largest shear modulus go through multipliers.
+pub const AUGMENTED_BULK: f64 = 1e3;
+
+/// The augmentation penalty of the multipliers, in units of the largest shear modulus.
+pub const AUGMENTATION_PENALTY: f64 = 1e2;
+
+/// The factor on the augmentation penalty with which the tangent's inertia is counted (at most
+/// the bulk modulus, where the tangent is then exact): `fem::mixed` explains why it must be
+/// large.
 pub const STABILITY_PENALTY: f64 = 1e3;
 
 /// Source of pattern identifiers, unique across systems.
@@ -105,9 +112,10 @@ pub struct System {
     geometry: Vec<ElementGeometry>,
     /// Pressure spaces of the mixed element (empty for the displacement element).
     mixed: Vec<MixedElement>,
-    /// Whether the tissue is exactly incompressible: the unknowns' vector then ends with
+    /// Whether some element resists volume change through multipliers (incompressible tissue,
+    /// or a bulk modulus far above the shear modulus): the unknowns' vector then ends with
     /// [`PRESSURES`] multipliers per element ([`crate::fem::mixed`]).
-    constrained: bool,
+    multipliers: bool,
     /// The factor on the constraint's penalty in assemblies (raised while the multipliers
     /// converge slowly, [`STABILITY_PENALTY`] inside [`System::assemble_for_stability`]).
     penalty_scale: f64,
@@ -141,26 +149,35 @@ impl System {
             .iter()
             .map(|nodes| ElementGeometry::new(&nodes.map(|n| coordinates[n])))
             .collect::<Result<Vec<_>>>()?;
-        // The augmentation penalty of exact incompressibility: far above every stress.
-        // The augmentation penalties of exact incompressibility (`fem::mixed`).
+        // Exact incompressibility, and bulk moduli above AUGMENTED_BULK times the largest shear
+        // modulus, go through multipliers with a penalty of AUGMENTATION_PENALTY times it
+        // (`fem::mixed`); smaller bulk moduli are condensed exactly.
         let shear = materials.layer.mu.max(materials.substrate.matrix.mu);
-        let constraint = materials
-            .incompressible
-            .then_some(Volumetric::Constraint { penalty: 1e2 * shear });
-        let mixed = match mesh.spec().element {
+        let volumetric = |tissue: &Tissue| {
+            let (_, bulk) = tissue.volumetric_split();
+            let bulk = if materials.incompressible { f64::INFINITY } else { bulk };
+            (bulk > AUGMENTED_BULK * shear).then_some(Volumetric::Augmented {
+                penalty: AUGMENTATION_PENALTY * shear,
+                bulk,
+            })
+        };
+        let mixed: Vec<MixedElement> = match mesh.spec().element {
             ElementKind::Displacement => Vec::new(),
             ElementKind::Mixed => geometry
                 .iter()
                 .zip(&tissues)
-                .map(|(g, t)| MixedElement::new(g, t, constraint))
+                .map(|(g, t)| MixedElement::new(g, t, volumetric(t)))
                 .collect(),
         };
+        let multipliers = mixed
+            .iter()
+            .any(|m| matches!(m.volumetric(), Volumetric::Augmented { .. }));
         Ok(System {
             mesh,
             materials: tissues,
             geometry,
             mixed,
-            constrained: materials.incompressible,
+            multipliers,
             penalty_scale: 1.0,
             pattern: None,
             entries: Vec::new(),
@@ -209,27 +226,27 @@ impl System {
     /// multipliers of every element.
     pub fn num_dofs(&self) -> usize {
         self.mesh.num_dofs()
-            + if self.constrained {
+            + if self.multipliers {
                 PRESSURES * self.mixed.len()
             } else {
                 0
             }
     }
 
-    /// Element `e`'s multipliers in the full vector `u` (zero without the constraint).
+    /// Element `e`'s multipliers in the full vector `u` (zero without multipliers).
     pub fn element_multipliers(&self, e: usize, u: &[f64]) -> [f64; PRESSURES] {
-        if !self.constrained {
+        if !self.multipliers {
             return [0.0; PRESSURES];
         }
         let start = self.mesh.num_dofs() + PRESSURES * e;
         std::array::from_fn(|i| u[start + i])
     }
 
-    /// The method of multipliers' step at `u`: the largest `|M^-1 g|` over the elements (the
-    /// constraint's violation) and the change `p - lambda = kappa M^-1 g` of every multiplier
-    /// (in the order of the multipliers in `u`). `None` without the constraint.
+    /// The method of multipliers' step at `u`: the largest violation `|M^-1 g - lambda / K|`
+    /// over the elements and the change `p - lambda` of every multiplier (in the order of the
+    /// multipliers in `u`; zero in elements condensed exactly). `None` without multipliers.
     pub fn multiplier_step(&self, u: &[f64]) -> Result<Option<(f64, Vec<f64>)>> {
-        if !self.constrained {
+        if !self.multipliers {
             return Ok(None);
         }
         let states = (0..self.mixed.len())
@@ -248,24 +265,26 @@ impl System {
             .collect::<Result<Vec<_>>>()?;
         let violation = states
             .iter()
-            .flat_map(|state| state.projected_log_j)
+            .flat_map(|state| state.violation)
             .fold(0.0f64, |v, x| v.max(x.abs()));
         let change = states
             .iter()
+            .zip(&self.mixed)
             .enumerate()
-            .flat_map(|(e, state)| {
+            .flat_map(|(e, (state, mixed))| {
                 let lambda = self.element_multipliers(e, u);
-                (0..PRESSURES).map(move |i| state.pressure[i] - lambda[i])
+                let augmented = matches!(mixed.volumetric(), Volumetric::Augmented { .. });
+                (0..PRESSURES).map(move |i| if augmented { state.pressure[i] - lambda[i] } else { 0.0 })
             })
             .collect();
         Ok(Some((violation, change)))
     }
 
     /// The full vector of the displacement `u` (one entry per mesh unknown) at a homogeneous
-    /// state: `u`, followed for incompressible tissue by the multipliers that keep
-    /// `sigma_22 = 0` in each layer (`p_layer`, `p_substrate`, constant per element).
+    /// state: `u`, followed, when the system has multipliers, by each layer's pressure
+    /// (`p_layer`, `p_substrate`, constant per element).
     pub fn with_homogeneous_multipliers(&self, mut u: Vec<f64>, p_layer: f64, p_substrate: f64) -> Vec<f64> {
-        if self.constrained {
+        if self.multipliers {
             for region in self.mesh.regions() {
                 let p = match region {
                     Region::Layer => p_layer,
@@ -327,9 +346,9 @@ impl System {
         self.penalty_scale = scale;
     }
 
-    /// Whether the tissue is exactly incompressible (multipliers follow the displacements).
-    pub fn is_constrained(&self) -> bool {
-        self.constrained
+    /// Whether multipliers follow the displacements in the unknowns' vector.
+    pub fn has_multipliers(&self) -> bool {
+        self.multipliers
     }
 
     /// [`System::assemble`] of the strain energy plus `added` (whose groups join the pattern).

@@ -30,22 +30,30 @@
 //! Exact incompressibility (`J = 1`, no bulk term) cannot be condensed per element: the
 //! pressure is then a multiplier `lambda` per element, carried in the unknowns' vector after
 //! the displacements ([`crate::fem::System::num_dofs`]) and found by the method of multipliers
-//! (augmented Lagrangian, Uzawa): for fixed `lambda`, the element's energy is
-//! `int W_rest dV + lambda . g + kappa/2 g^T M^-1 g` with a penalty `kappa` a hundred times the
-//! largest shear modulus (small enough for Newton's method to converge in a few steps), whose
-//! minimiser Newton's method finds; then `lambda <- p = lambda + kappa M^-1 g`
+//! (augmented Lagrangian, Uzawa). A large finite bulk modulus goes the same way
+//! ([`Volumetric::Augmented`]): the exactly condensed energy is then correct but Newton's method
+//! converges on it only from within about `mu / K` of the solution (its residual jumps by
+//! `K |du|^2`), so a load step of a nearly incompressible solid fails where the multipliers'
+//! moderate penalty succeeds. For fixed `lambda`, the element's energy is
+//! `int W_rest dV + (1 - kappa/K) lambda . g + kappa/2 g^T M^-1 g` with a penalty `kappa` a
+//! hundred times the largest shear modulus (small enough for Newton's method to converge in a
+//! few steps), whose minimiser Newton's method finds; then
+//! `lambda <- p = (1 - kappa/K) lambda + kappa M^-1 g`, whose fixed point `lambda = K M^-1 g` is
+//! the condensed element's pressure (`M^-1 g = 0` for `K = inf`)
 //! ([`crate::fem::Newton`] repeats both, with Aitken's relaxation and a tenfold penalty whenever
-//! an update fails to halve the violation, until `|M^-1 g| <= 1e-7`: the element-mean `ln J`
-//! and its gradient vanish to solver tolerance). At the solution `g = 0`,
-//! the energy is `int W_rest dV`, the pressure `lambda`, and neither depends on `kappa`. The
+//! an update fails to halve the violation, until `|M^-1 g - lambda / K| <= 1e-7`: the
+//! element-mean `ln J - lambda / K` and its gradient vanish to solver tolerance). At the
+//! solution the state, the energy and the pressure `lambda` are those of the condensed element
+//! (for `K = inf`: `g = 0` and the energy `int W_rest dV`), independent of `kappa`. The
 //! tangent is the condensed one with `kappa` for the bulk modulus, the Schur complement of
 //! `[[K_uu, B^T], [B, -M/kappa]]`; as above it has one negative eigenvalue fewer per pressure
 //! than that matrix, which tends to the exact saddle point `[[K_uu, B^T], [B, 0]]` as `kappa`
 //! grows: its inertia is that of the constrained displacements once `kappa` exceeds the
 //! curvature of `K_uu` off the constraint (Finsler's lemma), of the order of the stresses. The
 //! inertia is therefore counted on the tangent with a penalty 10^5 times the largest shear
-//! modulus ([`crate::fem::System::assemble_for_stability`]); the coarse-mesh bifurcation no
-//! longer moves beyond 10^4 times.
+//! modulus, or `K` where that is smaller (then the exact condensed tangent;
+//! [`crate::fem::System::assemble_for_stability`]); the coarse-mesh bifurcation no longer
+//! moves beyond 10^4 times.
 
 use super::element::{
     add_tangent, mirror_upper_triangle, ElementGeometry, ElementMatrix, ElementState, ElementVector, DOFS, GAUSS_POINTS,
@@ -61,9 +69,11 @@ pub const PRESSURES: usize = 3;
 pub enum Volumetric {
     /// By the bulk term `kappa/2 (ln J)^2`, condensed exactly.
     Bulk(f64),
-    /// By the constraint `J = 1`, with multipliers and an augmentation penalty (times the
-    /// scale [`MixedElement::evaluate`] is given).
-    Constraint { penalty: f64 },
+    /// By multipliers and an augmentation penalty (times the scale [`MixedElement::evaluate`]
+    /// is given): the constraint `J = 1` when `bulk` is infinite, else the bulk term
+    /// `bulk/2 (ln J)^2`, reached by the same iteration (a bulk modulus far above the shear
+    /// modulus makes Newton's method on the condensed energy converge only from very close).
+    Augmented { penalty: f64, bulk: f64 },
 }
 
 /// One mixed element's pressure space and the split of its tissue.
@@ -82,11 +92,13 @@ pub struct MixedElement {
 #[derive(Clone, Copy, Debug)]
 pub struct MixedState {
     pub state: ElementState,
-    /// The pressure `p` in the element's basis: `kappa M^-1 g` (bulk) or
-    /// `lambda + kappa M^-1 g` (constraint; the multipliers' next iterate).
+    /// The pressure `p` in the element's basis: `kappa M^-1 g` (bulk), or
+    /// `(1 - kappa/K) lambda + kappa M^-1 g` (augmented; the multipliers' next iterate).
     pub pressure: [f64; PRESSURES],
-    /// `M^-1 g`, the L2 projection of `ln J` onto the pressures (zero under the constraint).
-    pub projected_log_j: [f64; PRESSURES],
+    /// How far the multipliers are from their fixed point, `(p - lambda) / kappa =
+    /// M^-1 g - lambda / K` (zero at the solution; `M^-1 g`, the L2 projection of `ln J`,
+    /// under the constraint `K = inf`). Zero for the bulk mode.
+    pub violation: [f64; PRESSURES],
 }
 
 impl MixedElement {
@@ -168,18 +180,28 @@ impl MixedElement {
             (gradients[g], jacobians[g]) = (f, j);
         }
         let projected_log_j = multiply3(&self.mass_inverse, &moments);
-        let (modulus, pressure, volumetric_energy) = match self.volumetric {
+        let (modulus, pressure, volumetric_energy, violation) = match self.volumetric {
             // p = kappa M^-1 g; the condensed energy kappa/2 g^T M^-1 g = g . p / 2.
             Volumetric::Bulk(kappa) => {
                 let p = projected_log_j.map(|x| kappa * x);
-                (kappa, p, 0.5 * dot3(&moments, &p))
+                (kappa, p, 0.5 * dot3(&moments, &p), [0.0; PRESSURES])
             }
-            // p = lambda + kappa M^-1 g; energy lambda . g + kappa/2 g^T M^-1 g.
-            Volumetric::Constraint { penalty } => {
-                let penalty = penalty * penalty_scale;
-                let p = std::array::from_fn(|i| lambda[i] + penalty * projected_log_j[i]);
-                let energy = dot3(lambda, &moments) + 0.5 * penalty * dot3(&moments, &projected_log_j);
-                (penalty, p, energy)
+            // For fixed lambda, the energy `int W_rest + (1 - kappa/K) lambda . g + kappa/2
+            // g^T M^-1 g` has the force of p = (1 - kappa/K) lambda + kappa M^-1 g; its fixed
+            // point lambda = p is K M^-1 g, the bulk mode's pressure (M^-1 g = 0 for K = inf).
+            // The energy reported is the true one, K/2 g^T M^-1 g at the fixed point (with the
+            // augmentation's, which tends to zero with g, when K = inf).
+            Volumetric::Augmented { penalty, bulk } => {
+                let kappa = (penalty * penalty_scale).min(bulk);
+                let relaxation = 1.0 - kappa / bulk;
+                let p: [f64; PRESSURES] = std::array::from_fn(|i| relaxation * lambda[i] + kappa * projected_log_j[i]);
+                let energy = if bulk.is_finite() {
+                    0.5 * bulk * dot3(&moments, &projected_log_j)
+                } else {
+                    dot3(lambda, &moments) + 0.5 * kappa * dot3(&moments, &projected_log_j)
+                };
+                let violation = std::array::from_fn(|i| (p[i] - lambda[i]) / kappa);
+                (kappa, p, energy, violation)
             }
         };
         let mut state = ElementState {
@@ -235,7 +257,7 @@ impl MixedElement {
         Ok(MixedState {
             state,
             pressure,
-            projected_log_j,
+            violation,
         })
     }
 }

@@ -444,7 +444,7 @@ impl Newton {
         backtracks: usize,
     ) -> Result<NewtonReport, NewtonError> {
         let negative_pivots = if self.settings.inertia_at_solution && !problem.free.is_empty() {
-            if problem.system.is_constrained() {
+            if problem.system.has_multipliers() {
                 let start = std::time::Instant::now();
                 assembled = problem.system.assemble_for_stability(u, problem.bc, problem.added)?;
                 problem.timings.assembly += start.elapsed();

@@ -14,7 +14,7 @@ use crate::fem::boundary::{dof, X, Y};
 use crate::fem::linear_solver::inverse_iteration;
 use crate::fem::{model_conditions, Assembled, SparseLdlt, System};
 use crate::homogeneous::{constraint_pressure, homogeneous_state, HomogeneousState};
-use crate::material::Bilayer;
+use crate::material::{jacobian, Bilayer};
 use crate::mesh::{Mesh, MeshSpec};
 use faer::sparse::SparseColMat;
 use std::f64::consts::PI;
@@ -80,14 +80,26 @@ pub fn homogeneous_displacement(mesh: &Mesh, state: &HomogeneousState) -> Vec<f6
 }
 
 /// The full unknowns of `system` at the homogeneous `state`: [`homogeneous_displacement`], and
-/// for incompressible tissue the multipliers that keep each layer free of `sigma_22`.
+/// when the system has multipliers each layer's pressure: the one that keeps an incompressible
+/// layer free of `sigma_22`, else `K ln J`.
 pub fn homogeneous_unknowns(system: &System, materials: &Bilayer, state: &HomogeneousState) -> Result<Vec<f64>> {
     let u = homogeneous_displacement(system.mesh(), state);
-    if !materials.incompressible {
+    if !system.has_multipliers() {
         return Ok(u);
     }
-    let p_layer = constraint_pressure(&materials.layer, &state.layer_gradient())?;
-    let p_substrate = constraint_pressure(&materials.substrate, &state.substrate_gradient())?;
+    let (layer, substrate) = (state.layer_gradient(), state.substrate_gradient());
+    let (p_layer, p_substrate) = if materials.incompressible {
+        (
+            constraint_pressure(&materials.layer, &layer)?,
+            constraint_pressure(&materials.substrate, &substrate)?,
+        )
+    } else {
+        let s = &materials.substrate;
+        (
+            materials.layer.bulk * jacobian(&layer).ln(),
+            s.matrix_fraction * s.matrix.bulk * jacobian(&substrate).ln(),
+        )
+    };
     Ok(system.with_homogeneous_multipliers(u, p_layer, p_substrate))
 }
 
@@ -115,7 +127,7 @@ impl HomogeneousPath<'_> {
         // The equilibrium check with the iteration's penalty: the stability penalty amplifies the
         // round-off of ln J = 0.
         let relative_residual = |a: &Assembled| a.residual_norm() / a.force_norm().max(f64::MIN_POSITIVE);
-        let relative = match self.system.is_constrained() {
+        let relative = match self.system.has_multipliers() {
             true => relative_residual(&self.system.assemble(&u, &bc, None, false)?),
             false => relative_residual(&assembled),
         };

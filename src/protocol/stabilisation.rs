@@ -64,9 +64,9 @@ pub struct Stabilisation {
 }
 
 impl Stabilisation {
-    /// The damper of `system`, proportional to the diagonal of its stiffness at `u = 0`. Under
-    /// the incompressibility constraint, the stiffness of the energy without its volumetric
-    /// part: damping volume change by the penalty would hold the displacements against the
+    /// The damper of `system`, proportional to the diagonal of its stiffness at `u = 0`. In
+    /// elements with multipliers, the stiffness of the energy without its volumetric part:
+    /// damping volume change by the penalty would hold the displacements against the
     /// multipliers' updates on short steps.
     pub fn new(system: &System, materials: &Bilayer, settings: StabilisationSettings) -> Result<Self> {
         let mesh = system.mesh();
@@ -74,7 +74,7 @@ impl Stabilisation {
         let mut k = [[0.0; DOFS]; DOFS];
         for e in 0..mesh.elements().len() {
             match system.mixed_elements().get(e) {
-                Some(mixed) if matches!(mixed.volumetric(), Volumetric::Constraint { .. }) => {
+                Some(mixed) if matches!(mixed.volumetric(), Volumetric::Augmented { .. }) => {
                     element::evaluate(&system.geometry()[e], mixed.rest(), &[0.0; DOFS], Some(&mut k))?
                 }
                 _ => system.element_state(e, &[0.0; DOFS], &[0.0; PRESSURES], Some(&mut k))?,
