@@ -77,6 +77,11 @@ pub struct FeBench {
 pub fn run(setup: &FeBenchSetup, meshes: &[(&str, MeshSpec)], monitor: Monitor) -> Result<FeBench> {
     let mut rows = Vec::new();
     for &(name, spec) in meshes {
+        // Incompressible tissue runs on the element that can carry it.
+        let spec = match setup.params.incompressible {
+            true => spec.with_element(ElementKind::Mixed),
+            false => spec,
+        };
         let k = wavenumber_of_waves(setup.waves, spec.length)?;
         let protocol = Protocol::new(k, 0.05, setup.d_max);
         let result = curve(&setup.params, spec, &protocol, monitor)?;
@@ -199,10 +204,11 @@ pub fn kernels(params: &Parameters, meshes: &[(&str, MeshSpec)]) -> Result<Kerne
     use crate::protocol::bifurcation::homogeneous_unknowns;
     let materials = Bilayer::new(params);
     let mut rows = Vec::new();
-    for (&(name, spec), element) in meshes
-        .iter()
-        .flat_map(|m| [ElementKind::Displacement, ElementKind::Mixed].map(|e| (m, e)))
-    {
+    let elements: &[ElementKind] = match params.incompressible {
+        true => &[ElementKind::Mixed],
+        false => &[ElementKind::Displacement, ElementKind::Mixed],
+    };
+    for (&(name, spec), &element) in meshes.iter().flat_map(|m| elements.iter().map(move |e| (m, e))) {
         let mut system = System::new(crate::mesh::Mesh::new(spec.with_element(element))?, &materials)?;
         let d = 0.1;
         let bc = model_conditions(system.mesh(), d)?;
