@@ -112,7 +112,8 @@ class Simulation:
         state: the last converged state (:class:`State`: reference ``points``,
             ``deformed_points``, ``cells``, ``point_data``, ``cell_data``, ``write_vtu(path)``),
             ready for pyvista or meshio.
-        k, unknowns, d_max, d_reached, completed, accepted_steps, cuts: facts of the run.
+        k, unknowns, element, d_max, d_reached, completed, accepted_steps, cuts: facts of the
+            run (``element``: ``"displacement"`` or ``"mixed"``).
         stopped: why the path ended before ``d_max`` (None if it did not).
     """
 

@@ -478,6 +478,7 @@ fn simulate_run<'py>(
     let summary = serde_json::json!({
         "k": study.protocol.k,
         "unknowns": study.mesh.num_dofs(),
+        "element": study.mesh.element,
         "d_max": study.protocol.d_max,
         "d_reached": d_reached,
         "completed": solution.curve.stopped.is_none(),

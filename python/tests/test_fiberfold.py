@@ -224,6 +224,9 @@ def test_incompressible_tissue_with_the_mixed_element():
         fiberfold.bifurcation(p, mesh="coarse")
     with pytest.raises(ValueError, match="element"):
         fiberfold.bifurcation(p, mesh="coarse", element="hybrid")
+    run = fiberfold.simulate(p.replace(beta=0.785398), 4.5, d_max=0.02, element="mixed", **TINY)
+    assert run.completed and run.element == "mixed"
+    assert np.all(np.isfinite(run.state.cell_data["pressure"]))
 
 
 def test_crease_onset_of_a_soft_layer():
