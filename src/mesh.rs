@@ -12,7 +12,6 @@
 use crate::error::{Error, Result};
 use crate::numerics::density::equidistribute;
 use crate::numerics::grading::geometric_ratio;
-use crate::parameters::Parameters;
 use serde::{Deserialize, Serialize};
 
 /// Thickness of the stiff layer: the unit of length.
@@ -57,10 +56,10 @@ impl ElementKind {
         }
     }
 
-    /// Whether this element can model the tissue of `params`: exactly incompressible tissue
-    /// needs the mixed element (the displacement element cannot keep `J = 1`).
-    pub fn check_for(self, params: &Parameters) -> Result<()> {
-        if params.incompressible && self != ElementKind::Mixed {
+    /// Whether this element can model the tissue: exactly incompressible tissue needs the
+    /// mixed element (the displacement element cannot keep `J = 1`).
+    pub fn check_for(self, incompressible: bool) -> Result<()> {
+        if incompressible && self != ElementKind::Mixed {
             return Err(Error::invalid(
                 "element",
                 self.name(),

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{boundary_values, distortion, fiberfold, scratch, worst_nodal_error};
+use common::{boundary_values, distortion, fiberfold, mixed_bifurcation, scratch, worst_nodal_error};
 use fiberfold::fem::{model_conditions, Newton, NewtonSettings, System};
 use fiberfold::homogeneous::constraint_pressure;
 use fiberfold::material::Bilayer;
@@ -23,16 +23,6 @@ fn incompressible(mu_l: f64) -> Parameters {
         incompressible: true,
         ..Parameters::default()
     }
-}
-
-/// `fiberfold bifurcation --element mixed` with `args`: its JSON summary.
-fn bifurcation(name: &str, args: &[&str]) -> serde_json::Value {
-    let out = scratch(name);
-    let mut all = vec!["bifurcation", "--element", "mixed", "--out", out.to_str().unwrap()];
-    all.extend(args);
-    let output = fiberfold(&all);
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
-    serde_json::from_str(&std::fs::read_to_string(out.join("bifurcation.json")).unwrap()).unwrap()
 }
 
 /// From rest, Newton's method with the multiplier updates reaches the closed-form state:
@@ -101,7 +91,7 @@ fn patch_test_with_the_constraint() {
 /// Coarse mesh, no fibres, `mu_l = 10`: within 2e-4 of the linear theory.
 #[test]
 fn incompressible_bilayer_bifurcation_agrees_with_the_linear_theory() {
-    let summary = bifurcation(
+    let summary = mixed_bifurcation(
         "incompressible-bilayer",
         &["--set", "phi_m=1", "--set", "phi_f=0", "--set", "incompressible=true"],
     );
@@ -114,7 +104,7 @@ fn incompressible_bilayer_bifurcation_agrees_with_the_linear_theory() {
 /// 0.5 %.
 #[test]
 fn incompressible_half_space_bifurcates_at_biot_compression() {
-    let summary = bifurcation(
+    let summary = mixed_bifurcation(
         "incompressible-half-space",
         &[
             "--set",

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{boundary_values, distortion, error_norms, fiberfold, scratch, ErrorNorms};
+use common::{boundary_values, distortion, error_norms, mixed_bifurcation, ErrorNorms};
 use fiberfold::fem::added::{AddedEnergy, Block, Diagonal};
 use fiberfold::fem::element::{gauss_rule, shape_functions};
 use fiberfold::fem::{Newton, NewtonSettings, System};
@@ -185,25 +185,19 @@ fn mixed_element_solves_a_large_nearly_incompressible_deformation() {
 /// Coarse mesh, no fibres, K = 10^4 mu in both layers (`K_l = 10 K_s`, as `mu_l = 10 mu_s`).
 #[test]
 fn nearly_incompressible_bifurcation_agrees_with_the_linear_theory() {
-    let out = scratch("mixed-bifurcation");
-    let output = fiberfold(&[
-        "bifurcation",
-        "--set",
-        "phi_m=1",
-        "--set",
-        "phi_f=0",
-        "--set",
-        "K_s=10000",
-        "--set",
-        "K_l=100000",
-        "--element",
-        "mixed",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
-    let text = std::fs::read_to_string(out.join("bifurcation.json")).unwrap();
-    let summary: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let summary = mixed_bifurcation(
+        "mixed-bifurcation",
+        &[
+            "--set",
+            "phi_m=1",
+            "--set",
+            "phi_f=0",
+            "--set",
+            "K_s=10000",
+            "--set",
+            "K_l=100000",
+        ],
+    );
     assert_eq!(summary["mesh"]["element"], "mixed");
     let difference = summary["relative_difference"].as_f64().unwrap();
     assert!(difference < 2e-4, "FE vs theory {difference:e}");

@@ -23,16 +23,7 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::{Duration, Instant};
 
-/// Bulk moduli above this many times the largest shear modulus go through multipliers.
-pub const AUGMENTED_BULK: f64 = 1e3;
-
-/// The augmentation penalty of the multipliers, in units of the largest shear modulus.
-pub const AUGMENTATION_PENALTY: f64 = 1e2;
-
-/// The factor on the augmentation penalty with which the tangent's inertia is counted (at most
-/// the bulk modulus, where the tangent is then exact): `fem::mixed` explains why it must be
-/// large.
-pub const STABILITY_PENALTY: f64 = 1e3;
+mod multipliers;
 
 /// Source of pattern identifiers, unique across systems.
 static NEXT_PATTERN: AtomicUsize = AtomicUsize::new(0);
@@ -117,7 +108,7 @@ pub struct System {
     /// [`PRESSURES`] multipliers per element ([`crate::fem::mixed`]).
     multipliers: bool,
     /// The factor on the constraint's penalty in assemblies (raised while the multipliers
-    /// converge slowly, [`STABILITY_PENALTY`] inside [`System::assemble_for_stability`]).
+    /// converge slowly, larger inside [`System::assemble_for_stability`]).
     penalty_scale: f64,
     pattern: Option<Pattern>,
     /// Element-matrix entries of the last assembly (reused to avoid reallocating).
@@ -128,13 +119,7 @@ impl System {
     /// The layer's material in layer elements, the substrate's in substrate elements, with the
     /// element the mesh's spec names. Incompressible tissue needs the mixed element.
     pub fn new(mesh: Mesh, materials: &Bilayer) -> Result<Self> {
-        if materials.incompressible && mesh.spec().element != ElementKind::Mixed {
-            return Err(Error::invalid(
-                "element",
-                mesh.spec().element.name(),
-                "mixed for incompressible tissue",
-            ));
-        }
+        mesh.spec().element.check_for(materials.incompressible)?;
         let tissues: Vec<Tissue> = mesh
             .regions()
             .iter()
@@ -149,24 +134,12 @@ impl System {
             .iter()
             .map(|nodes| ElementGeometry::new(&nodes.map(|n| coordinates[n])))
             .collect::<Result<Vec<_>>>()?;
-        // Exact incompressibility, and bulk moduli above AUGMENTED_BULK times the largest shear
-        // modulus, go through multipliers with a penalty of AUGMENTATION_PENALTY times it
-        // (`fem::mixed`); smaller bulk moduli are condensed exactly.
-        let shear = materials.layer.mu.max(materials.substrate.matrix.mu);
-        let volumetric = |tissue: &Tissue| {
-            let (_, bulk) = tissue.volumetric_split();
-            let bulk = if materials.incompressible { f64::INFINITY } else { bulk };
-            (bulk > AUGMENTED_BULK * shear).then_some(Volumetric::Augmented {
-                penalty: AUGMENTATION_PENALTY * shear,
-                bulk,
-            })
-        };
         let mixed: Vec<MixedElement> = match mesh.spec().element {
             ElementKind::Displacement => Vec::new(),
             ElementKind::Mixed => geometry
                 .iter()
                 .zip(&tissues)
-                .map(|(g, t)| MixedElement::new(g, t, volumetric(t)))
+                .map(|(g, t)| MixedElement::new(g, t, multipliers::augmentation(materials, t)))
                 .collect(),
         };
         let multipliers = mixed
@@ -233,69 +206,6 @@ impl System {
             }
     }
 
-    /// Element `e`'s multipliers in the full vector `u` (zero without multipliers).
-    pub fn element_multipliers(&self, e: usize, u: &[f64]) -> [f64; PRESSURES] {
-        if !self.multipliers {
-            return [0.0; PRESSURES];
-        }
-        let start = self.mesh.num_dofs() + PRESSURES * e;
-        std::array::from_fn(|i| u[start + i])
-    }
-
-    /// The method of multipliers' step at `u`: the largest violation `|M^-1 g - lambda / K|`
-    /// over the elements and the change `p - lambda` of every multiplier (in the order of the
-    /// multipliers in `u`; zero in elements condensed exactly). `None` without multipliers.
-    pub fn multiplier_step(&self, u: &[f64]) -> Result<Option<(f64, Vec<f64>)>> {
-        if !self.multipliers {
-            return Ok(None);
-        }
-        let states = (0..self.mixed.len())
-            .into_par_iter()
-            .with_min_len(64)
-            .map(|e| {
-                let lambda = self.element_multipliers(e, u);
-                self.mixed[e].evaluate(
-                    &self.geometry[e],
-                    &self.element_displacements(e, u),
-                    &lambda,
-                    self.penalty_scale,
-                    None,
-                )
-            })
-            .collect::<Result<Vec<_>>>()?;
-        let violation = states
-            .iter()
-            .flat_map(|state| state.violation)
-            .fold(0.0f64, |v, x| v.max(x.abs()));
-        let change = states
-            .iter()
-            .zip(&self.mixed)
-            .enumerate()
-            .flat_map(|(e, (state, mixed))| {
-                let lambda = self.element_multipliers(e, u);
-                let augmented = matches!(mixed.volumetric(), Volumetric::Augmented { .. });
-                (0..PRESSURES).map(move |i| if augmented { state.pressure[i] - lambda[i] } else { 0.0 })
-            })
-            .collect();
-        Ok(Some((violation, change)))
-    }
-
-    /// The full vector of the displacement `u` (one entry per mesh unknown) at a homogeneous
-    /// state: `u`, followed, when the system has multipliers, by each layer's pressure
-    /// (`p_layer`, `p_substrate`, constant per element).
-    pub fn with_homogeneous_multipliers(&self, mut u: Vec<f64>, p_layer: f64, p_substrate: f64) -> Vec<f64> {
-        if self.multipliers {
-            for region in self.mesh.regions() {
-                let p = match region {
-                    Region::Layer => p_layer,
-                    Region::Substrate => p_substrate,
-                };
-                u.extend([p, 0.0, 0.0]);
-            }
-        }
-        u
-    }
-
     /// Nodal displacements of element `e` from the global vector `u`.
     pub fn element_displacements(&self, e: usize, u: &[f64]) -> ElementVector {
         let nodes = &self.mesh.elements()[e];
@@ -323,32 +233,6 @@ impl System {
         with_tangent: bool,
     ) -> Result<Assembled> {
         self.assemble_with(u, bc, lift, with_tangent, &NoAddedEnergy)
-    }
-
-    /// The tangent (and residual) of the strain energy plus `added` whose inertia is the
-    /// stability of `u`: [`System::assemble_with`], for exactly incompressible tissue with the
-    /// constraint's stability penalty ([`crate::fem::mixed`]).
-    pub fn assemble_for_stability(&mut self, u: &[f64], bc: &Dirichlet, added: &dyn AddedEnergy) -> Result<Assembled> {
-        let scale = std::mem::replace(&mut self.penalty_scale, STABILITY_PENALTY);
-        let assembled = self.assemble_with(u, bc, None, true, added);
-        self.penalty_scale = scale;
-        assembled
-    }
-
-    /// The factor on the constraint's penalty.
-    pub fn penalty_scale(&self) -> f64 {
-        self.penalty_scale
-    }
-
-    /// Sets the factor on the constraint's penalty (Newton's method raises it while the
-    /// multipliers converge slowly).
-    pub fn set_penalty_scale(&mut self, scale: f64) {
-        self.penalty_scale = scale;
-    }
-
-    /// Whether multipliers follow the displacements in the unknowns' vector.
-    pub fn has_multipliers(&self) -> bool {
-        self.multipliers
     }
 
     /// [`System::assemble`] of the strain energy plus `added` (whose groups join the pattern).

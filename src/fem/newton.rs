@@ -25,6 +25,9 @@ use super::linear_solver::{multiply, Factorisation, SparseLdlt};
 use crate::error::Error;
 use std::time::Duration;
 
+mod multipliers;
+pub use multipliers::CONSTRAINT_TOLERANCE;
+
 /// Tolerances and limits of Newton's method.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NewtonSettings {
@@ -77,22 +80,11 @@ impl Default for NewtonSettings {
     }
 }
 
-/// Largest element-mean `|ln J|` (and `|ln J|` gradient, [`crate::fem::mixed`]) accepted as
-/// incompressible.
-pub const CONSTRAINT_TOLERANCE: f64 = 1e-7;
+impl std::ops::Add for Timings {
+    type Output = Timings;
 
-/// Most updates of the multipliers in one solve.
-const MULTIPLIER_UPDATES: usize = 30;
-
-/// Largest relaxation of a multiplier update.
-const MAX_RELAXATION: f64 = 100.0;
-
-/// Largest factor on the incompressibility penalty while the multipliers converge.
-const MAX_PENALTY_SCALE: f64 = 1e3;
-
-impl Timings {
     /// The times and counts of two solves together.
-    fn plus(self, other: Timings) -> Timings {
+    fn add(self, other: Timings) -> Timings {
         Timings {
             assembly: self.assembly + other.assembly,
             analysis: self.analysis + other.analysis,
@@ -101,24 +93,6 @@ impl Timings {
             assemblies: self.assemblies + other.assemblies,
             factorisations: self.factorisations + other.factorisations,
             solves: self.solves + other.solves,
-        }
-    }
-}
-
-impl NewtonReport {
-    /// This solve continued by `next` (after an update of the multipliers): counts and times
-    /// add up, the solution is `next`'s.
-    fn followed_by(self, next: NewtonReport) -> NewtonReport {
-        let mut residual_history = self.residual_history;
-        residual_history.extend(next.residual_history);
-        NewtonReport {
-            iterations: self.iterations + next.iterations,
-            tangent_steps: self.tangent_steps + next.tangent_steps,
-            residual_history,
-            backtracks: self.backtracks + next.backtracks,
-            multiplier_updates: self.multiplier_updates + 1,
-            timings: self.timings.plus(next.timings),
-            ..next
         }
     }
 }
@@ -245,60 +219,6 @@ impl Newton {
             u.copy_from_slice(&start);
         }
         result
-    }
-
-    /// Newton's iteration; for exactly incompressible tissue, repeated after each update of the
-    /// multipliers (the method of multipliers, [`crate::fem::mixed`]) until the constraint holds
-    /// to [`CONSTRAINT_TOLERANCE`]. The updates are relaxed by Irons and Tuck's form of
-    /// Aitken's acceleration: the iteration converges linearly, slowly where the pressure is
-    /// weakly controlled (elongated or strongly distorted elements), and one extrapolation
-    /// removes that slow mode; an update that does not halve the violation raises the penalty
-    /// tenfold instead (up to [`MAX_PENALTY_SCALE`], reset by [`Newton::solve_with`]).
-    fn iterate_with_multipliers(
-        &mut self,
-        system: &mut System,
-        u: &mut [f64],
-        bc: &Dirichlet,
-        added: &dyn AddedEnergy,
-    ) -> Result<NewtonReport, NewtonError> {
-        let mut report = self.iterate(system, u, bc, added)?;
-        let offset = system.mesh().num_dofs();
-        let (mut previous, mut relaxation): (Option<(f64, Vec<f64>)>, f64) = (None, 1.0);
-        for _ in 0..MULTIPLIER_UPDATES {
-            let Some((violation, change)) = system.multiplier_step(u)? else {
-                return Ok(report);
-            };
-            if violation <= CONSTRAINT_TOLERANCE {
-                return Ok(report);
-            }
-            match &previous {
-                Some((last, _)) if violation > 0.5 * last && system.penalty_scale() < MAX_PENALTY_SCALE => {
-                    // Slow: a stiffer penalty, and Aitken's relaxation restarts.
-                    system.set_penalty_scale(10.0 * system.penalty_scale());
-                    relaxation = 1.0;
-                }
-                Some((_, last_change)) => {
-                    // omega_(n+1) = -omega_n (D_n . (D_(n+1) - D_n)) / |D_(n+1) - D_n|^2.
-                    let difference: Vec<f64> = change.iter().zip(last_change).map(|(a, b)| a - b).collect();
-                    let denominator = difference.iter().map(|x| x * x).sum::<f64>();
-                    if denominator > 0.0 {
-                        let numerator = last_change.iter().zip(&difference).map(|(a, b)| a * b).sum::<f64>();
-                        relaxation = (-relaxation * numerator / denominator).clamp(0.5, MAX_RELAXATION);
-                    }
-                }
-                None => {}
-            }
-            for (lambda, delta) in u[offset..].iter_mut().zip(&change) {
-                *lambda += relaxation * delta;
-            }
-            previous = Some((violation, change));
-            let next = self.iterate(system, u, bc, added)?;
-            report = report.followed_by(next);
-        }
-        let violation = system.multiplier_step(u)?.map_or(0.0, |(v, _)| v);
-        Err(NewtonError::Model(Error::Solver(format!(
-            "incompressibility: |ln J| = {violation:.1e} after {MULTIPLIER_UPDATES} updates of the pressure"
-        ))))
     }
 
     /// Negative eigenvalues of the tangent of the strain energy plus `added` at `u` (with `bc`

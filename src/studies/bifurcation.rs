@@ -88,7 +88,7 @@ pub struct BifurcationReport {
 pub fn run(params: &Parameters, study: &BifurcationStudy, out: &Path) -> Result<BifurcationReport> {
     params.validate()?;
     study.mesh.validate()?;
-    study.mesh.element.check_for(params)?;
+    study.mesh.element.check_for(params.incompressible)?;
     crate::output::ensure_dir(out)?;
     let start = Instant::now();
     let materials = Bilayer::new(params);

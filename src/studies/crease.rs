@@ -295,7 +295,7 @@ fn halve_towards(
 pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<CreaseReport> {
     params.validate()?;
     study.validate()?;
-    study.mesh.element.check_for(params)?;
+    study.mesh.element.check_for(params.incompressible)?;
     let start = std::time::Instant::now();
     let materials = Bilayer::new(params);
     let spec = study.mesh.spec(study.longest());

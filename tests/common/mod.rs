@@ -30,6 +30,16 @@ pub fn scratch(name: &str) -> PathBuf {
     dir
 }
 
+/// `fiberfold bifurcation --element mixed` with `args`: its JSON summary.
+pub fn mixed_bifurcation(name: &str, args: &[&str]) -> serde_json::Value {
+    let out = scratch(name);
+    let mut all = vec!["bifurcation", "--element", "mixed", "--out", out.to_str().unwrap()];
+    all.extend(args);
+    let output = fiberfold(&all);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    serde_json::from_str(&std::fs::read_to_string(out.join("bifurcation.json")).unwrap()).unwrap()
+}
+
 /// Runs the `fiberfold` binary with `args`.
 pub fn fiberfold<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_fiberfold"))

@@ -232,7 +232,7 @@ impl MapStudy {
             return Err(Error::invalid("y", &self.y.name, "a parameter other than --x"));
         }
         self.settings.validate()?;
-        self.settings.crease_mesh.element.check_for(&self.base)?;
+        self.settings.crease_mesh.element.check_for(self.base.incompressible)?;
         for axis in [&self.x, &self.y] {
             if self.base.incompressible && axis.name.starts_with("K_") {
                 return Err(Error::invalid(

@@ -24,7 +24,7 @@ pub use solve::{solve, solve_to_secondary, Solution, StateFields, ToSecondary};
 pub use state_vtu::{cell_arrays, displacement_array, write_state};
 
 use crate::error::{Error, Result};
-use crate::fem::System;
+use crate::fem::{System, Timings};
 use crate::material::Bilayer;
 use crate::mesh::MeshSpec;
 use crate::output::vtu::Collection;
@@ -237,19 +237,21 @@ pub struct PhaseTotals {
 
 impl PhaseTotals {
     pub fn of(records: &[StepRecord]) -> Self {
-        records.iter().fold(PhaseTotals::default(), |t, r| PhaseTotals {
-            assembly_seconds: t.assembly_seconds + r.timings.assembly.as_secs_f64(),
-            analysis_seconds: t.analysis_seconds + r.timings.analysis.as_secs_f64(),
-            factorisation_seconds: t.factorisation_seconds + r.timings.factorisation.as_secs_f64(),
-            solve_seconds: t.solve_seconds + r.timings.solve.as_secs_f64(),
-            assemblies: t.assemblies + r.timings.assemblies,
-            factorisations: t.factorisations + r.timings.factorisations,
-            solves: t.solves + r.timings.solves,
-            newton_iterations: t.newton_iterations + r.iterations,
-            inertia_seconds: t.inertia_seconds + r.augmented.as_ref().map_or(0.0, |a| a.inertia_seconds),
-            failed_attempt_seconds: t.failed_attempt_seconds + r.failed_seconds,
-            step_seconds: t.step_seconds + r.seconds,
-        })
+        let timings = records.iter().fold(Timings::default(), |t, r| t + r.timings);
+        let sum = |f: &dyn Fn(&StepRecord) -> f64| records.iter().map(f).sum::<f64>();
+        PhaseTotals {
+            assembly_seconds: timings.assembly.as_secs_f64(),
+            analysis_seconds: timings.analysis.as_secs_f64(),
+            factorisation_seconds: timings.factorisation.as_secs_f64(),
+            solve_seconds: timings.solve.as_secs_f64(),
+            assemblies: timings.assemblies,
+            factorisations: timings.factorisations,
+            solves: timings.solves,
+            newton_iterations: records.iter().map(|r| r.iterations).sum(),
+            inertia_seconds: sum(&|r| r.augmented.as_ref().map_or(0.0, |a| a.inertia_seconds)),
+            failed_attempt_seconds: sum(&|r| r.failed_seconds),
+            step_seconds: sum(&|r| r.seconds),
+        }
     }
 }
 
@@ -297,7 +299,7 @@ impl From<&MeshSpec> for MeshSummary {
 pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Monitor) -> Result<SimulationSummary> {
     params.validate()?;
     study.validate()?;
-    study.mesh.element.check_for(params)?;
+    study.mesh.element.check_for(params.incompressible)?;
     let _lock = crate::output::lock::OutputLock::acquire(out)?;
     let start = Instant::now();
     let materials = Bilayer::new(params);

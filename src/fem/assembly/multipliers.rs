@@ -1,0 +1,120 @@
+//! The multipliers of the mixed element's augmented mode ([`crate::fem::mixed`]): where they
+//! sit in the unknowns' vector, one step of the method of multipliers, their homogeneous values,
+//! and the penalties of the iteration and of the stability tangent.
+
+use super::{Assembled, System};
+use crate::error::Result;
+use crate::fem::added::AddedEnergy;
+use crate::fem::boundary::Dirichlet;
+use crate::fem::mixed::{Volumetric, PRESSURES};
+use crate::material::{Bilayer, Tissue};
+use crate::mesh::Region;
+use rayon::prelude::*;
+
+/// Bulk moduli above this many times the largest shear modulus go through multipliers.
+const AUGMENTED_BULK: f64 = 1e3;
+
+/// The augmentation penalty of the multipliers, in units of the largest shear modulus.
+const AUGMENTATION_PENALTY: f64 = 1e2;
+
+/// The factor on the augmentation penalty with which the tangent's inertia is counted (at most
+/// the bulk modulus, where the tangent is then exact): `fem::mixed` explains why it must be
+/// large.
+const STABILITY_PENALTY: f64 = 1e3;
+
+/// How `tissue`'s mixed element resists volume change: through multipliers for exact
+/// incompressibility and for bulk moduli above [`AUGMENTED_BULK`] times the largest shear
+/// modulus; `None` (condensed exactly) otherwise.
+pub(super) fn augmentation(materials: &Bilayer, tissue: &Tissue) -> Option<Volumetric> {
+    let shear = materials.layer.mu.max(materials.substrate.matrix.mu);
+    let (_, bulk) = tissue.volumetric_split();
+    let bulk = if materials.incompressible { f64::INFINITY } else { bulk };
+    (bulk > AUGMENTED_BULK * shear).then_some(Volumetric::Augmented {
+        penalty: AUGMENTATION_PENALTY * shear,
+        bulk,
+    })
+}
+
+impl System {
+    /// Element `e`'s multipliers in the full vector `u` (zero without multipliers).
+    pub fn element_multipliers(&self, e: usize, u: &[f64]) -> [f64; PRESSURES] {
+        if !self.multipliers {
+            return [0.0; PRESSURES];
+        }
+        let start = self.mesh.num_dofs() + PRESSURES * e;
+        std::array::from_fn(|i| u[start + i])
+    }
+
+    /// The method of multipliers' step at `u`: the largest violation `|M^-1 g - lambda / K|`
+    /// over the elements and the change `p - lambda` of every multiplier (in the order of the
+    /// multipliers in `u`; zero in elements condensed exactly). `None` without multipliers.
+    pub fn multiplier_step(&self, u: &[f64]) -> Result<Option<(f64, Vec<f64>)>> {
+        if !self.multipliers {
+            return Ok(None);
+        }
+        let steps = (0..self.mixed.len())
+            .into_par_iter()
+            .with_min_len(64)
+            .map(|e| {
+                let (mixed, lambda) = (&self.mixed[e], self.element_multipliers(e, u));
+                let state = mixed.evaluate(
+                    &self.geometry[e],
+                    &self.element_displacements(e, u),
+                    &lambda,
+                    self.penalty_scale,
+                    None,
+                )?;
+                let violation = state.violation.iter().fold(0.0f64, |v, x| v.max(x.abs()));
+                let change: [f64; PRESSURES] = match mixed.volumetric() {
+                    Volumetric::Augmented { .. } => std::array::from_fn(|i| state.pressure[i] - lambda[i]),
+                    Volumetric::Bulk(_) => [0.0; PRESSURES],
+                };
+                Ok((violation, change))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        let violation = steps.iter().fold(0.0f64, |v, (e, _)| v.max(*e));
+        Ok(Some((violation, steps.into_iter().flat_map(|(_, c)| c).collect())))
+    }
+
+    /// The full vector of the displacement `u` (one entry per mesh unknown) at a homogeneous
+    /// state: `u`, followed, when the system has multipliers, by each layer's pressure
+    /// (`p_layer`, `p_substrate`, constant per element).
+    pub fn with_homogeneous_multipliers(&self, mut u: Vec<f64>, p_layer: f64, p_substrate: f64) -> Vec<f64> {
+        if self.multipliers {
+            for region in self.mesh.regions() {
+                let p = match region {
+                    Region::Layer => p_layer,
+                    Region::Substrate => p_substrate,
+                };
+                u.extend([p, 0.0, 0.0]);
+            }
+        }
+        u
+    }
+
+    /// The tangent (and residual) of the strain energy plus `added` whose inertia is the
+    /// stability of `u`: [`System::assemble_with`], for exactly incompressible tissue with the
+    /// constraint's stability penalty ([`crate::fem::mixed`]).
+    pub fn assemble_for_stability(&mut self, u: &[f64], bc: &Dirichlet, added: &dyn AddedEnergy) -> Result<Assembled> {
+        let scale = std::mem::replace(&mut self.penalty_scale, STABILITY_PENALTY);
+        let assembled = self.assemble_with(u, bc, None, true, added);
+        self.penalty_scale = scale;
+        assembled
+    }
+
+    /// The factor on the constraint's penalty.
+    pub fn penalty_scale(&self) -> f64 {
+        self.penalty_scale
+    }
+
+    /// Sets the factor on the constraint's penalty (Newton's method raises it while the
+    /// multipliers converge slowly).
+    pub fn set_penalty_scale(&mut self, scale: f64) {
+        self.penalty_scale = scale;
+    }
+
+    /// Whether multipliers follow the displacements in the unknowns' vector.
+    pub fn has_multipliers(&self) -> bool {
+        self.multipliers
+    }
+}
