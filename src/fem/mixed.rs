@@ -50,10 +50,10 @@
 //! than that matrix, which tends to the exact saddle point `[[K_uu, B^T], [B, 0]]` as `kappa`
 //! grows: its inertia is that of the constrained displacements once `kappa` exceeds the
 //! curvature of `K_uu` off the constraint (Finsler's lemma), of the order of the stresses. The
-//! inertia is therefore counted on the tangent with a penalty 10^5 times the largest shear
+//! inertia is therefore counted on the tangent with a penalty 10^6 times the largest shear
 //! modulus, or `K` where that is smaller (then the exact condensed tangent;
 //! [`crate::fem::System::assemble_for_stability`]); the coarse-mesh bifurcation no longer
-//! moves beyond 10^4 times.
+//! moves beyond 10^5 times.
 
 use super::element::{
     add_tangent, mirror_upper_triangle, ElementGeometry, ElementMatrix, ElementState, ElementVector, DOFS, GAUSS_POINTS,

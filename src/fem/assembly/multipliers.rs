@@ -19,8 +19,9 @@ const AUGMENTATION_PENALTY: f64 = 1e2;
 
 /// The factor on the augmentation penalty with which the tangent's inertia is counted (at most
 /// the bulk modulus, where the tangent is then exact): `fem::mixed` explains why it must be
-/// large.
-const STABILITY_PENALTY: f64 = 1e3;
+/// large. The coarse-mesh incompressible bifurcation moves between 1e2 and 1e3 and not from
+/// 1e3 to 1e5; 1e4 keeps a factor of ten in hand.
+const STABILITY_PENALTY: f64 = 1e4;
 
 /// How `tissue`'s mixed element resists volume change: through multipliers for exact
 /// incompressibility and for bulk moduli above [`AUGMENTED_BULK`] times the largest shear
