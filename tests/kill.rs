@@ -90,11 +90,12 @@ fn a_killed_simulate_leaves_only_complete_files() {
         "--substrate-elements",
         "10",
         "--d-max",
-        "0.3",
+        "0.25",
         "--vtu-every",
         "0.02",
-        // With one element through the layer the displacement element is stiff enough to reach
-        // d = 0.3 without a snap (the mixed one snaps at 0.25): the files are tested, not the path.
+        // This crude mesh snaps past d = 0.25 (with the displacement element; the mixed one
+        // earlier), where the stabilisation's budget may end the run: the files are tested, not
+        // the path.
         "--element",
         "displacement",
         "--out",

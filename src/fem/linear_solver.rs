@@ -2,7 +2,9 @@
 //! ordering) done once per sparsity pattern, sequential (`Par::Seq` is the fastest on this
 //! machine; see notes/rust-ecosystem.md). The inertia comes for free from `D`: by Sylvester's law
 //! the number of negative pivots is the number of negative eigenvalues of `K`. When `L D L^T`
-//! meets a zero pivot, the intranode Bunch-Kaufman `L B L^T` takes over.
+//! meets a zero pivot, the intranode Bunch-Kaufman `L B L^T` takes over. An iteration that
+//! checks its own residual (modified Newton) may solve with the factor rounded to single
+//! precision, which halves the memory traffic that bounds a solve.
 
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
@@ -36,6 +38,8 @@ pub struct SparseLdlt {
     perm_inverse: Vec<usize>,
     scratch: MemBuffer,
     state: Option<Factorisation>,
+    /// Whether `values` holds the `L D L^T` factor rounded to `f32`, packed in its first half.
+    single: bool,
     /// Negative pivots of the current factorisation, counted on first request.
     negative: std::cell::OnceCell<usize>,
     symbolic_time: Duration,
@@ -59,6 +63,7 @@ impl SparseLdlt {
             symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()),
             symbolic.factorize_numeric_intranode_lblt_scratch::<f64>(par, Default::default()),
             symbolic.solve_in_place_scratch::<f64>(1, par),
+            symbolic.solve_in_place_scratch::<f32>(1, par),
         ]));
         let n = symbolic.nrows();
         SparseLdlt {
@@ -69,6 +74,7 @@ impl SparseLdlt {
             symbolic,
             scratch,
             state: None,
+            single: false,
             negative: std::cell::OnceCell::new(),
             symbolic_time: start.elapsed(),
             factorisation_time: Duration::ZERO,
@@ -91,6 +97,7 @@ impl SparseLdlt {
     pub fn factorize(&mut self, a: SparseColMatRef<'_, usize, f64>) -> Factorisation {
         let start = Instant::now();
         self.negative = std::cell::OnceCell::new();
+        self.single = false;
         let ldlt = self.symbolic.factorize_numeric_ldlt(
             &mut self.values,
             a,
@@ -114,6 +121,7 @@ impl SparseLdlt {
     pub fn factorize_pivoted(&mut self, a: SparseColMatRef<'_, usize, f64>) -> Factorisation {
         let start = Instant::now();
         self.negative = std::cell::OnceCell::new();
+        self.single = false;
         self.symbolic.factorize_numeric_intranode_lblt(
             &mut self.values,
             &mut self.subdiag,
@@ -137,6 +145,10 @@ impl SparseLdlt {
 
     /// Solves `A x = b` in place (`rhs` holds `b`, then `x`); a non-finite `x` is an error.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<()> {
+        assert!(
+            !self.single,
+            "double-precision solve with a factor rounded to single precision"
+        );
         let start = Instant::now();
         let n = self.dimension();
         assert_eq!(rhs.len(), n, "right-hand side length");
@@ -165,6 +177,52 @@ impl SparseLdlt {
                 "solution of the tangent system (singular tangent)".into(),
             ))
         }
+    }
+
+    /// [`SparseLdlt::solve_in_place`] with the `L D L^T` factor rounded to single precision:
+    /// `x` to about 1e-7 relative (times the conditioning), for iterations that check their own
+    /// residual. The first call rounds the factor in place (after counting its negative pivots),
+    /// so that only this solve is left until the next factorisation. An `L B L^T` factor is
+    /// solved in double precision.
+    pub fn solve_in_place_single(&mut self, rhs: &mut [f64]) -> Result<()> {
+        if self.state != Some(Factorisation::Ldlt) {
+            return self.solve_in_place(rhs);
+        }
+        if !self.single {
+            self.round_to_single();
+        }
+        let start = Instant::now();
+        let n = self.dimension();
+        assert_eq!(rhs.len(), n, "right-hand side length");
+        let mut x: Vec<f32> = rhs.iter().map(|&v| v as f32).collect();
+        let single: &[f32] = bytemuck::cast_slice(&self.values);
+        LdltRef::new(&self.symbolic, &single[..self.values.len()]).solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(&mut x, n, 1),
+            Par::Seq,
+            MemStack::new(&mut self.scratch),
+        );
+        rhs.iter_mut().zip(&x).for_each(|(r, &v)| *r = f64::from(v));
+        self.solve_time = start.elapsed();
+        if rhs.iter().all(|v| v.is_finite()) {
+            Ok(())
+        } else {
+            Err(Error::NonFinite(
+                "solution of the tangent system (singular tangent)".into(),
+            ))
+        }
+    }
+
+    /// Rounds the `L D L^T` values to `f32` in place: value `i` goes to the `i`-th `f32` slot,
+    /// which lies in the `f64` slot `i / 2`, already read (no second buffer, no extra memory).
+    fn round_to_single(&mut self) {
+        self.negative_pivots(); // counted while D is exact
+        let words: &mut [u32] = bytemuck::cast_slice_mut(&mut self.values);
+        for i in 0..words.len() / 2 {
+            let value = f64::from_ne_bytes(bytemuck::cast([words[2 * i], words[2 * i + 1]]));
+            words[i] = (value as f32).to_bits();
+        }
+        self.single = true;
     }
 
     /// Number of negative eigenvalues of the factorised matrix (negative pivots of `D` or `B`).
@@ -336,6 +394,31 @@ mod tests {
                 assert!(error < 1e-9, "sigma {sigma}, {kind:?}: {error}");
             }
         }
+    }
+
+    /// The single-precision solve keeps the inertia, solves to single precision, and leaves
+    /// the next factorisation in double precision.
+    #[test]
+    fn single_precision_solves_to_its_rounding() {
+        let n = 200;
+        let a = shifted_laplacian(n, 0.013);
+        let b: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).cos()).collect();
+        let mut solver = SparseLdlt::new(a.symbolic());
+        solver.factorize(a.as_ref());
+        let mut exact = b.clone();
+        solver.solve_in_place(&mut exact).unwrap();
+        for _ in 0..2 {
+            let mut x = b.clone();
+            solver.solve_in_place_single(&mut x).unwrap();
+            let error = x.iter().zip(&exact).map(|(p, q)| (p - q).abs()).fold(0.0, f64::max);
+            let size = exact.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
+            assert!(error > 1e-12 * size && error < 1e-4 * size, "{error} of {size}");
+            assert_eq!(solver.negative_pivots(), Some(below(n, 0.013)));
+        }
+        solver.factorize(a.as_ref());
+        let mut x = b.clone();
+        solver.solve_in_place(&mut x).unwrap();
+        assert_eq!(x, exact);
     }
 
     #[test]

@@ -56,11 +56,12 @@ struct Invariants {
 impl Invariants {
     fn of(f: &Tensor2) -> Self {
         let j = f[0] * f[3] - f[1] * f[2];
+        let ln_j = j.ln();
         Invariants {
             j,
-            ln_j: j.ln(),
+            ln_j,
             i1: f.iter().map(|x| x * x).sum::<f64>() + 1.0,
-            a: j.powf(-2.0 / 3.0),
+            a: (-2.0 / 3.0 * ln_j).exp(),
             cof: cofactor(f),
         }
     }
