@@ -195,8 +195,13 @@ pub fn find_pairs(
             })
             .collect();
         for (slave, n) in normals.iter().enumerate() {
+            let near = |j: usize| {
+                // Cheap rejection: farther than the limit from the segment's bounding box.
+                let (a, b, p) = (x[j], x[j + 1], x[slave]);
+                (0..2).all(|i| p[i] > a[i].min(b[i]) - distance_limit && p[i] < a[i].max(b[i]) + distance_limit)
+            };
             let candidates = (0..x.len() - 1)
-                .filter(|&j| j + 1 != slave && j != slave)
+                .filter(|&j| j + 1 != slave && j != slave && near(j))
                 .filter_map(|j| {
                     let (a, b) = (x[j], x[j + 1]);
                     let xi = projection(x[slave], a, b);
