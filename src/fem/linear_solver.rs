@@ -170,13 +170,7 @@ impl SparseLdlt {
             }
         }
         self.solve_time = start.elapsed();
-        if rhs.iter().all(|v| v.is_finite()) {
-            Ok(())
-        } else {
-            Err(Error::NonFinite(
-                "solution of the tangent system (singular tangent)".into(),
-            ))
-        }
+        finite(rhs)
     }
 
     /// [`SparseLdlt::solve_in_place`] with the `L D L^T` factor rounded to single precision:
@@ -204,13 +198,7 @@ impl SparseLdlt {
         );
         rhs.iter_mut().zip(&x).for_each(|(r, &v)| *r = f64::from(v));
         self.solve_time = start.elapsed();
-        if rhs.iter().all(|v| v.is_finite()) {
-            Ok(())
-        } else {
-            Err(Error::NonFinite(
-                "solution of the tangent system (singular tangent)".into(),
-            ))
-        }
+        finite(rhs)
     }
 
     /// Rounds the `L D L^T` values to `f32` in place: value `i` goes to the `i`-th `f32` slot,
@@ -283,6 +271,17 @@ impl SparseLdlt {
     /// Wall time of the last solve.
     pub fn solve_time(&self) -> Duration {
         self.solve_time
+    }
+}
+
+/// A solution with a non-finite entry as the error of a singular tangent.
+fn finite(x: &[f64]) -> Result<()> {
+    if x.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(Error::NonFinite(
+            "solution of the tangent system (singular tangent)".into(),
+        ))
     }
 }
 
