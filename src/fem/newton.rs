@@ -334,7 +334,13 @@ impl Newton {
     ) -> Result<Option<ReusedStep>, NewtonError> {
         let (_, solver) = self.solver.as_mut().expect("held, checked by the caller");
         let mut du: Vec<f64> = state.assembled.residual.iter().map(|r| -r).collect();
-        solver.solve_in_place_single(&mut du)?; // the next residual checks the step
+        // Single precision (the next residual checks the step), except with the
+        // incompressibility penalty, whose conditioning leaves it too few digits.
+        if problem.system.has_multipliers() {
+            solver.solve_in_place(&mut du)?;
+        } else {
+            solver.solve_in_place_single(&mut du)?;
+        }
         problem.timings.solve += solver.solve_time();
         problem.timings.solves += 1;
         let trial_u = problem.step(u, &du, &state.pending, 1.0);
