@@ -155,6 +155,44 @@ fn incompressible_half_space_creases_at_hong_zhao_suo() {
     assert!(d < biot_compression() - 0.08);
 }
 
+/// The Table 1 path of incompressible layers goes on through the closing of its troughs, where
+/// the multiplier updates raise the penalty (and with it the residual's round-off); before
+/// Newton's tolerance followed the raise, this run stopped at d = 0.2375.
+#[test]
+fn incompressible_path_goes_through_the_closing_troughs() {
+    let out = scratch("incompressible-closing");
+    let run = fiberfold(&[
+        "simulate",
+        "--set",
+        "incompressible=true",
+        "--element",
+        "mixed",
+        "--set",
+        "beta=0.785398",
+        "--waves",
+        "4.5",
+        "--nx",
+        "48",
+        "--layer-elements",
+        "2",
+        "--substrate-elements",
+        "10",
+        "--d-max",
+        "0.27",
+        "--vtu-every",
+        "1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let contact: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("contact.json")).unwrap()).unwrap();
+    let first = contact["d_first_contact"].as_f64().expect("the troughs close");
+    assert!(first > 0.2 && first < 0.26, "first contact at {first}");
+    assert_eq!(contact["d_reached"].as_f64(), Some(0.27));
+    assert!(contact["penetration_max"].as_f64().unwrap() < 1e-3);
+}
+
 /// What cannot work is refused in one line with exit code 2, before anything is written.
 #[test]
 fn incompressibility_with_a_contradictory_setting_is_refused() {
