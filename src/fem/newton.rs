@@ -4,8 +4,9 @@
 //! solve `K_ff du_f = -(r_f + K_fc du_c)` (the lifted, linearised system) and move both
 //! `u_f` and `u_c`, halving the step only while it inverts an element; once `u_c` has reached its
 //! values, steps must decrease `|r_f|` by the factor `1 - c alpha` (Armijo on the residual norm).
-//! Convergence: `|r_f| <= rtol |f| + atol`, where `|f|` is the internal force on all unknowns
-//! (reactions included), or an update `|alpha du|_inf <= utol (1 + |u|_inf)`. Trial points are
+//! Convergence: `|r_f| <= s (rtol |f| + atol)`, where `|f|` is the internal force on all unknowns
+//! (reactions included) and `s` the factor on a raised incompressibility penalty (1 otherwise),
+//! or an update `|alpha du|_inf <= utol (1 + |u|_inf)`. Trial points are
 //! assembled without the tangent (first-order AD only); the tangent is assembled at an accepted
 //! point only when another step follows (or its inertia is asked for).
 //!

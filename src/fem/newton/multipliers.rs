@@ -45,7 +45,8 @@ impl Newton {
     /// Aitken's acceleration: the iteration converges linearly, slowly where the pressure is
     /// weakly controlled (elongated or strongly distorted elements), and one extrapolation
     /// removes that slow mode; an update that does not halve the violation raises the penalty
-    /// tenfold instead (up to [`MAX_PENALTY_SCALE`], reset by [`Newton::solve_with`]).
+    /// tenfold instead (up to [`MAX_PENALTY_SCALE`], reset by [`Newton::solve_with`]), and
+    /// Newton's tolerance with it, since the residual's round-off grows in proportion.
     pub(super) fn iterate_with_multipliers(
         &mut self,
         system: &mut System,
