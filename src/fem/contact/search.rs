@@ -6,7 +6,7 @@
 //! between two consecutive surface nodes). Both passes are searched (every node is a slave),
 //! which is symmetric in the two flanks of a trough. A slave is paired with the nearest segment
 //! (distance to the segment itself) that it projects onto (`-0.1 <= xi <= 1.1`, see
-//! [`OVERHANG`]), other than the two it belongs to, within `search_distance`, and only if the
+//! `OVERHANG`), other than the two it belongs to, within `search_distance`, and only if the
 //! normals oppose (`n_s . n_m < -1/2`): a node never meets its own flank, nor the far side of
 //! the body. The gap is the signed distance to the segment's line.
 
