@@ -1,5 +1,5 @@
 //! `fiberfold map`: which instability comes first, and what the wrinkle becomes, over a grid of
-//! two parameters ([`point`] computes one point). Every point is written to
+//! two parameters (`point` computes one point). Every point is written to
 //! `points/point-<index>.json` as soon as it is done, so an interrupted map resumes where it
 //! stopped, and a map split into shards (`index % N == I`, one SLURM array task each) is
 //! assembled by [`collect`] into `map.csv`, `map.json` and the phase diagram `map.png/svg`.

@@ -52,7 +52,7 @@ pub const DOUBLING_RATIO: f64 = 0.2;
 /// than 20 % of its depth (the "localised" branch of [`crate::protocol::secondary`]) is a
 /// fold; otherwise deep troughs alternating with shallow ones (the "modulated" branch: the
 /// shallowest more than 20 % above the deepest), or a surface whose `k / 2` component is at
-/// least [`DOUBLING_RATIO`] of its `k` component ([`doubling`]: alternate peaks), have doubled
+/// least `DOUBLING_RATIO` of its `k` component ([`doubling`]: alternate peaks), have doubled
 /// their period; otherwise a last state whose tangent has
 /// negative pivots is an unstable periodic path (unresolved); otherwise troughs that closed on
 /// themselves are a row of creases, and open ones a wrinkle. The tangent's inertia also dates

@@ -21,7 +21,7 @@ const MODES: usize = 3;
 /// Inverse iterations per mode.
 const INVERSE_ITERATIONS: usize = 60;
 
-/// Keeps the states just after the first [`MODES`] changes of the inertia.
+/// Keeps the states just after the first `MODES` changes of the inertia.
 #[derive(Default)]
 pub struct SecondaryTracker {
     last: Option<usize>,
