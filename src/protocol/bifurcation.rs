@@ -94,10 +94,12 @@ pub fn homogeneous_unknowns(system: &System, materials: &Bilayer, state: &Homoge
             constraint_pressure(&materials.substrate, &substrate)?,
         )
     } else {
-        let s = &materials.substrate;
+        // K ln J, with the bulk modulus each tissue carries.
+        let (_, layer_bulk) = materials.layer_tissue().volumetric_split();
+        let (_, substrate_bulk) = materials.substrate_tissue().volumetric_split();
         (
-            materials.layer.bulk * jacobian(&layer).ln(),
-            s.matrix_fraction * s.matrix.bulk * jacobian(&substrate).ln(),
+            layer_bulk * jacobian(&layer).ln(),
+            substrate_bulk * jacobian(&substrate).ln(),
         )
     };
     Ok(system.with_homogeneous_multipliers(u, p_layer, p_substrate))

@@ -94,8 +94,8 @@ impl System {
     }
 
     /// The tangent (and residual) of the strain energy plus `added` whose inertia is the
-    /// stability of `u`: [`System::assemble_with`], for exactly incompressible tissue with the
-    /// constraint's stability penalty ([`crate::fem::mixed`]).
+    /// stability of `u`: [`System::assemble_with`], with multipliers at the stability penalty
+    /// ([`crate::fem::mixed`]).
     pub fn assemble_for_stability(&mut self, u: &[f64], bc: &Dirichlet, added: &dyn AddedEnergy) -> Result<Assembled> {
         let scale = std::mem::replace(&mut self.penalty_scale, STABILITY_PENALTY);
         let assembled = self.assemble_with(u, bc, None, true, added);
