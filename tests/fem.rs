@@ -160,6 +160,45 @@ fn newton_converges_quadratically() {
     assert!(pairs.iter().all(|&c| c < 10.0), "ratios {pairs:?}");
 }
 
+/// From a predictor (the prescribed values already set), the inertia asked for is read from
+/// the factorisation at the start, which the iteration then reuses: one factorisation for the
+/// solve and its inertia, the same count as a factorisation at the solution.
+#[test]
+fn inertia_is_read_from_the_factorisation_at_the_predictor() {
+    let (p, mesh) = wavy_problem();
+    let mut system = System::new(mesh.clone(), &Bilayer::new(&p)).unwrap();
+    let mut newton = Newton::new(NewtonSettings {
+        reuse_factorisation: true,
+        ..NewtonSettings::default()
+    });
+    let mut path = vec![vec![0.0; mesh.num_dofs()]; 2];
+    for (u, d) in path.iter_mut().zip([0.1, 0.11]) {
+        newton
+            .solve(&mut system, u, &model_conditions(&mesh, d).unwrap())
+            .unwrap();
+    }
+    // The secant predictor: u(0.12) ~ 2 u(0.11) - u(0.1).
+    let bc = model_conditions(&mesh, 0.12).unwrap();
+    let mut u: Vec<f64> = path[1].iter().zip(&path[0]).map(|(b, a)| 2.0 * b - a).collect();
+    for (&dof, &value) in bc.dofs().iter().zip(bc.values()) {
+        u[dof] = value;
+    }
+    let report = newton.solve(&mut system, &mut u, &bc).unwrap();
+    println!(
+        "{} iterations, {} factorisations, residuals {}",
+        report.iterations,
+        report.timings.factorisations,
+        list(&report.residual_history)
+    );
+    assert_eq!(report.timings.factorisations, 1);
+    assert_eq!(report.start_negative_pivots, Some(0));
+    assert_eq!(report.negative_pivots, report.start_negative_pivots);
+    let exact = Newton::new(NewtonSettings::default())
+        .inertia(&mut system, &u, &bc, &fiberfold::fem::added::NoAddedEnergy)
+        .unwrap();
+    assert_eq!(report.negative_pivots, exact);
+}
+
 #[test]
 fn reused_factorisation_reaches_the_full_newton_solution_with_fewer_factorisations() {
     let (p, mesh) = wavy_problem();

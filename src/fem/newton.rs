@@ -18,6 +18,16 @@
 //! contracts less, or does not decrease `|r|`, falls back to the consistent tangent at the
 //! current iterate, so the iteration is never worse than full Newton's; the converged state is
 //! the same to the tolerances.
+//!
+//! With `factorise_start` (or `inertia_at_solution`), the tangent at the starting iterate (the
+//! predictor of a load step) is factorised first, and the iteration starts with that factor:
+//! from a good predictor it converges in two or three steps, and its inertia is reported
+//! (`start_negative_pivots`). Where the energy has no added term, that count is the reported
+//! inertia of the solution: it is exact for the predicted state, which lies within the Newton
+//! correction of the converged one, so an eigenvalue can have changed sign in between only
+//! where the path is within that distance of a singular tangent (a bifurcation or limit point
+//! whose `d` is then known to solver tolerance anyway). Elsewhere, the tangent at the
+//! solution is factorised for it.
 
 use super::added::{AddedEnergy, NoAddedEnergy};
 use super::assembly::{norm, Assembled, System};
@@ -46,8 +56,11 @@ pub struct NewtonSettings {
     pub sufficient_decrease: f64,
     /// Relative residual of a linear solve above which `L B L^T` replaces `L D L^T`.
     pub solve_tolerance: f64,
-    /// Whether to factorise the tangent at the solution to report its inertia.
+    /// Whether to report the inertia of the solution's tangent (from the factorisation at the
+    /// start where the energy allows it, module docs; otherwise one more factorisation).
     pub inertia_at_solution: bool,
+    /// Whether to factorise the tangent at the starting iterate (the predictor) and start with it.
+    pub factorise_start: bool,
     /// Whether to keep iterating with the last factorisation while it contracts the residual.
     pub reuse_factorisation: bool,
     /// Largest ratio `|r_(n+1)| / |r_n|` of a step with a reused factorisation for the next step to
@@ -73,6 +86,7 @@ impl Default for NewtonSettings {
             sufficient_decrease: 1e-4,
             solve_tolerance: 1e-8,
             inertia_at_solution: true,
+            factorise_start: false,
             reuse_factorisation: false,
             contraction: 0.25,
             stall_steps: usize::MAX,
@@ -136,6 +150,8 @@ pub struct NewtonReport {
     pub reactions: Vec<f64>,
     /// Negative eigenvalues of `K_ff` at the solution, if requested in the settings.
     pub negative_pivots: Option<usize>,
+    /// Negative eigenvalues of `K_ff` at the starting iterate, if it was factorised.
+    pub start_negative_pivots: Option<usize>,
     /// Total number of step halvings.
     pub backtracks: usize,
     /// Updates of the incompressibility multipliers, each followed by more Newton steps.
@@ -246,9 +262,24 @@ impl Newton {
         let mut problem = Problem::new(system, bc, added)?;
         let pending: Vec<f64> = bc.dofs().iter().zip(bc.values()).map(|(&d, &g)| g - u[d]).collect();
         let lifting = pending.iter().any(|&p| p != 0.0);
+        // Not with multipliers: their inertia is that of another matrix ([`System::assemble_for_stability`]).
+        let factorise_start =
+            (s.factorise_start || s.inertia_at_solution) && !lifting && !problem.system.has_multipliers();
         let assembled = problem
-            .assemble(u, &pending, lifting, lifting || !s.reuse_factorisation)
+            .assemble(
+                u,
+                &pending,
+                lifting,
+                lifting || !s.reuse_factorisation || factorise_start,
+            )
             .map_err(|e| inverted(e, 0))?;
+        // Whether the held factorisation is that of the current iterate's tangent.
+        let mut factorised = factorise_start && !problem.free.is_empty();
+        let start_negative_pivots = if factorised {
+            self.factorize(&assembled, &mut problem.timings).negative_pivots()
+        } else {
+            None
+        };
         let mut reuse = s.reuse_factorisation && !lifting && self.holds(assembled.pattern);
         let mut state = Iterate {
             assembled,
@@ -271,7 +302,7 @@ impl Newton {
                     problem,
                     u,
                     state.assembled,
-                    (iteration, tangent_steps),
+                    (iteration, tangent_steps, start_negative_pivots),
                     history,
                     backtracks,
                 );
@@ -290,6 +321,8 @@ impl Newton {
                 });
             }
             if reuse {
+                // A reused step rounds the held factor to single precision: a full step refactorises.
+                factorised = false;
                 match self.reused_step(&mut problem, u, &state, residual)? {
                     Some((next, next_u, update, ratio)) => {
                         last_update = update;
@@ -305,7 +338,8 @@ impl Newton {
             if state.assembled.tangent.is_none() {
                 state.assembled = problem.assemble(u, &state.pending, state.lifting, true)?;
             }
-            let du = self.newton_step(&state.assembled, &mut problem.timings)?;
+            let du = self.newton_step(&state.assembled, factorised, &mut problem.timings)?;
+            factorised = false;
             tangent_steps += 1;
             let (next, next_u, alpha) = self.line_search(&mut problem, u, &state, &du, iteration)?;
             backtracks += backtracks_in(alpha);
@@ -370,11 +404,18 @@ impl Newton {
         mut problem: Problem,
         u: &[f64],
         mut assembled: Assembled,
-        (iterations, tangent_steps): (usize, usize),
+        (iterations, tangent_steps, start_negative_pivots): (usize, usize, Option<usize>),
         residual_history: Vec<f64>,
         backtracks: usize,
     ) -> Result<NewtonReport, NewtonError> {
-        let negative_pivots = if self.settings.inertia_at_solution && !problem.free.is_empty() {
+        let plain = !problem.system.has_multipliers()
+            && problem.added.groups().is_empty()
+            && problem.added.diagonal(u).is_none();
+        let negative_pivots = if !self.settings.inertia_at_solution || problem.free.is_empty() {
+            None
+        } else if let (true, Some(count)) = (plain, start_negative_pivots) {
+            Some(count)
+        } else {
             if problem.system.has_multipliers() {
                 let start = std::time::Instant::now();
                 assembled = problem.system.assemble_for_stability(u, problem.bc, problem.added)?;
@@ -383,8 +424,6 @@ impl Newton {
                 assembled = problem.assemble(u, &[], false, true)?;
             }
             self.factorize(&assembled, &mut problem.timings).negative_pivots()
-        } else {
-            None
         };
         Ok(NewtonReport {
             iterations,
@@ -395,6 +434,7 @@ impl Newton {
             min_jacobian: assembled.min_jacobian,
             reactions: assembled.reactions,
             negative_pivots,
+            start_negative_pivots,
             backtracks,
             multiplier_updates: 0,
             timings: problem.timings,
@@ -441,11 +481,21 @@ impl Newton {
         }
     }
 
-    /// `du_f = -K_ff^-1 r_f`, retried with `L B L^T` if the `L D L^T` solve is inaccurate.
-    fn newton_step(&mut self, current: &Assembled, timings: &mut Timings) -> Result<Vec<f64>, NewtonError> {
+    /// `du_f = -K_ff^-1 r_f` (with the held factorisation if it is `current`'s, `factorised`),
+    /// retried with `L B L^T` if the `L D L^T` solve is inaccurate.
+    fn newton_step(
+        &mut self,
+        current: &Assembled,
+        factorised: bool,
+        timings: &mut Timings,
+    ) -> Result<Vec<f64>, NewtonError> {
         let tolerance = self.settings.solve_tolerance;
         let k = current.tangent.as_ref().expect("assembled with the tangent").as_ref();
-        let solver = self.factorize(current, timings);
+        let solver = if factorised && self.solver.is_some() {
+            &mut self.solver.as_mut().expect("checked").1
+        } else {
+            self.factorize(current, timings)
+        };
         loop {
             let mut du: Vec<f64> = current.residual.iter().map(|r| -r).collect();
             solver.solve_in_place(&mut du)?;

@@ -36,7 +36,8 @@ pub struct AugmentedRecord {
     pub stabilisation_energy_fraction: f64,
     pub dissipated_energy: f64,
     pub eta: f64,
-    /// Wall time of the inertia of the accepted state (one more factorisation).
+    /// Wall time of the inertia of the accepted state: one more factorisation, or none where
+    /// it is read from the factorisation at the predictor.
     pub inertia_seconds: f64,
     /// Nominal contact pressure `(node, p)` at every top-surface node.
     #[serde(skip)]
@@ -66,7 +67,10 @@ impl Augmentation {
     /// Equilibrium at `d` (prescribed by `bc`) from the predictor `u`, stepping from the
     /// converged `(d0, u0)`; redone with a smaller `eta` while the step would exceed the
     /// dissipation budget. On failure `u` is the predictor again and nothing is booked. The
-    /// inertia, when Newton's settings ask for it, is that of the undamped tangent.
+    /// inertia, when Newton's settings ask for it, is that of the undamped tangent: read from
+    /// Newton's factorisation at the predictor where that tangent is the same energy's (an
+    /// undamped step, no contact force at the predictor or at the solution, one Newton solve;
+    /// see [`crate::fem::newton`]), otherwise from one more factorisation at the solution.
     #[allow(clippy::too_many_arguments)]
     pub fn solve(
         &mut self,
@@ -77,10 +81,10 @@ impl Augmentation {
         (d0, u0): (f64, &[f64]),
         d: f64,
     ) -> Result<(NewtonReport, AugmentedRecord)> {
-        let wants_inertia = newton.settings.inertia_at_solution;
+        let settings = newton.settings;
         newton.settings.inertia_at_solution = false;
-        let result = self.solve_within_budget(newton, system, u, bc, (d0, u0), d, wants_inertia);
-        newton.settings.inertia_at_solution = wants_inertia;
+        let result = self.solve_within_budget(newton, system, u, bc, (d0, u0), d, settings.inertia_at_solution);
+        newton.settings = settings;
         result
     }
 
@@ -107,23 +111,33 @@ impl Augmentation {
                 Some(damper) => damper,
                 None => &NoAddedEnergy,
             };
-            let (mut report, augmentations) = match &mut self.contact {
+            let damped = damper.as_ref().is_some_and(|damper| damper.damps());
+            let unloaded =
+                |contact: &Option<Contact>, u: &[f64]| contact.as_ref().is_none_or(|c| c.loaded_pairs(u).is_empty());
+            newton.settings.factorise_start =
+                wants_inertia && !damped && !system.has_multipliers() && unloaded(&self.contact, u);
+            let (mut report, augmentations, loaded_at_start) = match &mut self.contact {
                 Some(contact) => {
                     contact.set_plane(RIGHT_PLANE, Plane::right(length * (1.0 - d)));
                     let solved = solve_with_contact(newton, system, u, bc, contact, other)?;
                     let mut report = solved.report;
                     report.iterations = solved.iterations;
                     report.tangent_steps = solved.tangent_steps;
-                    (report, solved.augmentations)
+                    (report, solved.augmentations, solved.loaded_at_start)
                 }
-                None => (newton.solve_with(system, u, bc, other)?, 1),
+                None => (newton.solve_with(system, u, bc, other)?, 1, false),
             };
             let dissipation = damper.as_ref().map_or(0.0, |damper| damper.dissipation(u));
             let mut record = AugmentedRecord {
                 augmentations,
                 ..AugmentedRecord::default()
             };
-            if wants_inertia {
+            let from_start = report
+                .start_negative_pivots
+                .filter(|_| !damped && augmentations == 1 && !loaded_at_start && unloaded(&self.contact, u));
+            if let (true, Some(count)) = (wants_inertia, from_start) {
+                report.negative_pivots = Some(count);
+            } else if wants_inertia {
                 // The damper's groups with zero damping keep the pattern (and its analysis).
                 let undamped = damper.map(|damper| damper.undamped());
                 let contact: &dyn AddedEnergy = self.contact.as_ref().map_or(&NoAddedEnergy, |c| c);

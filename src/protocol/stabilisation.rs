@@ -153,6 +153,11 @@ pub struct Damper<'a> {
 }
 
 impl Damper<'_> {
+    /// Whether the step is damped at all.
+    pub fn damps(&self) -> bool {
+        self.factor != 0.0
+    }
+
     /// The same damper with zero damping.
     pub fn undamped(self) -> Self {
         Damper { factor: 0.0, ..self }

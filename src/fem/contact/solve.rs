@@ -22,6 +22,8 @@ pub struct ContactSolve {
     pub augmentations: usize,
     /// Largest penetration of the accepted state.
     pub penetration: f64,
+    /// Whether any pair was loaded at the start (then the first tangent held contact terms).
+    pub loaded_at_start: bool,
 }
 
 /// Solves equilibrium of the strain energy plus `contact` plus `other` (e.g. damping) with
@@ -52,6 +54,7 @@ fn augmented_lagrangian(
     other: &dyn AddedEnergy,
 ) -> Result<ContactSolve, NewtonError> {
     contact.search(u);
+    let loaded_at_start = !contact.loaded_pairs(u).is_empty();
     let (mut iterations, mut tangent_steps, mut penetration) = (0, 0, f64::INFINITY);
     for augmentation in 1..=contact.settings.max_augmentations {
         let report = newton.solve_with(system, u, bc, &Sum::new(vec![&*contact, other]))?;
@@ -69,6 +72,7 @@ fn augmented_lagrangian(
                 tangent_steps,
                 augmentations: augmentation,
                 penetration,
+                loaded_at_start,
             });
         }
     }

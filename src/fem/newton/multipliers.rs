@@ -32,6 +32,7 @@ impl NewtonReport {
             residual_history,
             backtracks: self.backtracks + next.backtracks,
             multiplier_updates: self.multiplier_updates + 1,
+            start_negative_pivots: self.start_negative_pivots,
             timings: self.timings + next.timings,
             ..next
         }
