@@ -491,11 +491,10 @@ impl Newton {
     ) -> Result<Vec<f64>, NewtonError> {
         let tolerance = self.settings.solve_tolerance;
         let k = current.tangent.as_ref().expect("assembled with the tangent").as_ref();
-        let solver = if factorised && self.solver.is_some() {
-            &mut self.solver.as_mut().expect("checked").1
-        } else {
-            self.factorize(current, timings)
-        };
+        if !factorised || self.solver.is_none() {
+            self.factorize(current, timings);
+        }
+        let (_, solver) = self.solver.as_mut().expect("factorised");
         loop {
             let mut du: Vec<f64> = current.residual.iter().map(|r| -r).collect();
             solver.solve_in_place(&mut du)?;
