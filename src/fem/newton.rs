@@ -61,6 +61,10 @@ pub struct NewtonSettings {
     pub inertia_at_solution: bool,
     /// Whether to factorise the tangent at the starting iterate (the predictor) and start with it.
     pub factorise_start: bool,
+    /// Whether a factorisation made in this solve is reused even if indefinite (for a step on
+    /// a smooth stretch of an unstable path; not near a fold, where every step needs a fresh
+    /// tangent).
+    pub reuse_indefinite: bool,
     /// Whether to keep iterating with the last factorisation while it contracts the residual.
     pub reuse_factorisation: bool,
     /// Largest ratio `|r_(n+1)| / |r_n|` of a step with a reused factorisation for the next step to
@@ -87,6 +91,7 @@ impl Default for NewtonSettings {
             solve_tolerance: 1e-8,
             inertia_at_solution: true,
             factorise_start: false,
+            reuse_indefinite: false,
             reuse_factorisation: false,
             contraction: 0.25,
             stall_steps: usize::MAX,
@@ -280,7 +285,8 @@ impl Newton {
         } else {
             None
         };
-        let mut reuse = s.reuse_factorisation && !lifting && self.holds(assembled.pattern);
+        let mut reuse =
+            s.reuse_factorisation && !lifting && self.holds(assembled.pattern, s.reuse_indefinite && factorised);
         let mut state = Iterate {
             assembled,
             pending,
@@ -329,7 +335,13 @@ impl Newton {
                         u.copy_from_slice(&next_u);
                         state = next;
                         history.push(state.assembled.residual_norm());
-                        reuse = ratio <= s.contraction;
+                        // An indefinite factor is kept only while it contracts about as a
+                        // fresh tangent would (otherwise a slow linear iteration may stall).
+                        let definite = self
+                            .solver
+                            .as_ref()
+                            .is_some_and(|(_, f)| f.negative_pivots() == Some(0));
+                        reuse = ratio <= if definite { s.contraction } else { s.contraction.powi(2) };
                     }
                     None => reuse = false,
                 }
@@ -347,18 +359,19 @@ impl Newton {
             u.copy_from_slice(&next_u);
             state = next;
             history.push(state.assembled.residual_norm());
-            reuse = s.reuse_factorisation && !state.lifting && self.holds(state.assembled.pattern);
+            reuse = s.reuse_factorisation && !state.lifting && self.holds(state.assembled.pattern, s.reuse_indefinite);
         }
         unreachable!("the loop returns")
     }
 
-    /// Whether a factorisation of a positive definite matrix with pattern `pattern` is held:
-    /// only then is it reused, since on an unstable path (negative pivots) several equilibria
-    /// lie close together and an iteration with an old matrix may settle on another one.
-    fn holds(&self, pattern: usize) -> bool {
+    /// Whether a reusable factorisation with pattern `pattern` is held: one of a positive
+    /// definite matrix, or one made in this solve (`own`, of an iterate of this very
+    /// iteration). An older indefinite one is not reused, since on an unstable path several
+    /// equilibria lie close together and an iteration with an old matrix may settle on another.
+    fn holds(&self, pattern: usize, own: bool) -> bool {
         self.solver
             .as_ref()
-            .is_some_and(|(id, solver)| *id == pattern && solver.negative_pivots() == Some(0))
+            .is_some_and(|(id, solver)| *id == pattern && (own || solver.negative_pivots() == Some(0)))
     }
 
     /// A full step with the held factorisation: the new iterate, its displacement, the update

@@ -236,6 +236,9 @@ impl Continuation {
             let step = self.step.min(target - self.d());
             let d = self.d() + step;
             let attempt_started = Instant::now();
+            // A full-length step lies on a smooth stretch of the path: Newton may keep a fresh
+            // indefinite tangent there; a cut step is near a fold, where it may not.
+            self.newton.settings.reuse_indefinite = step >= c.max * (1.0 - 1e-9);
             match self.attempt(d) {
                 Ok((report, u, augmented)) => {
                     let a = amplitude(self.system.mesh(), &u);
