@@ -10,12 +10,13 @@
 //! assembled without the tangent (first-order AD only); the tangent is assembled at an accepted
 //! point only when another step follows (or its inertia is asked for).
 //!
-//! With `reuse_factorisation`, the last factorisation (of an earlier iterate, or of the last
-//! converged state of the same pattern) is kept as the iteration matrix while it contracts the
-//! residual by at least `contraction` per step and is positive definite (modified Newton): such
-//! a step costs one residual assembly and one solve instead of a tangent assembly and a
-//! factorisation. A step that
-//! contracts less, or does not decrease `|r|`, falls back to the consistent tangent at the
+//! With `reuse_factorisation`, the last factorisation (of an earlier iterate, or of an earlier
+//! solve of the same pattern) is kept as the iteration matrix while it contracts the residual by
+//! at least `contraction` per step and is positive definite (modified Newton): such a step
+//! costs one residual assembly and one solve instead of a tangent assembly and a
+//! factorisation. With `reuse_indefinite`, an indefinite factorisation made in this solve is
+//! kept too, while it contracts by `contraction^2` (about as a fresh tangent would). A step
+//! that contracts less, or does not decrease `|r|`, falls back to the consistent tangent at the
 //! current iterate, so the iteration is never worse than full Newton's; the converged state is
 //! the same to the tolerances.
 //!
