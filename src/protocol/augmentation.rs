@@ -114,8 +114,13 @@ impl Augmentation {
             let damped = damper.as_ref().is_some_and(|damper| damper.damps());
             let unloaded =
                 |contact: &Option<Contact>, u: &[f64]| contact.as_ref().is_none_or(|c| c.loaded_pairs(u).is_empty());
-            newton.settings.factorise_start =
-                wants_inertia && !damped && !system.has_multipliers() && unloaded(&self.contact, u);
+            let plain = !damped && unloaded(&self.contact, u);
+            newton.settings.factorise_start = wants_inertia && plain && !system.has_multipliers();
+            // Across a damped snap or with contact forces the residual may stagnate for a few
+            // steps before it converges: there only the slower stall rule cuts the step.
+            if !plain {
+                newton.settings.diverging_steps = usize::MAX;
+            }
             let (mut report, augmentations, loaded_at_start) = match &mut self.contact {
                 Some(contact) => {
                     contact.set_plane(RIGHT_PLANE, Plane::right(length * (1.0 - d)));
