@@ -102,11 +102,12 @@ fn fixed_step_study(step: f64, d_max: f64) -> SimulateStudy {
 #[test]
 fn failure_at_the_minimum_step_keeps_the_curve_and_names_d() {
     let dir = scratch("failure");
-    // Steps of 0.1 converge to d = 0.205 when Newton may grind (12 tangents, no stall cut); the
-    // one to 0.3 cannot, and may not be cut.
+    // Steps of 0.1 converge to d = 0.205 when Newton may grind (12 tangents, no stall or
+    // divergence cut); the one to 0.3 cannot, and may not be cut.
     let mut study = fixed_step_study(0.1, 0.3);
     study.protocol.newton.max_iterations = 12;
     study.protocol.newton.stall_steps = usize::MAX;
+    study.protocol.newton.diverging_steps = usize::MAX;
     let error = simulate::run(&params(), &study, &dir, &quiet).unwrap_err();
     let message = error.to_string();
     println!("{message}");
