@@ -5,13 +5,13 @@
 //! definite until its smallest eigenvalue crosses zero. Sylvester's law of inertia makes the
 //! number of negative pivots of `K_ff = L D L^T` the number of negative eigenvalues; a scan in
 //! `d` and a bisection on "any negative pivot" bracket the first crossing. The mode is the
-//! eigenvector of the smallest eigenvalue at the stable end of the bracket, by inverse iteration
-//! with the same factor; its wavenumber is the dominant cosine of its top-surface `u_y`.
+//! eigenvector of the smallest eigenvalue at the stable end of the bracket, by the Lanczos
+//! method on `K^-1` with the same factor; its wavenumber is the dominant cosine of its top-surface `u_y`.
 
 use crate::error::{Error, Result};
 use crate::fem::added::NoAddedEnergy;
 use crate::fem::boundary::{dof, X, Y};
-use crate::fem::linear_solver::inverse_iteration;
+use crate::fem::linear_solver::inverse_lanczos;
 use crate::fem::{model_conditions, Assembled, SparseLdlt, System};
 use crate::homogeneous::{constraint_pressure, homogeneous_state, HomogeneousState};
 use crate::material::{jacobian, Bilayer};
@@ -28,18 +28,18 @@ pub struct BifurcationSettings {
     pub d_end: f64,
     /// Width of the final bracket in `d`.
     pub tolerance: f64,
-    /// Largest number of inverse iterations.
-    pub inverse_iterations: usize,
+    /// Largest number of solves with the factor for the mode (Lanczos steps on `K^-1`).
+    pub mode_solves: usize,
 }
 
 impl Default for BifurcationSettings {
-    /// Scan every 0.01 up to 0.9, bracket to 1e-6, at most 50 inverse iterations.
+    /// Scan every 0.01 up to 0.9, bracket to 1e-6, at most 50 solves for the mode.
     fn default() -> Self {
         BifurcationSettings {
             scan_step: 0.01,
             d_end: 0.9,
             tolerance: 1e-6,
-            inverse_iterations: 50,
+            mode_solves: 50,
         }
     }
 }
@@ -144,11 +144,11 @@ impl HomogeneousPath<'_> {
         Ok((solver.negative_pivots().expect("just factorised"), k))
     }
 
-    /// The eigenvector of the smallest eigenvalue of the current factor, by inverse iteration,
+    /// The eigenvector of the smallest eigenvalue of the current factor, by Lanczos on `K^-1`,
     /// on the free unknowns, with its Rayleigh quotient.
     fn smallest_mode(&mut self, iterations: usize, k: &SparseColMat<usize, f64>) -> Result<(Vec<f64>, f64)> {
         let solver = self.solver.as_mut().expect("factorised before");
-        inverse_iteration(solver, k.as_ref(), iterations, 1e-12)
+        inverse_lanczos(solver, k.as_ref(), iterations, 1e-12)
     }
 }
 
@@ -186,7 +186,7 @@ pub fn find_bifurcation(materials: &Bilayer, spec: MeshSpec, settings: &Bifurcat
         }
     }
     let (_, k) = path.factorise(stable)?;
-    let (free_mode, eigenvalue) = path.smallest_mode(settings.inverse_iterations, &k)?;
+    let (free_mode, eigenvalue) = path.smallest_mode(settings.mode_solves, &k)?;
     let free = path
         .system
         .free_dofs(&model_conditions(path.system.mesh(), stable)?)?

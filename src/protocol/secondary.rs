@@ -3,8 +3,8 @@
 //! The number of negative pivots of the converged tangent `K = L D L^T` is, by Sylvester's law,
 //! the number of unstable directions of the state; every change of it between two accepted
 //! steps brackets a bifurcation (or a limit point) of the path. Its mode is the eigenvector of
-//! the eigenvalue nearest zero at the state after the change, by inverse iteration with the
-//! factor. The branch is "periodic" when the troughs of the seeded mode end up equally deep,
+//! the eigenvalue nearest zero at the state after the change, by the Lanczos method on `K^-1`
+//! with the factor. The branch is "periodic" when the troughs of the seeded mode end up equally deep,
 //! "localised" when one trough is clearly the deepest, and "modulated" when several deep
 //! troughs alternate with shallow ones (e.g. a period doubling).
 
@@ -13,7 +13,7 @@ use super::continuation::StepRecord;
 use super::surface::surface_profile;
 use crate::error::Result;
 use crate::fem::added::NoAddedEnergy;
-use crate::fem::linear_solver::inverse_iteration;
+use crate::fem::linear_solver::inverse_lanczos;
 use crate::fem::{model_conditions, SparseLdlt, System};
 use crate::material::Bilayer;
 use crate::mesh::Mesh;
@@ -47,7 +47,7 @@ pub fn inertia_changes(records: &[StepRecord]) -> Vec<InertiaChange> {
 }
 
 /// The eigenpair of the elastic tangent at the state `u` (end-shortening `d`) whose eigenvalue
-/// is nearest zero: inverse iteration, the mode on all unknowns (zero where prescribed) scaled to
+/// is nearest zero: Lanczos on `K^-1`, the mode on all unknowns (zero where prescribed) scaled to
 /// a largest top-surface `|u_y|` of 1.
 /// `solver` keeps the symbolic analysis between calls on the same system.
 pub fn mode_nearest_zero(
@@ -64,7 +64,7 @@ pub fn mode_nearest_zero(
         .expect("assembled with the tangent");
     let solver = solver.get_or_insert_with(|| SparseLdlt::new(k.symbolic()));
     solver.factorize(k.as_ref());
-    let (x, eigenvalue) = inverse_iteration(solver, k.as_ref(), iterations, 1e-10)?;
+    let (x, eigenvalue) = inverse_lanczos(solver, k.as_ref(), iterations, 1e-10)?;
     let mut mode = vec![0.0; system.num_dofs()];
     for (&dof, &v) in system.free_dofs(&bc)?.iter().zip(&x) {
         mode[dof] = v;

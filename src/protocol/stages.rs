@@ -177,7 +177,8 @@ pub fn run(
     )))?;
     let perfect = Mesh::new(spec)?;
     let mut system = System::new(perfect.clone(), materials)?;
-    let mut u = vec![0.0; system.num_dofs()];
+    // From the homogeneous state itself (eq. 4), which the perfect mesh reproduces to round-off.
+    let mut u = homogeneous_unknowns(&system, materials, &homogeneous_state(materials, d0)?)?;
     let bc = model_conditions(&perfect, d0)?;
     let mut report = newton
         .solve(&mut system, &mut u, &bc)

@@ -18,8 +18,8 @@ use std::path::{Path, PathBuf};
 
 /// How many modes are computed and written (the first changes).
 const MODES: usize = 3;
-/// Inverse iterations per mode.
-const INVERSE_ITERATIONS: usize = 60;
+/// Largest number of solves (Lanczos steps on `K^-1`) per mode.
+const MODE_SOLVES: usize = 60;
 
 /// Keeps the states just after the first `MODES` changes of the inertia.
 #[derive(Default)]
@@ -67,8 +67,8 @@ pub struct SecondaryReport {
 
 const SECONDARY_NOTE: &str = "The inertia is the number of negative pivots of the undamped tangent (elastic plus \
     contact) at every accepted state; a change between d_before and d_after brackets a bifurcation or limit point \
-    of the computed path, and d_secondary is the d_after of the first change. Modes come from inverse iteration on \
-    the elastic tangent (contact stiffness left out) at d_after. branch compares the depths of the seeded troughs \
+    of the computed path, and d_secondary is the d_after of the first change. Modes come from the Lanczos method on \
+    the inverse of the elastic tangent (contact stiffness left out) at d_after. branch compares the depths of the seeded troughs \
     at the last state: 'periodic' if all are within 20 % of the deepest, 'localised' if the deepest leads the next \
     by more than that, 'modulated' otherwise (several deep troughs between shallow ones).";
 
@@ -98,7 +98,7 @@ impl SecondaryTracker {
         let mut system = System::new(mesh.clone(), materials)?;
         let mut solver = None;
         for (i, ((d, u), change)) in self.states.iter().zip(changes.iter_mut()).enumerate() {
-            let (mode, eigenvalue) = mode_nearest_zero(&mut system, u, *d, INVERSE_ITERATIONS, &mut solver)?;
+            let (mode, eigenvalue) = mode_nearest_zero(&mut system, u, *d, MODE_SOLVES, &mut solver)?;
             let path = out.join(format!("secondary_mode_{i}.vtu"));
             let nodal = &mode[..mesh.num_dofs()];
             let array = DataArray::plane_vectors("mode", nodal.chunks(2).map(|c| [c[0], c[1]]));
