@@ -172,7 +172,8 @@ pub struct SimulateArgs {
     pub eta: f64,
 
     /// Do not track the number of negative eigenvalues of the tangent at every converged state
-    /// (saves one factorisation per step; secondary.json then has no bifurcations).
+    /// (Newton then keeps one factorisation over several steps instead of factorising at every
+    /// predictor; secondary.json then has no bifurcations).
     #[arg(long)]
     pub no_inertia: bool,
 
