@@ -23,13 +23,22 @@ fn four_wave_run(d_max: f64, (a2, n2): (f64, f64)) -> (Vec<StepRecord>, &'static
         beta: FRAC_PI_4,
         ..Parameters::default()
     };
+    four_wave_run_of(&params, d_max, (a2, n2))
+}
+
+/// [`four_wave_run`] of the bilayer `params`.
+fn four_wave_run_of(
+    params: &Parameters,
+    d_max: f64,
+    (a2, n2): (f64, f64),
+) -> (Vec<StepRecord>, &'static str, Vec<f64>) {
     let k = 2.0 * PI * 4.0 / 40.0;
     let mut protocol = Protocol::new(k, 0.05, d_max).with_crease_path();
     protocol.newton.inertia_at_solution = true;
     protocol.imperfection2 = a2;
     protocol.imperfection2_waves = n2;
     let (mut records, mut exact) = (Vec::new(), Newton::new(NewtonSettings::default()));
-    let materials = Bilayer::new(&params);
+    let materials = Bilayer::new(params);
     let outcome = stages::run(
         &materials,
         MeshSpec::new(80, 2, 12, 0.5, 40.0, 40.0),
@@ -92,4 +101,21 @@ fn a_long_wave_imperfection_leaves_the_unstable_periodic_path_for_a_lower_energy
     );
     assert!(b.strain_energy < a.strain_energy);
     assert!(seeded.iter().all(|r| r.min_jacobian > 0.0));
+}
+
+/// A soft layer (mu_l = 3 mu_s) wrinkles near a limit point, where one step's predictor lies a
+/// tenth of a step from its solution and an eigenvalue changes sign in between: the inertia is
+/// then that of the solution (counted again), not the predictor's.
+#[test]
+fn the_inertia_is_the_solutions_where_the_predictor_was_far() {
+    let params = Parameters {
+        beta: FRAC_PI_4,
+        mu_l: 3.0,
+        K_l: 9.0,
+        ..Parameters::default()
+    };
+    let (records, _, _) = four_wave_run_of(&params, 0.33, (0.0, 0.5));
+    let unstable_from = records.iter().find(|r| r.negative_pivots.unwrap() > 0).map(|r| r.d);
+    println!("unstable from d = {unstable_from:?} ({} states)", records.len());
+    assert!(unstable_from.is_some());
 }

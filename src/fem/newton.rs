@@ -20,15 +20,11 @@
 //! current iterate, so the iteration is never worse than full Newton's; the converged state is
 //! the same to the tolerances.
 //!
-//! With `factorise_start` (or `inertia_at_solution`), the tangent at the starting iterate (the
-//! predictor of a load step) is factorised first, and the iteration starts with that factor:
-//! from a good predictor it converges in two or three steps, and its inertia is reported
-//! (`start_negative_pivots`). Where the energy has no added term, that count is the reported
-//! inertia of the solution: it is exact for the predicted state, which lies within the Newton
-//! correction of the converged one, so an eigenvalue can have changed sign in between only
-//! where the path is within that distance of a singular tangent (a bifurcation or limit point
-//! whose `d` is then known to solver tolerance anyway). Elsewhere, the tangent at the
-//! solution is factorised for it.
+//! With `factorise_start`, the tangent at the starting iterate (the predictor of a load step)
+//! is factorised first, and the iteration starts with that factor: from a good predictor it
+//! converges in two or three steps. Its inertia is reported (`start_negative_pivots`): the
+//! caller may take it for the solution's where the predictor was close
+//! ([`crate::protocol::augmentation`]).
 
 use super::added::{AddedEnergy, NoAddedEnergy};
 use super::assembly::{norm, Assembled, System};
@@ -57,8 +53,7 @@ pub struct NewtonSettings {
     pub sufficient_decrease: f64,
     /// Relative residual of a linear solve above which `L B L^T` replaces `L D L^T`.
     pub solve_tolerance: f64,
-    /// Whether to report the inertia of the solution's tangent (from the factorisation at the
-    /// start where the energy allows it, module docs; otherwise one more factorisation).
+    /// Whether to factorise the tangent at the solution to report its inertia.
     pub inertia_at_solution: bool,
     /// Whether to factorise the tangent at the starting iterate (the predictor) and start with it.
     pub factorise_start: bool,
@@ -275,8 +270,7 @@ impl Newton {
         let pending: Vec<f64> = bc.dofs().iter().zip(bc.values()).map(|(&d, &g)| g - u[d]).collect();
         let lifting = pending.iter().any(|&p| p != 0.0);
         // Not with multipliers: their inertia is that of another matrix ([`System::assemble_for_stability`]).
-        let factorise_start =
-            (s.factorise_start || s.inertia_at_solution) && !lifting && !problem.system.has_multipliers();
+        let factorise_start = s.factorise_start && !lifting && !problem.system.has_multipliers();
         let assembled = problem
             .assemble(
                 u,
@@ -429,13 +423,8 @@ impl Newton {
         residual_history: Vec<f64>,
         backtracks: usize,
     ) -> Result<NewtonReport, NewtonError> {
-        let plain = !problem.system.has_multipliers()
-            && problem.added.groups().is_empty()
-            && problem.added.diagonal(u).is_none();
         let negative_pivots = if !self.settings.inertia_at_solution || problem.free.is_empty() {
             None
-        } else if let (true, Some(count)) = (plain, start_negative_pivots) {
-            Some(count)
         } else {
             if problem.system.has_multipliers() {
                 let start = std::time::Instant::now();
