@@ -31,10 +31,11 @@ use super::assembly::{norm, Assembled, System};
 use super::boundary::Dirichlet;
 use super::linear_solver::{multiply, Factorisation, SparseLdlt};
 use crate::error::Error;
-use std::time::Duration;
 
 mod multipliers;
+mod report;
 pub use multipliers::CONSTRAINT_TOLERANCE;
+pub use report::{NewtonError, NewtonReport, Timings};
 
 /// Tolerances and limits of Newton's method.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -98,103 +99,6 @@ impl Default for NewtonSettings {
             stall_steps: usize::MAX,
             stall_reduction: 1e-3,
             diverging_steps: usize::MAX,
-        }
-    }
-}
-
-impl std::ops::Add for Timings {
-    type Output = Timings;
-
-    /// The times and counts of two solves together.
-    fn add(self, other: Timings) -> Timings {
-        Timings {
-            assembly: self.assembly + other.assembly,
-            analysis: self.analysis + other.analysis,
-            factorisation: self.factorisation + other.factorisation,
-            solve: self.solve + other.solve,
-            assemblies: self.assemblies + other.assemblies,
-            factorisations: self.factorisations + other.factorisations,
-            solves: self.solves + other.solves,
-        }
-    }
-}
-
-/// Accumulated wall times of the phases of one solve, and how often each ran.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Timings {
-    /// Assemblies (residual and tangent).
-    pub assembly: Duration,
-    /// Symbolic analyses (once per sparsity pattern).
-    pub analysis: Duration,
-    /// Numeric factorisations.
-    pub factorisation: Duration,
-    /// Triangular solves.
-    pub solve: Duration,
-    /// Number of assemblies.
-    pub assemblies: usize,
-    /// Number of numeric factorisations.
-    pub factorisations: usize,
-    /// Number of solves.
-    pub solves: usize,
-}
-
-/// A converged solve.
-#[derive(Clone, Debug)]
-pub struct NewtonReport {
-    /// Newton steps taken (with a reused factorisation or a new one).
-    pub iterations: usize,
-    /// Of those, steps with a newly factorised tangent.
-    pub tangent_steps: usize,
-    /// `|r_f|` at the start and after every step (lifted while the prescribed values are reached).
-    pub residual_history: Vec<f64>,
-    /// Internal-force norm `|f|` at the solution (the scale of the relative residual).
-    pub force_norm: f64,
-    /// Strain energy at the solution.
-    pub energy: f64,
-    /// Smallest `J` at the solution.
-    pub min_jacobian: f64,
-    /// Reactions on the prescribed unknowns, in the order of `Dirichlet::dofs`.
-    pub reactions: Vec<f64>,
-    /// Negative eigenvalues of `K_ff` at the solution, if requested in the settings.
-    pub negative_pivots: Option<usize>,
-    /// Negative eigenvalues of `K_ff` at the starting iterate, if it was factorised.
-    pub start_negative_pivots: Option<usize>,
-    /// Total number of step halvings.
-    pub backtracks: usize,
-    /// Updates of the incompressibility multipliers, each followed by more Newton steps.
-    pub multiplier_updates: usize,
-    /// Wall times of the phases.
-    pub timings: Timings,
-}
-
-/// Why Newton's method failed; the displacement is then left as it was.
-#[derive(Debug, thiserror::Error)]
-pub enum NewtonError {
-    /// The state, or every step tried, inverts an element (`J <= 0`).
-    #[error("Newton iteration {iteration}: element inverted (J = {jacobian:.3e} <= 0)")]
-    Inverted { iteration: usize, jacobian: f64 },
-    /// No step length down to `2^-max_backtracks` decreases the residual.
-    #[error("Newton iteration {iteration}: line search found no decrease of the residual {residual:.3e}")]
-    LineSearch { iteration: usize, residual: f64 },
-    /// The iteration limit was reached.
-    #[error("Newton did not converge in {iterations} iterations (residual {residual:.3e}, tolerance {tolerance:.3e})")]
-    NotConverged {
-        iterations: usize,
-        residual: f64,
-        tolerance: f64,
-        residual_history: Vec<f64>,
-    },
-    /// Any other failure (bad input, singular tangent).
-    #[error(transparent)]
-    Model(#[from] Error),
-}
-
-impl From<NewtonError> for Error {
-    /// Model errors pass through; convergence failures become [`Error::Solver`].
-    fn from(e: NewtonError) -> Self {
-        match e {
-            NewtonError::Model(inner) => inner,
-            other => Error::Solver(other.to_string()),
         }
     }
 }

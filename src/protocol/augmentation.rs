@@ -21,7 +21,7 @@ pub struct Augmentation {
 /// Largest Newton correction `|u - u_predicted|`, relative to the step `|u - u_0|`, for which the
 /// inertia of the predicted state's tangent is taken for the solution's: an eigenvalue can then
 /// have changed sign in between only within about this fraction of a step of a singular
-/// tangent. Measured: a predictor a fifth of a step off near a limit point (mu_l = 3) had a
+/// tangent. Measured: a predictor a tenth of a step off near a limit point (mu_l = 3) had a
 /// count one lower than its solution's.
 const PREDICTOR_CLOSENESS: f64 = 1e-2;
 
@@ -82,7 +82,8 @@ impl Augmentation {
     /// inertia, when Newton's settings ask for it, is that of the undamped tangent: read from
     /// Newton's factorisation at the predictor where that tangent is the same energy's (an
     /// undamped step, no contact force at the predictor or at the solution, one Newton solve;
-    /// see [`crate::fem::newton`]), otherwise from one more factorisation at the solution.
+    /// see [`crate::fem::newton`]) and the predictor was within 1e-2 (`PREDICTOR_CLOSENESS`) of a
+    /// step of the solution, otherwise from one more factorisation at the solution.
     #[allow(clippy::too_many_arguments)]
     pub fn solve(
         &mut self,
