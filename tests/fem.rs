@@ -6,6 +6,7 @@
 mod common;
 
 use common::{boundary_values, distortion, error_norms, homogeneous_material, worst_nodal_error};
+use fiberfold::fem::added::{AddedEnergy, Block};
 use fiberfold::fem::boundary::{X, Y};
 use fiberfold::fem::linear_solver::multiply;
 use fiberfold::fem::{dof, model_conditions, Newton, NewtonError, NewtonSettings, System};
@@ -123,6 +124,77 @@ fn assembled_tangent_and_lifting_match_central_differences() {
         let analytic = lifted[i] - assembled.residual[i];
         assert!((fd - analytic).abs() <= 1e-6 * scale, "lifting {i}: {fd} vs {analytic}");
     }
+}
+
+/// A quadratic energy `1/2 c |u_g - 0.1|^2` on each group's unknowns.
+struct Springs {
+    groups: Vec<Vec<usize>>,
+    stiffness: f64,
+}
+
+impl AddedEnergy for Springs {
+    fn groups(&self) -> &[Vec<usize>] {
+        &self.groups
+    }
+
+    fn block(&self, g: usize, u: &[f64], with_tangent: bool) -> Block {
+        let dofs = &self.groups[g];
+        let n = dofs.len();
+        let gradient: Vec<f64> = dofs.iter().map(|&d| self.stiffness * (u[d] - 0.1)).collect();
+        Block {
+            energy: gradient.iter().map(|g| g * g).sum::<f64>() / (2.0 * self.stiffness),
+            hessian: match with_tangent {
+                true => (0..n * n)
+                    .map(|i| if i % (n + 1) == 0 { self.stiffness } else { 0.0 })
+                    .collect(),
+                false => Vec::new(),
+            },
+            gradient,
+        }
+    }
+}
+
+/// The stored entries (and so the factorisation's analysis) survive a change of the groups
+/// that fit in them, a group coupling distant unknowns adds entries once, and in every case
+/// the tangent is the elastic one plus the groups' Hessians.
+#[test]
+fn groups_that_fit_keep_the_stored_entries_and_the_tangent_adds_them() {
+    let mesh = Mesh::new(MeshSpec::new(4, 1, 2, 1.0, 4.0, 2.0)).unwrap();
+    let mut system = System::new(mesh.clone(), &Bilayer::new(&Parameters::default())).unwrap();
+    let bc = model_conditions(&mesh, 0.05).unwrap();
+    let u: Vec<f64> = (0..mesh.num_dofs()).map(|i| 0.01 * (i as f64 * 0.37).sin()).collect();
+    let elastic = system.assemble(&u, &bc, None, true).unwrap();
+    let free = system.free_dofs(&bc).unwrap().to_vec();
+    let v: Vec<f64> = (0..free.len()).map(|i| (i as f64 * 0.91).cos()).collect();
+    let elastic_times_v = multiply(elastic.tangent.as_ref().unwrap().as_ref(), &v);
+    let top = mesh.top();
+    let (left, right) = (top[1], top[top.len() - 2]);
+    let one_node = vec![vec![2 * left, 2 * left + 1]];
+    let distant = vec![vec![2 * left, 2 * left + 1, 2 * right, 2 * right + 1]];
+    let mut check = |groups: &Vec<Vec<usize>>| {
+        let springs = Springs {
+            groups: groups.clone(),
+            stiffness: 7.0,
+        };
+        let assembled = system.assemble_with(&u, &bc, None, true, &springs).unwrap();
+        let mut expected = elastic_times_v.clone();
+        for &dof in groups.iter().flatten() {
+            let f = free.binary_search(&dof).unwrap();
+            expected[f] += 7.0 * v[f];
+        }
+        let got = multiply(assembled.tangent.as_ref().unwrap().as_ref(), &v);
+        let worst = got.iter().zip(&expected).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(worst < 1e-10, "tangent with {groups:?}: {worst:e}");
+        (assembled.pattern, assembled.structure)
+    };
+    let (pattern, structure) = check(&one_node);
+    assert_ne!(pattern, elastic.pattern, "new groups, new layout");
+    assert_eq!(structure, elastic.structure, "a node's own unknowns are stored");
+    let (_, coupled) = check(&distant);
+    assert_ne!(coupled, elastic.structure, "distant nodes need new entries");
+    assert_eq!(check(&Vec::new()).1, coupled, "entries once added stay");
+    assert_eq!(check(&one_node).1, coupled);
+    assert_eq!(check(&distant).1, coupled);
 }
 
 /// A small perturbed bilayer mesh with fibres at beta = 0.3, for the Newton tests.
@@ -284,7 +356,8 @@ fn inertia_of_the_tangent_matches_dense_eigenvalues() {
             }
         })
         .collect();
-    let k = system.assemble(&u, &bc, None, true).unwrap().tangent.unwrap();
+    let tangent = system.assemble(&u, &bc, None, true).unwrap().tangent.unwrap();
+    let k = tangent.as_ref();
     let n = k.nrows();
     let mut triplets = Vec::new();
     let mut dense = nalgebra::DMatrix::<f64>::zeros(n, n);

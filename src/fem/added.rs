@@ -3,8 +3,10 @@
 //!
 //! A term is a *group* of global unknowns with its energy, gradient and (dense) Hessian. The
 //! assembly treats a group like an element: its block enters the sparsity pattern of `K_ff`,
-//! and the pattern is rebuilt (and the factorisation re-analysed) only when the list of groups
-//! changes, e.g. when the contact search finds a new pair. A term on single unknowns (a
+//! which is rebuilt (and the factorisation re-analysed) only when a group couples unknowns
+//! that the pattern does not couple yet, e.g. when the contact search finds a node facing a
+//! segment across a closing trough (a pair with a symmetry plane couples one node's unknowns,
+//! which every pattern holds). A term on single unknowns (a
 //! damper) is a *diagonal* instead: it adds to the diagonal of `K_ff`, which every pattern holds,
 //! so it costs no groups and never changes the pattern.
 

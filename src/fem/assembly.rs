@@ -8,8 +8,9 @@
 //! are built once per set of prescribed unknowns; each assembly computes the element matrices
 //! in parallel (rayon) straight into their own slices of a reused buffer, and then sums each
 //! stored entry from that list, in parallel too (no scatter, so no races and no sorting).
-//! Groups of an [`AddedEnergy`] (contact pairs, damping) are assembled like extra elements; the
-//! pattern is keyed by the prescribed set and the list of groups.
+//! Groups of an [`AddedEnergy`] (contact pairs) are assembled like extra elements and added into
+//! their stored entries ([`pattern`]): a change of the groups re-analyses the factorisation only
+//! when a group couples unknowns that no stored entry coupled before.
 
 use super::added::{AddedEnergy, Block, NoAddedEnergy};
 use super::boundary::Dirichlet;
@@ -18,44 +19,44 @@ use super::mixed::{MixedElement, Volumetric, PRESSURES};
 use crate::error::{Error, Result};
 use crate::material::{Bilayer, Tissue};
 use crate::mesh::{ElementKind, Mesh, Region};
-use faer::sparse::{Pair, SparseColMat, SymbolicSparseColMat};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 mod multipliers;
+mod pattern;
 
-/// Source of pattern identifiers, unique across systems.
-static NEXT_PATTERN: AtomicUsize = AtomicUsize::new(0);
+use pattern::{Pattern, Slot};
 
-/// Where a global unknown goes in the reduced system.
-#[derive(Clone, Copy, Debug)]
-enum Slot {
-    /// Index among the free unknowns.
-    Free(usize),
-    /// Index among the prescribed unknowns.
-    Fixed(usize),
+/// The lower triangle of a tangent `K_ff` in CSC form: its values on the stored entries of the
+/// pattern it was assembled on (shared, not copied).
+#[derive(Clone, Debug)]
+pub struct Tangent {
+    structure: Arc<SymbolicSparseColMat<usize>>,
+    values: Vec<f64>,
 }
 
-/// The reduced system's sparsity for one set of prescribed unknowns.
-struct Pattern {
-    id: usize,
-    constrained: Vec<usize>,
-    /// The added energy's groups the pattern includes (after the elements).
-    groups: Vec<Vec<usize>>,
-    slots: Vec<Slot>,
-    free: Vec<usize>,
-    /// Element `e` owns `values[offsets[e]..offsets[e + 1]]`: its free-free block, row-major,
-    /// the entries on and below the global diagonal (row >= column) only;
-    /// group `g` of the added energy follows as block `elements + g`.
-    offsets: Vec<usize>,
-    symbolic: SymbolicSparseColMat<usize>,
-    /// Stored entry `p` of `K_ff` (CSC order) is the sum of the element-matrix entries
-    /// `sources[starts[p]..starts[p + 1]]` (indices into the element value buffer).
-    starts: Vec<usize>,
-    sources: Vec<u32>,
-    /// Position of the diagonal entry of each free unknown's column.
-    diagonal: Vec<usize>,
+impl Tangent {
+    /// The matrix.
+    pub fn as_ref(&self) -> SparseColMatRef<'_, usize, f64> {
+        SparseColMatRef::new(self.symbolic(), &self.values)
+    }
+
+    /// Its stored entries.
+    pub fn symbolic(&self) -> SymbolicSparseColMatRef<'_, usize> {
+        self.structure.as_ref().as_ref()
+    }
+
+    /// Its dimension.
+    pub fn nrows(&self) -> usize {
+        self.structure.nrows()
+    }
+
+    /// Number of stored entries (the lower triangle).
+    pub fn compute_nnz(&self) -> usize {
+        self.values.len()
+    }
 }
 
 /// The assembled nonlinear system at one displacement.
@@ -64,7 +65,7 @@ pub struct Assembled {
     /// Residual on the free unknowns: internal force, plus `K_fc du_c` when lifted.
     pub residual: Vec<f64>,
     /// Tangent `K_ff` (lower triangle), when requested.
-    pub tangent: Option<SparseColMat<usize, f64>>,
+    pub tangent: Option<Tangent>,
     /// Internal force on each prescribed unknown (the reaction), in the order of `Dirichlet::dofs`.
     pub reactions: Vec<f64>,
     /// Total strain energy.
@@ -73,8 +74,13 @@ pub struct Assembled {
     pub added_energy: f64,
     /// Smallest `J = det F` over all Gauss points.
     pub min_jacobian: f64,
-    /// Identifies the sparsity pattern (changes when the prescribed set does).
+    /// Identifies the layout of the assembly (changes when the prescribed set or the added
+    /// groups do).
     pub pattern: usize,
+    /// Identifies the stored entries of the tangent (changes only when a prescribed set or a
+    /// group needs entries not stored before): matrices with one structure share a symbolic
+    /// factorisation.
+    pub structure: usize,
     /// Wall time of this assembly.
     pub elapsed: Duration,
 }
@@ -309,17 +315,16 @@ impl System {
             added_energy += diagonal.energy;
         }
         let tangent = with_tangent.then(|| {
-            let mut values = vec![0.0; pattern.starts.len() - 1];
-            values.par_iter_mut().with_min_len(4096).enumerate().for_each(|(p, v)| {
-                let sources = &pattern.sources[pattern.starts[p]..pattern.starts[p + 1]];
-                *v = sources.iter().map(|&s| entries[s as usize]).sum();
-            });
+            let mut values = pattern.tangent_values(&entries, self.mesh.elements().len());
             if let Some(diagonal) = &diagonal {
                 for (&position, &dof) in pattern.diagonal.iter().zip(&pattern.free) {
                     values[position] += diagonal.curvature[dof];
                 }
             }
-            SparseColMat::new(pattern.symbolic.clone(), values)
+            Tangent {
+                structure: Arc::clone(&pattern.symbolic),
+                values,
+            }
         });
         self.entries = entries;
         Ok(Assembled {
@@ -330,6 +335,7 @@ impl System {
             added_energy,
             min_jacobian,
             pattern: pattern.id,
+            structure: pattern.structure,
             elapsed: start.elapsed(),
         })
     }
@@ -380,8 +386,8 @@ impl System {
         Ok((state, lifted))
     }
 
-    /// The cached pattern for `bc`'s prescribed unknowns and the added `groups`, rebuilt when
-    /// either changes.
+    /// The cached pattern for `bc`'s prescribed unknowns and the added `groups`: the stored
+    /// entries are kept when the groups change but fit in them, and rebuilt otherwise.
     fn pattern_for(&mut self, bc: &Dirichlet, groups: &[Vec<usize>]) -> Result<&Pattern> {
         let n = self.mesh.num_dofs();
         if let Some(&bad) = bc.dofs().iter().chain(groups.iter().flatten()).find(|&&d| d >= n) {
@@ -391,14 +397,7 @@ impl System {
                 &format!("[0, {n})"),
             ));
         }
-        if self
-            .pattern
-            .as_ref()
-            .is_none_or(|p| p.constrained != bc.dofs() || p.groups != groups)
-        {
-            let id = NEXT_PATTERN.fetch_add(1, Ordering::Relaxed);
-            self.pattern = Some(build_pattern(&self.mesh, bc.dofs(), groups, id));
-        }
+        Pattern::refresh(&mut self.pattern, &self.mesh, bc.dofs(), groups);
         Ok(self.pattern.as_ref().expect("just built"))
     }
 }
@@ -440,85 +439,6 @@ fn group_contribution(
         }
     }
     (block, lifted)
-}
-
-/// Slots, free list, per-block offsets and the CSC pattern of the lower triangle of `K_ff`
-/// (elements, then groups).
-fn build_pattern(mesh: &Mesh, constrained: &[usize], groups: &[Vec<usize>], id: usize) -> Pattern {
-    let mut slots = vec![Slot::Free(0); mesh.num_dofs()];
-    for (c, &dof) in constrained.iter().enumerate() {
-        slots[dof] = Slot::Fixed(c);
-    }
-    let mut free = Vec::with_capacity(slots.len() - constrained.len());
-    for (dof, slot) in slots.iter_mut().enumerate() {
-        if let Slot::Free(f) = slot {
-            *f = free.len();
-            free.push(dof);
-        }
-    }
-    let mut offsets = vec![0];
-    let mut pairs = Vec::new();
-    let element_dofs = mesh
-        .elements()
-        .iter()
-        .map(|nodes| (0..DOFS).map(|i| 2 * nodes[i / 2] + i % 2).collect::<Vec<_>>());
-    for dofs in element_dofs.chain(groups.iter().cloned()) {
-        let local: Vec<usize> = dofs
-            .iter()
-            .filter_map(|&dof| match slots[dof] {
-                Slot::Free(f) => Some(f),
-                Slot::Fixed(_) => None,
-            })
-            .collect();
-        for &row in &local {
-            pairs.extend(local.iter().filter(|&&col| row >= col).map(|&col| Pair::new(row, col)));
-        }
-        offsets.push(pairs.len());
-    }
-    let (symbolic, _) = SymbolicSparseColMat::try_new_from_indices(free.len(), free.len(), &pairs)
-        .expect("pattern indices are in range by construction");
-    let (starts, sources) = gather_lists(&symbolic, &pairs);
-    let diagonal = (0..free.len()).map(|f| position(&symbolic, f, f)).collect();
-    Pattern {
-        id,
-        constrained: constrained.to_vec(),
-        groups: groups.to_vec(),
-        slots,
-        free,
-        offsets,
-        symbolic,
-        starts,
-        sources,
-        diagonal,
-    }
-}
-
-/// Position of entry `(row, col)` in the CSC arrays of `symbolic` (it must be stored).
-fn position(symbolic: &SymbolicSparseColMat<usize>, row: usize, col: usize) -> usize {
-    let (col_ptr, row_idx) = (symbolic.col_ptr(), symbolic.row_idx());
-    let column = &row_idx[col_ptr[col]..col_ptr[col + 1]];
-    col_ptr[col] + column.binary_search(&row).expect("every pair is in the pattern")
-}
-
-/// For every stored entry of `symbolic`, the indices of the `pairs` that land on it (increasing):
-/// a counting sort of the pairs by their position in the CSC arrays.
-fn gather_lists(symbolic: &SymbolicSparseColMat<usize>, pairs: &[Pair<usize, usize>]) -> (Vec<usize>, Vec<u32>) {
-    let row_idx = symbolic.row_idx();
-    let positions: Vec<usize> = pairs.iter().map(|p| position(symbolic, p.row, p.col)).collect();
-    let mut starts = vec![0; row_idx.len() + 1];
-    for &p in &positions {
-        starts[p + 1] += 1;
-    }
-    for p in 0..row_idx.len() {
-        starts[p + 1] += starts[p];
-    }
-    let mut next = starts.clone();
-    let mut sources = vec![0; pairs.len()];
-    for (source, &p) in positions.iter().enumerate() {
-        sources[next[p]] = u32::try_from(source).expect("fewer than 2^32 element-matrix entries");
-        next[p] += 1;
-    }
-    (starts, sources)
 }
 
 /// One mutable slice of `values` per block (empty ones when no tangent is assembled).

@@ -15,7 +15,7 @@ pub mod memory;
 pub mod mixed;
 pub mod newton;
 
-pub use assembly::{Assembled, System};
+pub use assembly::{Assembled, System, Tangent};
 pub use boundary::{dof, model_conditions, Dirichlet};
 pub use linear_solver::{Factorisation, SparseLdlt};
 pub use newton::{Newton, NewtonError, NewtonReport, NewtonSettings, Timings};

@@ -107,7 +107,9 @@ impl Default for NewtonSettings {
 pub struct Newton {
     /// Tolerances and limits.
     pub settings: NewtonSettings,
-    solver: Option<(usize, SparseLdlt)>,
+    /// The held factorisation: the layout id of the assembly it factorised, and the solver of
+    /// that assembly's structure.
+    solver: Option<(usize, usize, SparseLdlt)>,
 }
 
 impl Newton {
@@ -123,7 +125,7 @@ impl Newton {
 
     /// The linear solver of the last pattern (its last factorisation and timings).
     pub fn linear_solver(&self) -> Option<&SparseLdlt> {
-        self.solver.as_ref().map(|(_, s)| s)
+        self.solver.as_ref().map(|(_, _, s)| s)
     }
 
     /// Solves equilibrium with `bc` prescribed, starting from `u` (full vector); on success `u`
@@ -246,7 +248,7 @@ impl Newton {
                         let definite = self
                             .solver
                             .as_ref()
-                            .is_some_and(|(_, f)| f.negative_pivots() == Some(0));
+                            .is_some_and(|(_, _, f)| f.negative_pivots() == Some(0));
                         reuse = ratio <= if definite { s.contraction } else { s.contraction.powi(2) };
                     }
                     None => reuse = false,
@@ -277,7 +279,7 @@ impl Newton {
     fn holds(&self, pattern: usize, own: bool) -> bool {
         self.solver
             .as_ref()
-            .is_some_and(|(id, solver)| *id == pattern && (own || solver.negative_pivots() == Some(0)))
+            .is_some_and(|(id, _, solver)| *id == pattern && (own || solver.negative_pivots() == Some(0)))
     }
 
     /// A full step with the held factorisation: the new iterate, its displacement, the update
@@ -290,7 +292,7 @@ impl Newton {
         state: &Iterate,
         residual: f64,
     ) -> Result<Option<ReusedStep>, NewtonError> {
-        let (_, solver) = self.solver.as_mut().expect("held, checked by the caller");
+        let (_, _, solver) = self.solver.as_mut().expect("held, checked by the caller");
         let mut du: Vec<f64> = state.assembled.residual.iter().map(|r| -r).collect();
         // Single precision (the next residual checks the step), except with the
         // incompressibility penalty, whose conditioning leaves it too few digits.
@@ -408,7 +410,7 @@ impl Newton {
         if !factorised || self.solver.is_none() {
             self.factorize(current, timings);
         }
-        let (_, solver) = self.solver.as_mut().expect("factorised");
+        let (_, _, solver) = self.solver.as_mut().expect("factorised");
         loop {
             let mut du: Vec<f64> = current.residual.iter().map(|r| -r).collect();
             solver.solve_in_place(&mut du)?;
@@ -430,16 +432,21 @@ impl Newton {
         }
     }
 
-    /// Factorises `current`'s tangent, redoing the symbolic analysis when the pattern changed.
+    /// Factorises `current`'s tangent, redoing the symbolic analysis when the structure changed.
     fn factorize(&mut self, current: &Assembled, timings: &mut Timings) -> &mut SparseLdlt {
         let k = current.tangent.as_ref().expect("assembled with the tangent");
-        if self.solver.as_ref().is_none_or(|(id, _)| *id != current.pattern) {
-            self.solver = None; // free the old factor before analysing the new pattern
+        if self
+            .solver
+            .as_ref()
+            .is_none_or(|(_, structure, _)| *structure != current.structure)
+        {
+            self.solver = None; // free the old factor before analysing the new structure
             let solver = SparseLdlt::new(k.symbolic());
             timings.analysis += solver.symbolic_time();
-            self.solver = Some((current.pattern, solver));
+            self.solver = Some((current.pattern, current.structure, solver));
         }
-        let (_, solver) = self.solver.as_mut().expect("set above");
+        let (pattern, _, solver) = self.solver.as_mut().expect("set above");
+        *pattern = current.pattern;
         solver.factorize(k.as_ref());
         timings.factorisation += solver.factorisation_time();
         timings.factorisations += 1;

@@ -12,11 +12,11 @@ use crate::error::{Error, Result};
 use crate::fem::added::NoAddedEnergy;
 use crate::fem::boundary::{dof, X, Y};
 use crate::fem::linear_solver::inverse_lanczos;
-use crate::fem::{model_conditions, Assembled, SparseLdlt, System};
+use crate::fem::{model_conditions, Assembled, SparseLdlt, System, Tangent};
 use crate::homogeneous::{constraint_pressure, homogeneous_state, HomogeneousState};
 use crate::material::{jacobian, Bilayer};
 use crate::mesh::{Mesh, MeshSpec};
-use faer::sparse::SparseColMat;
+
 use std::f64::consts::PI;
 
 /// Scan, bisection and inverse-iteration limits.
@@ -122,7 +122,7 @@ impl HomogeneousPath<'_> {
     }
 
     /// Assembles and factorises `K_ff` at the homogeneous state `d`: negative pivots and `K_ff`.
-    fn factorise(&mut self, d: f64) -> Result<(usize, SparseColMat<usize, f64>)> {
+    fn factorise(&mut self, d: f64) -> Result<(usize, Tangent)> {
         let bc = model_conditions(self.system.mesh(), d)?;
         let u = homogeneous_unknowns(&self.system, self.materials, &homogeneous_state(self.materials, d)?)?;
         let assembled = self.system.assemble_for_stability(&u, &bc, &NoAddedEnergy)?;
@@ -146,7 +146,7 @@ impl HomogeneousPath<'_> {
 
     /// The eigenvector of the smallest eigenvalue of the current factor, by Lanczos on `K^-1`,
     /// on the free unknowns, with its Rayleigh quotient.
-    fn smallest_mode(&mut self, iterations: usize, k: &SparseColMat<usize, f64>) -> Result<(Vec<f64>, f64)> {
+    fn smallest_mode(&mut self, iterations: usize, k: &Tangent) -> Result<(Vec<f64>, f64)> {
         let solver = self.solver.as_mut().expect("factorised before");
         inverse_lanczos(solver, k.as_ref(), iterations, 1e-12)
     }
