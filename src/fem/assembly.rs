@@ -163,6 +163,16 @@ impl System {
         })
     }
 
+    /// The system of the same elements on `mesh`, whose nodes have moved (an imperfect
+    /// geometry): like [`System::new`], but keeping the sparsity pattern and its identity, so
+    /// that a factorisation's analysis carries over. `mesh` must have the same elements.
+    pub fn with_moved_nodes(self, mesh: Mesh, materials: &Bilayer) -> Result<Self> {
+        assert_eq!(mesh.elements(), self.mesh.elements(), "the same elements");
+        let mut moved = System::new(mesh, materials)?;
+        moved.pattern = self.pattern;
+        Ok(moved)
+    }
+
     /// The mesh.
     pub fn mesh(&self) -> &Mesh {
         &self.mesh

@@ -180,10 +180,14 @@ pub fn run(
     // From the homogeneous state itself (eq. 4), which the perfect mesh reproduces to round-off.
     let mut u = homogeneous_unknowns(&system, materials, &homogeneous_state(materials, d0)?)?;
     let bc = model_conditions(&perfect, d0)?;
+    let imperfect = protocol.imperfection > 0.0 || protocol.imperfection2 > 0.0;
+    // Stage 2 reports the inertia of its own state (stage 1's is not reported then).
+    newton.settings.inertia_at_solution = protocol.newton.inertia_at_solution && !imperfect;
     let mut report = newton
         .solve(&mut system, &mut u, &bc)
         .map_err(|e| stage_failure(1, e.into()))?;
-    if protocol.imperfection > 0.0 || protocol.imperfection2 > 0.0 {
+    newton.settings = protocol.newton;
+    if imperfect {
         observer(Event::Stage(&format!(
             "stage 2: imperfection {} cos({:.6} X){} of the reference geometry, equilibrium at d = {d0}",
             protocol.imperfection,
@@ -211,7 +215,7 @@ pub fn run(
             let ([_, a], [_, b]) = (imperfection.displacement(x), long_wave.displacement(x));
             [0.0, a + b]
         });
-        system = System::new(mesh, materials)?;
+        system = system.with_moved_nodes(mesh, materials)?;
         report = newton
             .solve(&mut system, &mut u, &bc)
             .map_err(|e| stage_failure(2, e.into()))?;
