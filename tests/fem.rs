@@ -6,10 +6,11 @@
 mod common;
 
 use common::{boundary_values, distortion, error_norms, homogeneous_material, worst_nodal_error};
-use fiberfold::fem::added::{AddedEnergy, Block};
+use fiberfold::fem::added::{AddedEnergy, Block, Diagonal};
 use fiberfold::fem::boundary::{X, Y};
+use fiberfold::fem::inertia::BackgroundInertia;
 use fiberfold::fem::linear_solver::multiply;
-use fiberfold::fem::{dof, model_conditions, Newton, NewtonError, NewtonSettings, System};
+use fiberfold::fem::{dof, model_conditions, Newton, NewtonError, NewtonSettings, SparseLdlt, System};
 use fiberfold::homogeneous::homogeneous_state;
 use fiberfold::material::Bilayer;
 use fiberfold::mesh::{ElementKind, Mesh, MeshSpec};
@@ -195,6 +196,76 @@ fn groups_that_fit_keep_the_stored_entries_and_the_tangent_adds_them() {
     assert_eq!(check(&Vec::new()).1, coupled, "entries once added stay");
     assert_eq!(check(&one_node).1, coupled);
     assert_eq!(check(&distant).1, coupled);
+}
+
+/// A spring of stiffness `-c` on each of the given unknowns.
+struct NegativeSprings {
+    dofs: Vec<usize>,
+    total: usize,
+    stiffness: f64,
+}
+
+impl AddedEnergy for NegativeSprings {
+    fn groups(&self) -> &[Vec<usize>] {
+        &[]
+    }
+
+    fn block(&self, g: usize, _: &[f64], _: bool) -> Block {
+        unreachable!("no group {g}")
+    }
+
+    fn diagonal(&self, _: &[f64]) -> Option<Diagonal> {
+        let mut curvature = vec![0.0; self.total];
+        for &d in &self.dofs {
+            curvature[d] = -self.stiffness;
+        }
+        Some(Diagonal {
+            energy: 0.0,
+            gradient: vec![0.0; self.total],
+            curvature,
+        })
+    }
+}
+
+/// Counts made on the second thread come back in order and are exact: a positive definite `K`
+/// minus a spring far stiffer than `K` on each of `m` unknowns has exactly `m` negative
+/// eigenvalues (interlacing, with the Schur complement on the other unknowns positive
+/// definite); a solver whose factor was freed factorises again to the same count.
+#[test]
+fn inertia_counted_in_the_background_is_exact_and_in_order() {
+    let mesh = Mesh::new(MeshSpec::new(4, 1, 2, 1.0, 4.0, 2.0)).unwrap();
+    let mut system = System::new(mesh.clone(), &Bilayer::new(&Parameters::default())).unwrap();
+    let bc = model_conditions(&mesh, 0.0).unwrap();
+    let u = vec![0.0; mesh.num_dofs()];
+    let free = system.free_dofs(&bc).unwrap().to_vec();
+    let elastic = system.assemble(&u, &bc, None, true).unwrap();
+    let mut solver = SparseLdlt::new(elastic.tangent.as_ref().unwrap().symbolic());
+    let mut counter = BackgroundInertia::default();
+    let counts = [0, 3, 1, 5, 2];
+    for (i, &m) in counts.iter().enumerate() {
+        let springs = NegativeSprings {
+            dofs: free.iter().step_by(7).take(m).copied().collect(),
+            total: mesh.num_dofs(),
+            stiffness: 1e9,
+        };
+        let assembled = system.assemble_with(&u, &bc, None, true, &springs).unwrap();
+        // Every other count analyses the pattern itself, the others share `solver`'s analysis.
+        counter.start(assembled, |_| (i % 2 == 1).then(|| solver.sibling()));
+    }
+    let got: Vec<Option<usize>> = (0..counts.len()).map(|_| counter.next_count()).collect();
+    assert_eq!(got, counts.map(Some).to_vec());
+    assert_eq!(counter.next_count(), None);
+
+    let k = elastic.tangent.as_ref().unwrap().as_ref();
+    solver.factorize(k);
+    let mut x = elastic.residual.clone();
+    solver.solve_in_place(&mut x).unwrap();
+    solver.free_factor();
+    assert_eq!(solver.negative_pivots(), None, "no factorisation after freeing it");
+    solver.factorize(k);
+    let mut again = elastic.residual.clone();
+    solver.solve_in_place(&mut again).unwrap();
+    assert_eq!((solver.negative_pivots(), x), (Some(0), again));
 }
 
 /// A small perturbed bilayer mesh with fibres at beta = 0.3, for the Newton tests.

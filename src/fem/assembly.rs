@@ -173,6 +173,12 @@ impl System {
         Ok(moved)
     }
 
+    /// Whether an assembly with `bc` prescribed and `groups` added keeps the current stored
+    /// entries (so a factorisation needs no new analysis).
+    pub fn keeps_structure(&self, bc: &Dirichlet, groups: &[Vec<usize>]) -> bool {
+        self.pattern.as_ref().is_some_and(|p| p.fits(bc.dofs(), groups))
+    }
+
     /// The mesh.
     pub fn mesh(&self) -> &Mesh {
         &self.mesh

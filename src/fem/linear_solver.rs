@@ -23,6 +23,7 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, Mat, MatMut, Par, Side};
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// Which factorisation currently holds.
@@ -34,10 +35,17 @@ pub enum Factorisation {
     Lblt,
 }
 
+/// The symbolic analysis of one sparsity pattern, shared by the solvers of its matrices.
+struct Analysis {
+    symbolic: SymbolicCholesky<usize>,
+    order: FactorOrder,
+}
+
 /// A reusable factorisation of symmetric matrices sharing one sparsity pattern.
 pub struct SparseLdlt {
-    symbolic: SymbolicCholesky<usize>,
-    permuted: PermutedLower,
+    analysis: Arc<Analysis>,
+    /// The matrix in the factor's order (see [`FactorOrder`]).
+    permuted: Vec<f64>,
     values: Vec<f64>,
     subdiag: Vec<f64>,
     perm_forward: Vec<usize>,
@@ -66,7 +74,22 @@ impl SparseLdlt {
         };
         let symbolic = factorize_symbolic_cholesky(pattern, Side::Lower, SymmetricOrdering::Amd, params)
             .expect("symbolic factorisation fails only when out of memory");
+        let order = FactorOrder::new(pattern, &symbolic);
+        let mut solver = SparseLdlt::with_analysis(Arc::new(Analysis { symbolic, order }));
+        solver.symbolic_time = start.elapsed();
+        solver
+    }
+
+    /// A second solver for matrices of the same pattern, sharing this one's analysis (no
+    /// symbolic work, only its own factor's memory): e.g. to factorise another matrix on
+    /// another thread while this one's factor is in use.
+    pub fn sibling(&self) -> SparseLdlt {
+        SparseLdlt::with_analysis(Arc::clone(&self.analysis))
+    }
+
+    fn with_analysis(analysis: Arc<Analysis>) -> Self {
         let par = Par::Seq;
+        let symbolic = &analysis.symbolic;
         let SymbolicCholeskyRaw::Supernodal(supernodal) = symbolic.raw() else {
             unreachable!("the symbolic analysis forces a supernodal factor")
         };
@@ -77,18 +100,18 @@ impl SparseLdlt {
         ]));
         let n = symbolic.nrows();
         SparseLdlt {
-            permuted: PermutedLower::new(pattern, &symbolic),
+            permuted: vec![0.0; analysis.order.row_idx.len()],
             values: vec![0.0; symbolic.len_val()],
             subdiag: vec![0.0; n],
             perm_forward: vec![0; n],
             perm_inverse: vec![0; n],
-            symbolic,
+            analysis,
             scratch,
             pivoted_scratch: None,
             state: None,
             single: false,
             negative: std::cell::OnceCell::new(),
-            symbolic_time: start.elapsed(),
+            symbolic_time: Duration::ZERO,
             factorisation_time: Duration::ZERO,
             solve_time: Duration::ZERO,
         }
@@ -96,26 +119,25 @@ impl SparseLdlt {
 
     /// Dimension of the matrices.
     pub fn dimension(&self) -> usize {
-        self.symbolic.nrows()
+        self.analysis.symbolic.nrows()
     }
 
     /// Number of stored factor values (lower triangle plus the dense diagonal blocks).
     pub fn factor_size(&self) -> usize {
-        self.symbolic.len_val()
+        self.analysis.symbolic.len_val()
     }
 
     /// `L D L^T` of the symmetric matrix whose lower triangle is `a` (same pattern as at
     /// construction); falls back to `L B L^T` on a zero pivot.
     pub fn factorize(&mut self, a: SparseColMatRef<'_, usize, f64>) -> Factorisation {
         let start = Instant::now();
-        self.negative = std::cell::OnceCell::new();
-        self.single = false;
-        let SymbolicCholeskyRaw::Supernodal(supernodal) = self.symbolic.raw() else {
+        self.prepare();
+        let SymbolicCholeskyRaw::Supernodal(supernodal) = self.analysis.symbolic.raw() else {
             unreachable!("the symbolic analysis forces a supernodal factor")
         };
         let ldlt = factorize_supernodal_numeric_ldlt(
             &mut self.values,
-            self.permuted.gather(a),
+            self.analysis.order.gather(a, &mut self.permuted),
             LdltRegularization::default(),
             supernodal,
             Par::Seq,
@@ -132,12 +154,31 @@ impl SparseLdlt {
         kind
     }
 
+    /// Forgets the factorisation in place, with the factor's memory made again if it was freed.
+    fn prepare(&mut self) {
+        self.negative = std::cell::OnceCell::new();
+        self.single = false;
+        self.state = None;
+        if self.values.is_empty() {
+            self.values = vec![0.0; self.analysis.symbolic.len_val()];
+        }
+    }
+
+    /// Frees the factor's memory (the largest part of a solver) until the next factorisation,
+    /// keeping the analysis and the small workspaces.
+    pub fn free_factor(&mut self) {
+        self.values = Vec::new();
+        self.pivoted_scratch = None;
+        self.negative = std::cell::OnceCell::new();
+        self.single = false;
+        self.state = None;
+    }
+
     /// Intranode Bunch-Kaufman `L B L^T` of `a`: slower, but stable for indefinite matrices.
     pub fn factorize_pivoted(&mut self, a: SparseColMatRef<'_, usize, f64>) -> Factorisation {
         let start = Instant::now();
-        self.negative = std::cell::OnceCell::new();
-        self.single = false;
-        let symbolic = &self.symbolic;
+        self.prepare();
+        let symbolic = &self.analysis.symbolic;
         let scratch = self.pivoted_scratch.get_or_insert_with(|| {
             MemBuffer::new(StackReq::any_of(&[
                 symbolic.factorize_numeric_intranode_lblt_scratch::<f64>(Par::Seq, Default::default()),
@@ -177,7 +218,7 @@ impl SparseLdlt {
         let x = MatMut::from_column_major_slice_mut(rhs, n, 1);
         match self.state {
             None => panic!("solve_in_place called before factorize"),
-            Some(Factorisation::Ldlt) => LdltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
+            Some(Factorisation::Ldlt) => LdltRef::new(&self.analysis.symbolic, &self.values).solve_in_place_with_conj(
                 Conj::No,
                 x,
                 Par::Seq,
@@ -190,12 +231,8 @@ impl SparseLdlt {
                         .expect("made by the L B L^T factorisation"),
                 );
                 let perm = PermRef::new_checked(&self.perm_forward, &self.perm_inverse, n);
-                IntranodeLbltRef::new(&self.symbolic, &self.values, &self.subdiag, perm).solve_in_place_with_conj(
-                    Conj::No,
-                    x,
-                    Par::Seq,
-                    stack,
-                )
+                IntranodeLbltRef::new(&self.analysis.symbolic, &self.values, &self.subdiag, perm)
+                    .solve_in_place_with_conj(Conj::No, x, Par::Seq, stack)
             }
         }
         self.solve_time = start.elapsed();
@@ -219,7 +256,7 @@ impl SparseLdlt {
         assert_eq!(rhs.len(), n, "right-hand side length");
         let mut x: Vec<f32> = rhs.iter().map(|&v| v as f32).collect();
         let single: &[f32] = bytemuck::cast_slice(&self.values);
-        LdltRef::new(&self.symbolic, &single[..self.values.len()]).solve_in_place_with_conj(
+        LdltRef::new(&self.analysis.symbolic, &single[..self.values.len()]).solve_in_place_with_conj(
             Conj::No,
             MatMut::from_column_major_slice_mut(&mut x, n, 1),
             Par::Seq,
@@ -245,7 +282,7 @@ impl SparseLdlt {
     /// Number of negative eigenvalues of the factorised matrix (negative pivots of `D` or `B`).
     pub fn negative_pivots(&self) -> Option<usize> {
         let kind = self.state?;
-        let SymbolicCholeskyRaw::Supernodal(supernodal) = self.symbolic.raw() else {
+        let SymbolicCholeskyRaw::Supernodal(supernodal) = self.analysis.symbolic.raw() else {
             unreachable!("the symbolic analysis forces a supernodal factor")
         };
         Some(*self.negative.get_or_init(|| match kind {
@@ -306,18 +343,17 @@ impl SparseLdlt {
 /// The slot of an entry above the diagonal.
 const ABOVE: usize = usize::MAX;
 
-/// The lower triangle of the matrices of one pattern in the factor's order (row and column
-/// `inv[i]` for `i`), refilled at every factorisation through `slot`.
-struct PermutedLower {
+/// The pattern of the lower triangle of one pattern's matrices in the factor's order (row and
+/// column `inv[i]` for `i`), filled at every factorisation through `slot`.
+struct FactorOrder {
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
-    /// Where each stored entry of the original goes in `values` ([`ABOVE`] for entries above
-    /// the diagonal, which the factorisation ignores).
+    /// Where each stored entry of the original goes among the permuted values ([`ABOVE`] for
+    /// entries above the diagonal, which the factorisation ignores).
     slot: Vec<usize>,
-    values: Vec<f64>,
 }
 
-impl PermutedLower {
+impl FactorOrder {
     /// The map of `pattern`'s lower triangle into `symbolic`'s order; rows unsorted.
     fn new(pattern: SymbolicSparseColMatRef<'_, usize>, symbolic: &SymbolicCholesky<usize>) -> Self {
         let n = pattern.ncols();
@@ -350,25 +386,24 @@ impl PermutedLower {
                 next[j] += 1;
             }
         }
-        PermutedLower {
-            col_ptr,
-            row_idx,
-            slot,
-            values: vec![0.0; nnz],
-        }
+        FactorOrder { col_ptr, row_idx, slot }
     }
 
-    /// `a` (of the pattern this map was built for) in the factor's order.
-    fn gather(&mut self, a: SparseColMatRef<'_, usize, f64>) -> SparseColMatRef<'_, usize, f64> {
+    /// `a` (of the pattern this map was built for) in the factor's order, in `values`.
+    fn gather<'a>(
+        &'a self,
+        a: SparseColMatRef<'_, usize, f64>,
+        values: &'a mut [f64],
+    ) -> SparseColMatRef<'a, usize, f64> {
         assert_eq!(a.val().len(), self.slot.len(), "matrix of another pattern");
         for (&slot, &value) in self.slot.iter().zip(a.val()) {
             if slot != ABOVE {
-                self.values[slot] = value;
+                values[slot] = value;
             }
         }
         let n = self.col_ptr.len() - 1;
         let pattern = SymbolicSparseColMatRef::new_unsorted_checked(n, n, &self.col_ptr, None, &self.row_idx);
-        SparseColMatRef::new(pattern, &self.values)
+        SparseColMatRef::new(pattern, values)
     }
 }
 

@@ -4,7 +4,8 @@
 //! Counts: the unknowns exactly; the stored entries of the tangent's lower triangle as 16.5 per
 //! unknown (16.1 and 16.3 measured on the coarse and fine meshes); the entries of the `L D L^T`
 //! factor as `5.5 n log2 n` (AMD on these structured Q2 meshes: 4.9 and 5.3 measured). Bytes:
-//! three factor-sized arrays (factor, faer's workspace, the permuted copy), the tangent with its
+//! three factor-sized arrays (Newton's factor, the one of an inertia counted in the background
+//! ([`super::inertia`]), and the analysis with its permuted copy), the tangent with its
 //! pattern and gather lists, the element matrices (171 stored values per element), a few dozen
 //! vectors of unknowns and 20 MB of program; within 15 % of the peak measured on both meshes.
 
@@ -59,6 +60,18 @@ pub fn available_bytes() -> Option<f64> {
     let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
     let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kb * 1024.0)
+}
+
+/// Hands the heap's free pages back to the system (glibc keeps blocks freed below its mmap
+/// threshold, here the tangents and gather buffers of the inertia counted on another thread,
+/// in the heap): called between a path and its post-processing, so that the two peaks do not
+/// add up.
+pub fn return_free_pages() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: malloc_trim only releases memory that no allocation owns.
+    unsafe {
+        libc::malloc_trim(0);
+    }
 }
 
 #[cfg(test)]

@@ -10,6 +10,7 @@ pub mod boundary;
 pub mod contact;
 pub mod element;
 pub mod fields;
+pub mod inertia;
 pub mod linear_solver;
 pub mod memory;
 pub mod mixed;

@@ -128,6 +128,21 @@ impl Newton {
         self.solver.as_ref().map(|(_, _, s)| s)
     }
 
+    /// Keeps the held factorisation from being reused by the next solve (its analysis stays).
+    pub fn forget_factorisation(&mut self) {
+        if let Some((pattern, _, _)) = &mut self.solver {
+            *pattern = usize::MAX;
+        }
+    }
+
+    /// A new solver sharing the held solver's analysis, if that is of the given structure.
+    pub fn sibling_solver(&self, structure: usize) -> Option<SparseLdlt> {
+        self.solver
+            .as_ref()
+            .filter(|(_, id, _)| *id == structure)
+            .map(|(_, _, solver)| solver.sibling())
+    }
+
     /// Solves equilibrium with `bc` prescribed, starting from `u` (full vector); on success `u`
     /// holds the solution, on failure it is unchanged.
     pub fn solve(&mut self, system: &mut System, u: &mut [f64], bc: &Dirichlet) -> Result<NewtonReport, NewtonError> {

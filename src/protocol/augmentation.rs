@@ -7,6 +7,7 @@ use super::stabilisation::{Stabilisation, StabilisationSettings};
 use crate::error::Result;
 use crate::fem::added::{AddedEnergy, NoAddedEnergy, Sum};
 use crate::fem::contact::{solve_with_contact, Contact, ContactSettings, Plane};
+use crate::fem::inertia::BackgroundInertia;
 use crate::fem::{Dirichlet, Newton, NewtonReport, System};
 use crate::material::Bilayer;
 use serde::Serialize;
@@ -16,6 +17,8 @@ use serde::Serialize;
 pub struct Augmentation {
     pub contact: Option<Contact>,
     pub stabilisation: Option<Stabilisation>,
+    /// The inertia of states whose tangent Newton did not factorise.
+    inertia: BackgroundInertia,
 }
 
 /// Largest Newton correction `|u - u_predicted|`, relative to the step `|u - u_0|`, for which the
@@ -48,9 +51,14 @@ pub struct AugmentedRecord {
     pub stabilisation_energy_fraction: f64,
     pub dissipated_energy: f64,
     pub eta: f64,
-    /// Wall time of the inertia of the accepted state: one more factorisation, or none where
-    /// it is read from the factorisation at the predictor.
+    /// Wall time the main thread spent on the inertia of the accepted state: none where it is
+    /// read from the factorisation at the predictor, otherwise the assembly of the undamped
+    /// tangent (its factorisation runs in the background, see `inertia_pending`).
     pub inertia_seconds: f64,
+    /// Whether the inertia is being counted in the background: the count is then
+    /// [`Augmentation::next_inertia`]'s, in the order of the states.
+    #[serde(skip)]
+    pub inertia_pending: bool,
     /// Nominal contact pressure `(node, p)` at every top-surface node.
     #[serde(skip)]
     pub pressure: Vec<(usize, f64)>,
@@ -73,7 +81,18 @@ impl Augmentation {
             stabilisation: stabilisation
                 .map(|s| Stabilisation::new(system, materials, s))
                 .transpose()?,
+            inertia: BackgroundInertia::default(),
         })
+    }
+
+    /// The inertia of the oldest accepted state whose count was pending (waiting for it).
+    pub fn next_inertia(&mut self) -> Option<usize> {
+        self.inertia.next_count()
+    }
+
+    /// Frees the background inertia's factor (after the path, before post-processing).
+    pub fn release_factorisation(&mut self) {
+        self.inertia.release();
     }
 
     /// Equilibrium at `d` (prescribed by `bc`) from the predictor `u`, stepping from the
@@ -83,7 +102,9 @@ impl Augmentation {
     /// Newton's factorisation at the predictor where that tangent is the same energy's (an
     /// undamped step, no contact force at the predictor or at the solution, one Newton solve;
     /// see [`crate::fem::newton`]) and the predictor was within 1e-2 (`PREDICTOR_CLOSENESS`) of a
-    /// step of the solution, otherwise from one more factorisation at the solution.
+    /// step of the solution, otherwise from one more factorisation at the solution, counted on
+    /// a second thread while the next step goes on (the record is then `inertia_pending`, and
+    /// [`Augmentation::next_inertia`] gives the count).
     #[allow(clippy::too_many_arguments)]
     pub fn solve(
         &mut self,
@@ -137,6 +158,13 @@ impl Augmentation {
             let (mut report, augmentations, loaded_at_start) = match &mut self.contact {
                 Some(contact) => {
                     contact.set_plane(RIGHT_PLANE, Plane::right(length * (1.0 - d)));
+                    // A new structure means a new analysis and pattern, which are large: the
+                    // count in the background finishes first, freeing its factor.
+                    let mut probe = contact.clone();
+                    probe.search(u);
+                    if !system.keeps_structure(bc, probe.groups()) {
+                        self.inertia.release();
+                    }
                     let solved = solve_with_contact(newton, system, u, bc, contact, other)?;
                     let mut report = solved.report;
                     report.iterations = solved.iterations;
@@ -154,17 +182,21 @@ impl Augmentation {
             let from_start = report
                 .start_negative_pivots
                 .filter(|_| close && !damped && augmentations == 1 && !loaded_at_start && unloaded(&self.contact, u));
-            if let (true, Some(count)) = (wants_inertia, from_start) {
-                report.negative_pivots = Some(count);
-            } else if wants_inertia {
-                // The damper's groups with zero damping keep the pattern (and its analysis).
-                let undamped = damper.map(|damper| damper.undamped());
-                let contact: &dyn AddedEnergy = self.contact.as_ref().map_or(&NoAddedEnergy, |c| c);
-                let damping: &dyn AddedEnergy = undamped.as_ref().map_or(&NoAddedEnergy, |d| d);
-                let started = std::time::Instant::now();
-                report.negative_pivots = newton.inertia(system, u, bc, &Sum::new(vec![contact, damping]))?;
-                record.inertia_seconds = started.elapsed().as_secs_f64();
-            }
+            let started = std::time::Instant::now();
+            let undamped_tangent = match (wants_inertia, from_start) {
+                (true, Some(count)) => {
+                    report.negative_pivots = Some(count);
+                    None
+                }
+                (true, None) => {
+                    // The damper's groups with zero damping keep the pattern (and its analysis).
+                    let undamped = damper.map(|damper| damper.undamped());
+                    let contact: &dyn AddedEnergy = self.contact.as_ref().map_or(&NoAddedEnergy, |c| c);
+                    let damping: &dyn AddedEnergy = undamped.as_ref().map_or(&NoAddedEnergy, |d| d);
+                    Some(system.assemble_for_stability(u, bc, &Sum::new(vec![contact, damping]))?)
+                }
+                (false, _) => None,
+            };
             if let Some(s) = &mut self.stabilisation {
                 let Some(fraction) = s.book(dissipation, report.energy)? else {
                     u.copy_from_slice(&predictor);
@@ -174,6 +206,16 @@ impl Augmentation {
                 record.stabilisation_energy_fraction = fraction;
                 record.dissipated_energy = s.dissipated();
                 record.eta = s.eta();
+            }
+            if let Some(tangent) = undamped_tangent {
+                // Counted while the next step goes on, which starts from a new factorisation
+                // (as it did when this count replaced Newton's held one: that of an unstable
+                // state is not reused).
+                self.inertia
+                    .start(tangent, |structure| newton.sibling_solver(structure));
+                newton.forget_factorisation();
+                record.inertia_pending = true;
+                record.inertia_seconds = started.elapsed().as_secs_f64();
             }
             if let Some(contact) = &self.contact {
                 let state = contact.state(u);

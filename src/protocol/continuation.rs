@@ -166,6 +166,8 @@ pub struct Continuation {
     augmentation: Option<Augmentation>,
     /// `du/dd` for the predictor while only one state is known.
     slope: Option<Vec<f64>>,
+    /// An accepted state whose inertia is still being counted: reported once it is known.
+    pending: Option<(StepRecord, Vec<f64>)>,
 }
 
 /// How many converged states the predictor extrapolates through (cubic).
@@ -183,6 +185,7 @@ impl Continuation {
             history: VecDeque::from([(d, u)]),
             augmentation: None,
             slope: None,
+            pending: None,
         })
     }
 
@@ -219,6 +222,10 @@ impl Continuation {
     /// path, so that two factors are never held at once).
     pub fn release_factorisation(&mut self) {
         self.newton.release_factorisation();
+        if let Some(augmentation) = &mut self.augmentation {
+            augmentation.release_factorisation();
+        }
+        crate::fem::memory::return_free_pages();
     }
 
     /// The system being solved.
@@ -226,9 +233,23 @@ impl Continuation {
         &self.system
     }
 
+    /// The system and the current converged displacement, for post-processing.
+    pub fn into_state(self) -> (System, Vec<f64>) {
+        let (_, u) = self.history.into_iter().next_back().expect("never empty");
+        (self.system, u)
+    }
+
     /// Advances to `target`, reporting every accepted step and every cut; stops with
-    /// [`Error::Solver`] naming `d` and the reason when the minimum step fails.
+    /// [`Error::Solver`] naming `d` and the reason when the minimum step fails. A state whose
+    /// inertia is counted in the background is reported once the count is in, before anything
+    /// that follows it.
     pub fn advance_to(&mut self, target: f64, observer: &mut dyn FnMut(Event<'_>) -> Result<()>) -> Result<()> {
+        let result = self.advance(target, observer);
+        let reported = self.report_pending(observer, false);
+        result.and(reported)
+    }
+
+    fn advance(&mut self, target: f64, observer: &mut dyn FnMut(Event<'_>) -> Result<()>) -> Result<()> {
         let c = self.control;
         let mut started = Instant::now();
         let mut failed_seconds = 0.0;
@@ -239,17 +260,25 @@ impl Continuation {
             // A full-length step lies on a smooth stretch of the path: Newton may keep a fresh
             // indefinite tangent there; a cut step is near a fold, where it may not.
             self.newton.settings.reuse_indefinite = step >= c.max * (1.0 - 1e-9);
-            match self.attempt(d) {
+            let attempt = self.attempt(d);
+            let attempt_seconds = attempt_started.elapsed().as_secs_f64();
+            self.report_pending(observer, true)?;
+            match attempt {
                 Ok((report, u, augmented)) => {
                     let a = amplitude(self.system.mesh(), &u);
                     let mut record = StepRecord::new(d, step, a, &report, started.elapsed().as_secs_f64());
+                    let pending = augmented.as_ref().is_some_and(|a| a.inertia_pending);
                     record.augmented = augmented;
                     record.failed_seconds = failed_seconds;
-                    observer(Event::Step {
-                        record: &record,
-                        system: &self.system,
-                        u: &u,
-                    })?;
+                    if pending {
+                        self.pending = Some((record, u.clone()));
+                    } else {
+                        observer(Event::Step {
+                            record: &record,
+                            system: &self.system,
+                            u: &u,
+                        })?;
+                    }
                     self.history.push_back((d, u));
                     if self.history.len() > PREDICTOR_POINTS {
                         self.history.pop_front();
@@ -262,7 +291,7 @@ impl Continuation {
                     failed_seconds = 0.0;
                 }
                 Err(reason) if step > c.min * (1.0 + 1e-9) => {
-                    failed_seconds += attempt_started.elapsed().as_secs_f64();
+                    failed_seconds += attempt_seconds;
                     observer(Event::Cut(&Cut {
                         d,
                         step,
@@ -279,6 +308,29 @@ impl Continuation {
             }
         }
         Ok(())
+    }
+
+    /// Reports the state whose inertia was pending, with its count (waiting for it; the wait
+    /// is booked as that state's inertia time if `within_step`, i.e. inside the next step's
+    /// wall time).
+    fn report_pending(&mut self, observer: &mut dyn FnMut(Event<'_>) -> Result<()>, within_step: bool) -> Result<()> {
+        let Some((mut record, u)) = self.pending.take() else {
+            return Ok(());
+        };
+        let augmentation = self.augmentation.as_mut().expect("only augmented steps are pending");
+        let waited = std::time::Instant::now();
+        record.negative_pivots = augmentation.next_inertia();
+        if let Some(augmented) = &mut record.augmented {
+            augmented.inertia_pending = false;
+            if within_step {
+                augmented.inertia_seconds += waited.elapsed().as_secs_f64();
+            }
+        }
+        observer(Event::Step {
+            record: &record,
+            system: &self.system,
+            u: &u,
+        })
     }
 
     /// Predictor and Newton corrector at `d`; the converged displacement, or why it failed.

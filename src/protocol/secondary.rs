@@ -49,24 +49,66 @@ pub fn inertia_changes(records: &[StepRecord]) -> Vec<InertiaChange> {
 /// The eigenpair of the elastic tangent at the state `u` (end-shortening `d`) whose eigenvalue
 /// is nearest zero: Lanczos on `K^-1`, the mode on all unknowns (zero where prescribed) scaled to
 /// a largest top-surface `|u_y|` of 1.
-/// `solver` keeps the symbolic analysis between calls on the same system.
-pub fn mode_nearest_zero(
+pub fn mode_nearest_zero(system: &mut System, u: &[f64], d: f64, iterations: usize) -> Result<(Vec<f64>, f64)> {
+    let mut modes = modes_nearest_zero(system, &[(d, u)], iterations)?;
+    Ok(modes.pop().expect("one state, one mode"))
+}
+
+/// [`mode_nearest_zero`] of each state `(d, u)`, two at a time on two threads: each factor
+/// and its Lanczos iteration on a thread of its own, the factors sharing one analysis.
+pub fn modes_nearest_zero(
     system: &mut System,
-    u: &[f64],
-    d: f64,
+    states: &[(f64, &[f64])],
     iterations: usize,
-    solver: &mut Option<SparseLdlt>,
-) -> Result<(Vec<f64>, f64)> {
+) -> Result<Vec<(Vec<f64>, f64)>> {
+    let mut solvers: Vec<SparseLdlt> = Vec::new();
+    let mut modes = Vec::with_capacity(states.len());
+    for pair in states.chunks(2) {
+        let tangents = pair
+            .iter()
+            .map(|&(d, u)| {
+                let bc = model_conditions(system.mesh(), d)?;
+                let assembled = system.assemble_for_stability(u, &bc, &NoAddedEnergy)?;
+                Ok(assembled.tangent.expect("assembled with the tangent"))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        while solvers.len() < tangents.len() {
+            let solver = match solvers.first() {
+                Some(first) => first.sibling(),
+                None => SparseLdlt::new(tangents[0].symbolic()),
+            };
+            solvers.push(solver);
+        }
+        let eigenpairs: Vec<Result<(Vec<f64>, f64)>> = std::thread::scope(|scope| {
+            let running: Vec<_> = solvers
+                .iter_mut()
+                .zip(&tangents)
+                .map(|(solver, k)| {
+                    scope.spawn(move || {
+                        solver.factorize(k.as_ref());
+                        inverse_lanczos(solver, k.as_ref(), iterations, 1e-10)
+                    })
+                })
+                .collect();
+            running
+                .into_iter()
+                .map(|thread| thread.join().expect("the Lanczos thread does not panic"))
+                .collect()
+        });
+        for (&(d, _), eigenpair) in pair.iter().zip(eigenpairs) {
+            let (x, eigenvalue) = eigenpair?;
+            modes.push((scaled_mode(system, d, &x)?, eigenvalue));
+        }
+    }
+    Ok(modes)
+}
+
+/// The free unknowns `x` of the state at `d` as a mode on all unknowns (zero where prescribed),
+/// scaled to a largest top-surface `|u_y|` of 1.
+fn scaled_mode(system: &mut System, d: f64, x: &[f64]) -> Result<Vec<f64>> {
     let bc = model_conditions(system.mesh(), d)?;
-    let k = system
-        .assemble_for_stability(u, &bc, &NoAddedEnergy)?
-        .tangent
-        .expect("assembled with the tangent");
-    let solver = solver.get_or_insert_with(|| SparseLdlt::new(k.symbolic()));
-    solver.factorize(k.as_ref());
-    let (x, eigenvalue) = inverse_lanczos(solver, k.as_ref(), iterations, 1e-10)?;
     let mut mode = vec![0.0; system.num_dofs()];
-    for (&dof, &v) in system.free_dofs(&bc)?.iter().zip(&x) {
+    for (&dof, &v) in system.free_dofs(&bc)?.iter().zip(x) {
         mode[dof] = v;
     }
     let top = system.mesh().top();
@@ -74,7 +116,7 @@ pub fn mode_nearest_zero(
     if largest > 0.0 {
         mode.iter_mut().for_each(|v| *v /= largest);
     }
-    Ok((mode, eigenvalue))
+    Ok(mode)
 }
 
 /// The branch a path ended on: the depth below the highest surface point of each trough of the
@@ -142,7 +184,7 @@ pub struct SecondaryMode {
 /// its dominant number of half wavelengths across the domain.
 pub fn secondary_mode(materials: &Bilayer, mesh: &Mesh, u: &[f64], d: f64) -> Result<SecondaryMode> {
     let mut system = System::new(mesh.clone(), materials)?;
-    let (mode, _) = mode_nearest_zero(&mut system, u, d, 60, &mut None)?;
+    let (mode, _) = mode_nearest_zero(&mut system, u, d, 60)?;
     Ok(SecondaryMode {
         d,
         half_waves: dominant_cosine(&top_uy(mesh, &mode), mesh.spec().length, mesh),

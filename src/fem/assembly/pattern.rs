@@ -74,6 +74,8 @@ impl Pattern {
                     coupled.extend(missing);
                     *pattern = None; // free the old pattern before building the new one
                     *pattern = Some(build_pattern(mesh, constrained, groups, coupled));
+                    // The old pattern and the new one's scaffolding leave holes in the heap.
+                    crate::fem::memory::return_free_pages();
                 }
             }
             _ => {
@@ -81,6 +83,15 @@ impl Pattern {
                 *pattern = Some(build_pattern(mesh, constrained, groups, Vec::new()));
             }
         }
+    }
+
+    /// Whether `constrained` and `groups` keep the stored entries.
+    pub(super) fn fits(&self, constrained: &[usize], groups: &[Vec<usize>]) -> bool {
+        self.constrained == constrained
+            && group_pairs(&self.slots, groups)
+                .pairs
+                .iter()
+                .all(|q| try_position(&self.symbolic, q).is_some())
     }
 
     /// Lays out new `groups`, whose pairs `added` are all stored, after the elements' entries.

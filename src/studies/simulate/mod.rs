@@ -323,9 +323,10 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
         recorder.note(&event)
     })?;
     outcome.continuation.release_factorisation();
-    let continuation = &outcome.continuation;
-    let (system, u, d_reached) = (continuation.system(), continuation.displacement(), continuation.d());
-    snapshots.write_final(recorder.records.last(), d_reached, system, &materials, u)?;
+    let d_reached = outcome.continuation.d();
+    let (mut system, u) = outcome.continuation.into_state();
+    let u = &u[..];
+    snapshots.write_final(recorder.records.last(), d_reached, &system, &materials, u)?;
     let mut surface = CsvWriter::create(&out.join("surface.csv"), &["x", "y"])?;
     for (x, y) in surface_profile(system.mesh(), u) {
         surface.append(&[x, y])?;
@@ -338,7 +339,7 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
     let p = &study.protocol;
     let (secondary, secondary_files) = secondary.finish(
         &curve.records,
-        system.mesh(),
+        &mut system,
         &materials,
         p.k,
         (p.imperfection2, p.imperfection2_waves),
@@ -358,7 +359,7 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
     files.extend(crate::output::plot::save_panels(&fig3(&curve, &onset), out, "fig3")?);
     files.extend(secondary_files);
     if let Some(crease) = crease {
-        files.extend(crease.draw(system, &materials, params.beta, out)?.1);
+        files.extend(crease.draw(&system, &materials, params.beta, out)?.1);
     }
     let summary = SimulationSummary {
         command: "simulate",

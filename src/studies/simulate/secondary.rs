@@ -11,7 +11,7 @@ use crate::mesh::Mesh;
 use crate::output::vtu::DataArray;
 use crate::output::{write_json, Figure, LineStyle, Series};
 use crate::protocol::bifurcation::{dominant_cosine, top_uy};
-use crate::protocol::secondary::{branch, inertia_changes, mode_nearest_zero, Branch, InertiaChange};
+use crate::protocol::secondary::{branch, inertia_changes, modes_nearest_zero, Branch, InertiaChange};
 use crate::protocol::StepRecord;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -78,7 +78,7 @@ impl SecondaryTracker {
     pub fn finish(
         self,
         records: &[StepRecord],
-        mesh: &Mesh,
+        system: &mut System,
         materials: &Bilayer,
         k: f64,
         (imperfection2, imperfection2_waves): (f64, f64),
@@ -95,14 +95,17 @@ impl SecondaryTracker {
                 mode_file: None,
             })
             .collect();
-        let mut system = System::new(mesh.clone(), materials)?;
-        let mut solver = None;
-        for (i, ((d, u), change)) in self.states.iter().zip(changes.iter_mut()).enumerate() {
-            let (mode, eigenvalue) = mode_nearest_zero(&mut system, u, *d, MODE_SOLVES, &mut solver)?;
+        // The path's system: its pattern (and so its memory) serves the modes too.
+        let mesh = &system.mesh().clone();
+        let states: Vec<(f64, &[f64])> = self.states.iter().map(|(d, u)| (*d, &u[..])).collect();
+        let modes = modes_nearest_zero(system, &states, MODE_SOLVES)?;
+        for (i, (((d, u), change), (mode, eigenvalue))) in
+            self.states.iter().zip(changes.iter_mut()).zip(modes).enumerate()
+        {
             let path = out.join(format!("secondary_mode_{i}.vtu"));
             let nodal = &mode[..mesh.num_dofs()];
             let array = DataArray::plane_vectors("mode", nodal.chunks(2).map(|c| [c[0], c[1]]));
-            write_state(&path, &system, materials, u, vec![array])?;
+            write_state(&path, system, materials, u, vec![array])?;
             let uy = top_uy(mesh, &mode);
             if i == 0 {
                 files.extend(mode_figure(mesh, &uy, *d).save(out, "secondary_mode")?);
