@@ -127,15 +127,21 @@ fn assembled_tangent_and_lifting_match_central_differences() {
     }
 }
 
-/// A quadratic energy `1/2 c |u_g - 0.1|^2` on each group's unknowns.
+/// A quadratic energy `1/2 c |u_g - 0.1|^2` on each group's unknowns, announcing `likely`
+/// groups to come.
 struct Springs {
     groups: Vec<Vec<usize>>,
+    likely: Vec<Vec<usize>>,
     stiffness: f64,
 }
 
 impl AddedEnergy for Springs {
     fn groups(&self) -> &[Vec<usize>] {
         &self.groups
+    }
+
+    fn likely_groups(&self) -> Vec<Vec<usize>> {
+        self.likely.clone()
     }
 
     fn block(&self, g: usize, u: &[f64], with_tangent: bool) -> Block {
@@ -156,8 +162,9 @@ impl AddedEnergy for Springs {
 }
 
 /// The stored entries (and so the factorisation's analysis) survive a change of the groups
-/// that fit in them, a group coupling distant unknowns adds entries once, and in every case
-/// the tangent is the elastic one plus the groups' Hessians.
+/// that fit in them, a group coupling distant unknowns adds entries once (with those of the
+/// groups announced as likely), and in every case the tangent is the elastic one plus the
+/// groups' Hessians.
 #[test]
 fn groups_that_fit_keep_the_stored_entries_and_the_tangent_adds_them() {
     let mesh = Mesh::new(MeshSpec::new(4, 1, 2, 1.0, 4.0, 2.0)).unwrap();
@@ -172,9 +179,12 @@ fn groups_that_fit_keep_the_stored_entries_and_the_tangent_adds_them() {
     let (left, right) = (top[1], top[top.len() - 2]);
     let one_node = vec![vec![2 * left, 2 * left + 1]];
     let distant = vec![vec![2 * left, 2 * left + 1, 2 * right, 2 * right + 1]];
+    let (middle, bottom) = (top[top.len() / 2], mesh.bottom()[1]);
+    let announced = vec![vec![2 * middle + 1, 2 * bottom]];
     let mut check = |groups: &Vec<Vec<usize>>| {
         let springs = Springs {
             groups: groups.clone(),
+            likely: announced.clone(),
             stiffness: 7.0,
         };
         let assembled = system.assemble_with(&u, &bc, None, true, &springs).unwrap();
@@ -196,6 +206,11 @@ fn groups_that_fit_keep_the_stored_entries_and_the_tangent_adds_them() {
     assert_eq!(check(&Vec::new()).1, coupled, "entries once added stay");
     assert_eq!(check(&one_node).1, coupled);
     assert_eq!(check(&distant).1, coupled);
+    assert_eq!(
+        check(&announced).1,
+        coupled,
+        "the likely group was stored with the growth"
+    );
 }
 
 /// A spring of stiffness `-c` on each of the given unknowns.

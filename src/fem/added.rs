@@ -40,6 +40,13 @@ pub trait AddedEnergy: Sync {
     fn diagonal(&self, _u: &[f64]) -> Option<Diagonal> {
         None
     }
+
+    /// Sets of unknowns that groups to come are likely to couple: when the pattern has to grow
+    /// for new groups anyway, it stores these couplings too, so that the next new groups need
+    /// no new analysis (e.g. the neighbours of a closing trough's contact pairs).
+    fn likely_groups(&self) -> Vec<Vec<usize>> {
+        Vec::new()
+    }
 }
 
 /// Nothing added: the plain elastic problem.
@@ -83,6 +90,10 @@ impl AddedEnergy for Sum<'_> {
     fn block(&self, g: usize, u: &[f64], with_tangent: bool) -> Block {
         let (part, local) = self.owner[g];
         self.parts[part].block(local, u, with_tangent)
+    }
+
+    fn likely_groups(&self) -> Vec<Vec<usize>> {
+        self.parts.iter().flat_map(|p| p.likely_groups()).collect()
     }
 
     fn diagonal(&self, u: &[f64]) -> Option<Diagonal> {

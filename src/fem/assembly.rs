@@ -237,7 +237,7 @@ impl System {
     /// The free unknowns when `bc` is prescribed, increasing; position = index in the reduced system.
     pub fn free_dofs(&mut self, bc: &Dirichlet) -> Result<&[usize]> {
         if self.pattern.as_ref().is_none_or(|p| p.constrained != bc.dofs()) {
-            self.pattern_for(bc, &[])?;
+            self.pattern_for(bc, &[], &|| Vec::new())?;
         }
         Ok(&self.pattern.as_ref().expect("built above").free)
     }
@@ -272,7 +272,7 @@ impl System {
             "one lift value per prescribed unknown"
         );
         let start = Instant::now();
-        self.pattern_for(bc, added.groups())?;
+        self.pattern_for(bc, added.groups(), &|| added.likely_groups())?;
         let pattern = self.pattern.as_ref().expect("built above");
         let total = if with_tangent {
             *pattern.offsets.last().unwrap_or(&0)
@@ -404,7 +404,12 @@ impl System {
 
     /// The cached pattern for `bc`'s prescribed unknowns and the added `groups`: the stored
     /// entries are kept when the groups change but fit in them, and rebuilt otherwise.
-    fn pattern_for(&mut self, bc: &Dirichlet, groups: &[Vec<usize>]) -> Result<&Pattern> {
+    fn pattern_for(
+        &mut self,
+        bc: &Dirichlet,
+        groups: &[Vec<usize>],
+        likely: &dyn Fn() -> Vec<Vec<usize>>,
+    ) -> Result<&Pattern> {
         let n = self.mesh.num_dofs();
         if let Some(&bad) = bc.dofs().iter().chain(groups.iter().flatten()).find(|&&d| d >= n) {
             return Err(Error::invalid(
@@ -413,7 +418,7 @@ impl System {
                 &format!("[0, {n})"),
             ));
         }
-        Pattern::refresh(&mut self.pattern, &self.mesh, bc.dofs(), groups);
+        Pattern::refresh(&mut self.pattern, &self.mesh, bc.dofs(), groups, likely);
         Ok(self.pattern.as_ref().expect("just built"))
     }
 }

@@ -56,7 +56,15 @@ pub(super) struct Pattern {
 impl Pattern {
     /// Makes `pattern` the one for the prescribed unknowns `constrained` and the added `groups`,
     /// keeping its stored entries where they suffice.
-    pub(super) fn refresh(pattern: &mut Option<Pattern>, mesh: &Mesh, constrained: &[usize], groups: &[Vec<usize>]) {
+    /// When the stored entries grow, the sets of unknowns `likely` (see
+    /// [`crate::fem::added::AddedEnergy::likely_groups`]) are coupled too.
+    pub(super) fn refresh(
+        pattern: &mut Option<Pattern>,
+        mesh: &Mesh,
+        constrained: &[usize],
+        groups: &[Vec<usize>],
+        likely: &dyn Fn() -> Vec<Vec<usize>>,
+    ) {
         match pattern.as_mut() {
             Some(p) if p.constrained == constrained && p.groups == groups => {}
             Some(p) if p.constrained == constrained => {
@@ -73,14 +81,14 @@ impl Pattern {
                     let mut coupled = std::mem::take(&mut p.coupled);
                     coupled.extend(missing);
                     *pattern = None; // free the old pattern before building the new one
-                    *pattern = Some(build_pattern(mesh, constrained, groups, coupled));
+                    *pattern = Some(build_pattern(mesh, constrained, groups, coupled, &likely()));
                     // The old pattern and the new one's scaffolding leave holes in the heap.
                     crate::fem::memory::return_free_pages();
                 }
             }
             _ => {
                 *pattern = None;
-                *pattern = Some(build_pattern(mesh, constrained, groups, Vec::new()));
+                *pattern = Some(build_pattern(mesh, constrained, groups, Vec::new(), &likely()));
             }
         }
     }
@@ -155,12 +163,13 @@ fn group_pairs(slots: &[Slot], groups: &[Vec<usize>]) -> GroupPairs {
 }
 
 /// Slots, free list, per-block offsets and the CSC pattern of the lower triangle of `K_ff`
-/// (elements, then groups), storing the `coupled` pairs too.
+/// (elements, then groups), storing the `coupled` pairs and those of the `likely` groups too.
 fn build_pattern(
     mesh: &Mesh,
     constrained: &[usize],
     groups: &[Vec<usize>],
     coupled: Vec<Pair<usize, usize>>,
+    likely: &[Vec<usize>],
 ) -> Pattern {
     let mut slots = vec![Slot::Free(0); mesh.num_dofs()];
     for (c, &dof) in constrained.iter().enumerate() {
@@ -182,6 +191,7 @@ fn build_pattern(
     let added = group_pairs(&slots, groups);
     let mut coupled = coupled;
     coupled.extend(&added.pairs);
+    coupled.extend(group_pairs(&slots, likely).pairs);
     coupled.sort_unstable_by_key(|q| (q.col, q.row));
     coupled.dedup();
     let all: Vec<Pair<usize, usize>> = elements.pairs.iter().chain(&coupled).copied().collect();

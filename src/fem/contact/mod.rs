@@ -5,8 +5,10 @@
 //! Both vertical edges are symmetry planes, so a trough that sits on one of them closes
 //! against its own mirror image: that self-contact is exactly contact of the surface with the
 //! plane (`x >= 0` at `X = 0`, `x <= L (1 - d)` at `X = L`). Interior troughs close by
-//! node-to-segment self-contact. Each pair is one group of an [`AddedEnergy`], so the pattern of
-//! the tangent follows the pair list, and is re-analysed only when that list changes.
+//! node-to-segment self-contact. Each pair is one group of an [`AddedEnergy`]; the tangent's
+//! pattern is re-analysed only when a pair couples unknowns it does not couple yet, and it then
+//! stores the neighbourhood of every node-to-segment pair in advance (a closing trough's next
+//! pairs), so that a closing trough costs a few analyses, not one per new pair.
 
 pub mod gap;
 pub mod search;
@@ -19,6 +21,10 @@ use super::added::{AddedEnergy, Block};
 use crate::mesh::Mesh;
 use gap::{differentiate, pair_energy, plane_gap, pressure, segment_gap};
 use std::collections::HashMap;
+
+/// Surface nodes on either side of a contact pair whose coupling the tangent's pattern stores
+/// in advance ([`AddedEnergy::likely_groups`]).
+const LIKELY_REACH: usize = 4;
 
 /// Penalty, tolerance and search range.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -261,6 +267,26 @@ impl Contact {
 impl AddedEnergy for Contact {
     fn groups(&self) -> &[Vec<usize>] {
         &self.groups
+    }
+
+    /// A trough closes from its bottom up: the slaves within [`LIKELY_REACH`] surface nodes of
+    /// a node-to-segment pair's slave soon face the segments within as many nodes of its
+    /// segment.
+    fn likely_groups(&self) -> Vec<Vec<usize>> {
+        let last = self.surface.len() - 1;
+        let around = |i: usize| i.saturating_sub(LIKELY_REACH)..=(i + LIKELY_REACH).min(last);
+        self.pairs
+            .iter()
+            .filter_map(|pair| match *pair {
+                Pair::Segment { slave, segment } => Some(
+                    around(slave)
+                        .chain(around(segment + 1))
+                        .flat_map(|i| [2 * self.surface.nodes[i], 2 * self.surface.nodes[i] + 1])
+                        .collect(),
+                ),
+                Pair::Plane { .. } => None,
+            })
+            .collect()
     }
 
     fn block(&self, g: usize, u: &[f64], with_tangent: bool) -> Block {
