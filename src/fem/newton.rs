@@ -74,9 +74,10 @@ pub struct NewtonSettings {
     pub stall_steps: usize,
     pub stall_reduction: f64,
     /// Give up when, after this many tangent steps, `|r|` has not fallen tenfold from its
-    /// start: an iteration from a usable predictor has by then, and one that has not is
-    /// stagnating on a fold (measured on the fine benchmark: every such attempt failed after
-    /// three to five more steps).
+    /// start, or after the first it has not halved (`usize::MAX`: never): an iteration from a
+    /// usable predictor has by then, and one that has not is stagnating on a fold (measured on
+    /// the fine benchmark: every such attempt failed after three to five more steps, and the
+    /// first step of the undamped ones that converged there cut `|r|` 20-90-fold).
     pub diverging_steps: usize,
 }
 
@@ -239,8 +240,13 @@ impl Newton {
             // Stalled: short of both a `stall_reduction` decrease and half the decrease (in
             // orders of magnitude) that convergence needs.
             let halfway = (history[0] * tolerance).sqrt();
-            let stalled = (tangent_steps >= s.stall_steps && residual > halfway.max(s.stall_reduction * history[0]))
-                || (tangent_steps >= s.diverging_steps && residual > 0.1 * history[0]);
+            // Diverging: where a tangent step must show convergence, |r| not halved by the
+            // first, or not down tenfold after `diverging_steps`.
+            let diverging = s.diverging_steps != usize::MAX
+                && ((tangent_steps == 1 && residual > 0.5 * history[0])
+                    || (tangent_steps >= s.diverging_steps && residual > 0.1 * history[0]));
+            let stalled =
+                (tangent_steps >= s.stall_steps && residual > halfway.max(s.stall_reduction * history[0])) || diverging;
             if stalled || tangent_steps == s.max_iterations || iteration == 2 * s.max_iterations {
                 return Err(NewtonError::NotConverged {
                     iterations: iteration,
