@@ -141,6 +141,28 @@ fn homogeneous_writes_table_summary_and_figure() {
 }
 
 #[test]
+fn bench_writes_its_tables_where_asked() {
+    let help = String::from_utf8(fiberfold(&["bench", "--help"]).stdout).unwrap();
+    for flag in ["--out", "default: results/bench", "--params", "--set"] {
+        assert!(help.contains(flag), "`{flag}` missing from help:\n{help}");
+    }
+    let dir = scratch("bench");
+    let out = fiberfold(&["bench", "stability", "--out", dir.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let table = std::fs::read_to_string(dir.join("bench_stability.md")).unwrap();
+    assert!(table.contains("d_c(k)"), "{table}");
+    assert_eq!(
+        table,
+        String::from_utf8_lossy(&out.stdout)
+            .lines()
+            .skip(1)
+            .take_while(|l| !l.contains("wrote"))
+            .map(|l| format!("{l}\n"))
+            .collect::<String>()
+    );
+}
+
+#[test]
 fn help_documents_flags_with_defaults() {
     let out = fiberfold(&["homogeneous", "--help"]);
     let help = String::from_utf8(out.stdout).unwrap();

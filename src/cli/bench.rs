@@ -1,9 +1,14 @@
-//! `fiberfold bench stability | fe`: timings printed as Markdown tables (never timed tests).
+//! `fiberfold bench stability | fe`: timings printed as Markdown tables (never timed tests),
+//! and written to the output folder (the tables, and the FE timings as JSON).
 
-use super::common::ParamArgs;
+use super::common::{prepare_out, report_files, ParamArgs};
 use clap::{Args, ValueEnum};
-use fiberfold::studies::bench_fe::{self, default_meshes, FeBenchSetup};
+use fiberfold::output::atomic::write_file;
+use fiberfold::output::write_json;
+use fiberfold::studies::bench_fe::{self, default_meshes, FeBench, FeBenchSetup, Kernels};
 use fiberfold::Result;
+use serde::Serialize;
+use std::path::PathBuf;
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum BenchTarget {
@@ -28,14 +33,29 @@ pub struct BenchArgs {
     /// fe: only the coarse mesh (seconds).
     #[arg(long, conflicts_with = "extra")]
     pub coarse_only: bool,
+    /// Output folder: `bench_stability.md`, or `bench_fe.md` and `bench_fe.json`.
+    #[arg(long, value_name = "DIR", default_value = "results/bench")]
+    pub out: PathBuf,
+}
+
+/// What `bench fe` writes as JSON.
+#[derive(Serialize)]
+struct FeTimings<'a> {
+    curves: &'a FeBench,
+    kernels: &'a Kernels,
 }
 
 pub fn run(args: &BenchArgs) -> Result<()> {
     let params = args.params.resolve()?;
-    match args.target {
+    prepare_out(&args.out)?;
+    let files = match args.target {
         BenchTarget::Stability => {
             println!("timing the linear stability analysis (medians of repeated runs)...");
-            print!("{}", fiberfold::studies::bench_stability::run(&params)?);
+            let table = fiberfold::studies::bench_stability::run(&params)?;
+            print!("{table}");
+            let path = args.out.join("bench_stability.md");
+            write_file(&path, &table)?;
+            vec![path]
         }
         BenchTarget::Fe => {
             let mut meshes = default_meshes(args.extra);
@@ -62,9 +82,22 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             let bench = bench_fe::run(&setup, &meshes, &|_| Ok(()))?;
             print!("{bench}");
             // After the curves, so that their peak-memory column is theirs alone.
-            println!("per-call kernels at the homogeneous state of d = 0.1 (medians of 5):");
-            print!("{}", bench_fe::kernels(&setup.params, &meshes)?);
+            let heading = "per-call kernels at the homogeneous state of d = 0.1 (medians of 5):";
+            println!("{heading}");
+            let kernels = bench_fe::kernels(&setup.params, &meshes)?;
+            print!("{kernels}");
+            let (table, json) = (args.out.join("bench_fe.md"), args.out.join("bench_fe.json"));
+            write_file(&table, format!("{bench}\n{heading}\n\n{kernels}"))?;
+            write_json(
+                &json,
+                &FeTimings {
+                    curves: &bench,
+                    kernels: &kernels,
+                },
+            )?;
+            vec![table, json]
         }
-    }
+    };
+    report_files(&files);
     Ok(())
 }
