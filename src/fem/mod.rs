@@ -11,6 +11,7 @@ pub mod contact;
 pub mod element;
 pub mod fields;
 pub mod inertia;
+pub mod lanczos;
 pub mod linear_solver;
 pub mod memory;
 pub mod mixed;

@@ -11,7 +11,7 @@
 use crate::error::{Error, Result};
 use crate::fem::added::NoAddedEnergy;
 use crate::fem::boundary::{dof, X, Y};
-use crate::fem::linear_solver::inverse_lanczos;
+use crate::fem::lanczos::inverse_lanczos;
 use crate::fem::{model_conditions, Assembled, SparseLdlt, System, Tangent};
 use crate::homogeneous::{constraint_pressure, homogeneous_state, HomogeneousState};
 use crate::material::{jacobian, Bilayer};

@@ -13,7 +13,7 @@ use super::continuation::StepRecord;
 use super::surface::surface_profile;
 use crate::error::Result;
 use crate::fem::added::NoAddedEnergy;
-use crate::fem::linear_solver::inverse_lanczos;
+use crate::fem::lanczos::inverse_lanczos;
 use crate::fem::{model_conditions, SparseLdlt, System};
 use crate::material::Bilayer;
 use crate::mesh::Mesh;
