@@ -32,13 +32,6 @@ impl std::fmt::Debug for BackgroundInertia {
     }
 }
 
-impl Clone for BackgroundInertia {
-    /// A new, idle counter (a count in progress belongs to its owner).
-    fn clone(&self) -> Self {
-        BackgroundInertia::default()
-    }
-}
-
 impl BackgroundInertia {
     /// Starts counting the negative eigenvalues of `assembled`'s tangent (which must hold
     /// one), after the running count if any. `sibling` gives a solver sharing an analysis of

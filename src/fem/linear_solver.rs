@@ -155,11 +155,16 @@ impl SparseLdlt {
         kind
     }
 
-    /// Forgets the factorisation in place, with the factor's memory made again if it was freed.
-    fn prepare(&mut self) {
+    /// Forgets the factorisation in place.
+    fn forget(&mut self) {
         self.negative = std::cell::OnceCell::new();
         self.single = false;
         self.state = None;
+    }
+
+    /// [`SparseLdlt::forget`], with the factor's memory made again if it was freed.
+    fn prepare(&mut self) {
+        self.forget();
         if self.values.is_empty() {
             self.values = vec![0.0; self.analysis.symbolic.len_val()];
         }
@@ -168,11 +173,9 @@ impl SparseLdlt {
     /// Frees the factor's memory (the largest part of a solver) until the next factorisation,
     /// keeping the analysis and the small workspaces.
     pub fn free_factor(&mut self) {
+        self.forget();
         self.values = Vec::new();
         self.pivoted_scratch = None;
-        self.negative = std::cell::OnceCell::new();
-        self.single = false;
-        self.state = None;
     }
 
     /// Intranode Bunch-Kaufman `L B L^T` of `a`: slower, but stable for indefinite matrices.

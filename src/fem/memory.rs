@@ -63,9 +63,8 @@ pub fn available_bytes() -> Option<f64> {
 }
 
 /// Hands the heap's free pages back to the system (glibc keeps blocks freed below its mmap
-/// threshold, here the tangents and gather buffers of the inertia counted on another thread,
-/// in the heap): called between a path and its post-processing, so that the two peaks do not
-/// add up.
+/// threshold in the heap: tangents, gather buffers, an old pattern): called after a pattern is
+/// rebuilt and between a path and its post-processing, so that peaks do not add up.
 pub fn return_free_pages() {
     #[cfg(all(target_os = "linux", target_env = "gnu"))]
     // SAFETY: malloc_trim only releases memory that no allocation owns.

@@ -108,9 +108,16 @@ impl Default for NewtonSettings {
 pub struct Newton {
     /// Tolerances and limits.
     pub settings: NewtonSettings,
-    /// The held factorisation: the layout id of the assembly it factorised, and the solver of
-    /// that assembly's structure.
-    solver: Option<(usize, usize, SparseLdlt)>,
+    solver: Option<Held>,
+}
+
+/// The held factorisation.
+struct Held {
+    /// The layout id of the assembly it factorised, while the next solves may reuse it.
+    reusable_for: Option<usize>,
+    /// The structure id of the matrices its analysis is for.
+    structure: usize,
+    solver: SparseLdlt,
 }
 
 impl Newton {
@@ -126,13 +133,13 @@ impl Newton {
 
     /// The linear solver of the last pattern (its last factorisation and timings).
     pub fn linear_solver(&self) -> Option<&SparseLdlt> {
-        self.solver.as_ref().map(|(_, _, s)| s)
+        self.solver.as_ref().map(|held| &held.solver)
     }
 
     /// Keeps the held factorisation from being reused by the next solve (its analysis stays).
     pub fn forget_factorisation(&mut self) {
-        if let Some((pattern, _, _)) = &mut self.solver {
-            *pattern = usize::MAX;
+        if let Some(held) = &mut self.solver {
+            held.reusable_for = None;
         }
     }
 
@@ -140,8 +147,8 @@ impl Newton {
     pub fn sibling_solver(&self, structure: usize) -> Option<SparseLdlt> {
         self.solver
             .as_ref()
-            .filter(|(_, id, _)| *id == structure)
-            .map(|(_, _, solver)| solver.sibling())
+            .filter(|held| held.structure == structure)
+            .map(|held| held.solver.sibling())
     }
 
     /// Solves equilibrium with `bc` prescribed, starting from `u` (full vector); on success `u`
@@ -269,7 +276,7 @@ impl Newton {
                         let definite = self
                             .solver
                             .as_ref()
-                            .is_some_and(|(_, _, f)| f.negative_pivots() == Some(0));
+                            .is_some_and(|held| held.solver.negative_pivots() == Some(0));
                         reuse = ratio <= if definite { s.contraction } else { s.contraction.powi(2) };
                     }
                     None => reuse = false,
@@ -300,7 +307,7 @@ impl Newton {
     fn holds(&self, pattern: usize, own: bool) -> bool {
         self.solver
             .as_ref()
-            .is_some_and(|(id, _, solver)| *id == pattern && (own || solver.negative_pivots() == Some(0)))
+            .is_some_and(|held| held.reusable_for == Some(pattern) && (own || held.solver.negative_pivots() == Some(0)))
     }
 
     /// A full step with the held factorisation: the new iterate, its displacement, the update
@@ -313,7 +320,7 @@ impl Newton {
         state: &Iterate,
         residual: f64,
     ) -> Result<Option<ReusedStep>, NewtonError> {
-        let (_, _, solver) = self.solver.as_mut().expect("held, checked by the caller");
+        let solver = &mut self.solver.as_mut().expect("held, checked by the caller").solver;
         let mut du: Vec<f64> = state.assembled.residual.iter().map(|r| -r).collect();
         // Single precision (the next residual checks the step), except with the
         // incompressibility penalty, whose conditioning leaves it too few digits.
@@ -431,7 +438,7 @@ impl Newton {
         if !factorised || self.solver.is_none() {
             self.factorize(current, timings);
         }
-        let (_, _, solver) = self.solver.as_mut().expect("factorised");
+        let solver = &mut self.solver.as_mut().expect("factorised").solver;
         loop {
             let mut du: Vec<f64> = current.residual.iter().map(|r| -r).collect();
             solver.solve_in_place(&mut du)?;
@@ -459,15 +466,20 @@ impl Newton {
         if self
             .solver
             .as_ref()
-            .is_none_or(|(_, structure, _)| *structure != current.structure)
+            .is_none_or(|held| held.structure != current.structure)
         {
             self.solver = None; // free the old factor before analysing the new structure
             let solver = SparseLdlt::new(k.symbolic());
             timings.analysis += solver.symbolic_time();
-            self.solver = Some((current.pattern, current.structure, solver));
+            self.solver = Some(Held {
+                reusable_for: None,
+                structure: current.structure,
+                solver,
+            });
         }
-        let (pattern, _, solver) = self.solver.as_mut().expect("set above");
-        *pattern = current.pattern;
+        let held = self.solver.as_mut().expect("set above");
+        held.reusable_for = Some(current.pattern);
+        let solver = &mut held.solver;
         solver.factorize(k.as_ref());
         timings.factorisation += solver.factorisation_time();
         timings.factorisations += 1;

@@ -13,7 +13,7 @@ use crate::material::Bilayer;
 use serde::Serialize;
 
 /// Contact and stabilisation of one continuation (either may be absent).
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct Augmentation {
     pub contact: Option<Contact>,
     pub stabilisation: Option<Stabilisation>,

@@ -166,8 +166,9 @@ pub struct Continuation {
     augmentation: Option<Augmentation>,
     /// `du/dd` for the predictor while only one state is known.
     slope: Option<Vec<f64>>,
-    /// An accepted state whose inertia is still being counted: reported once it is known.
-    pending: Option<(StepRecord, Vec<f64>)>,
+    /// The record of the last accepted state (the newest in `history`) while its inertia is
+    /// still being counted: reported once it is known.
+    pending: Option<StepRecord>,
 }
 
 /// How many converged states the predictor extrapolates through (cubic).
@@ -271,7 +272,7 @@ impl Continuation {
                     record.augmented = augmented;
                     record.failed_seconds = failed_seconds;
                     if pending {
-                        self.pending = Some((record, u.clone()));
+                        self.pending = Some(record);
                     } else {
                         observer(Event::Step {
                             record: &record,
@@ -314,7 +315,7 @@ impl Continuation {
     /// is booked as that state's inertia time if `within_step`, i.e. inside the next step's
     /// wall time).
     fn report_pending(&mut self, observer: &mut dyn FnMut(Event<'_>) -> Result<()>, within_step: bool) -> Result<()> {
-        let Some((mut record, u)) = self.pending.take() else {
+        let Some(mut record) = self.pending.take() else {
             return Ok(());
         };
         let augmentation = self.augmentation.as_mut().expect("only augmented steps are pending");
@@ -329,7 +330,7 @@ impl Continuation {
         observer(Event::Step {
             record: &record,
             system: &self.system,
-            u: &u,
+            u: self.displacement(),
         })
     }
 

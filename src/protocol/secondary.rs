@@ -14,7 +14,7 @@ use super::surface::surface_profile;
 use crate::error::Result;
 use crate::fem::added::NoAddedEnergy;
 use crate::fem::lanczos::inverse_lanczos;
-use crate::fem::{model_conditions, SparseLdlt, System};
+use crate::fem::{model_conditions, Dirichlet, SparseLdlt, System};
 use crate::material::Bilayer;
 use crate::mesh::Mesh;
 use serde::Serialize;
@@ -64,11 +64,15 @@ pub fn modes_nearest_zero(
     let mut solvers: Vec<SparseLdlt> = Vec::new();
     let mut modes = Vec::with_capacity(states.len());
     for pair in states.chunks(2) {
+        let bcs = pair
+            .iter()
+            .map(|&(d, _)| model_conditions(system.mesh(), d))
+            .collect::<Result<Vec<_>>>()?;
         let tangents = pair
             .iter()
-            .map(|&(d, u)| {
-                let bc = model_conditions(system.mesh(), d)?;
-                let assembled = system.assemble_for_stability(u, &bc, &NoAddedEnergy)?;
+            .zip(&bcs)
+            .map(|(&(_, u), bc)| {
+                let assembled = system.assemble_for_stability(u, bc, &NoAddedEnergy)?;
                 Ok(assembled.tangent.expect("assembled with the tangent"))
             })
             .collect::<Result<Vec<_>>>()?;
@@ -95,20 +99,19 @@ pub fn modes_nearest_zero(
                 .map(|thread| thread.join().expect("the Lanczos thread does not panic"))
                 .collect()
         });
-        for (&(d, _), eigenpair) in pair.iter().zip(eigenpairs) {
+        for (bc, eigenpair) in bcs.iter().zip(eigenpairs) {
             let (x, eigenvalue) = eigenpair?;
-            modes.push((scaled_mode(system, d, &x)?, eigenvalue));
+            modes.push((scaled_mode(system, bc, &x)?, eigenvalue));
         }
     }
     Ok(modes)
 }
 
-/// The free unknowns `x` of the state at `d` as a mode on all unknowns (zero where prescribed),
-/// scaled to a largest top-surface `|u_y|` of 1.
-fn scaled_mode(system: &mut System, d: f64, x: &[f64]) -> Result<Vec<f64>> {
-    let bc = model_conditions(system.mesh(), d)?;
+/// The free unknowns `x` (with `bc` prescribed) as a mode on all unknowns (zero where
+/// prescribed), scaled to a largest top-surface `|u_y|` of 1.
+fn scaled_mode(system: &mut System, bc: &Dirichlet, x: &[f64]) -> Result<Vec<f64>> {
     let mut mode = vec![0.0; system.num_dofs()];
-    for (&dof, &v) in system.free_dofs(&bc)?.iter().zip(x) {
+    for (&dof, &v) in system.free_dofs(bc)?.iter().zip(x) {
         mode[dof] = v;
     }
     let top = system.mesh().top();

@@ -140,8 +140,9 @@ fn resolves(spec: &MeshSpec, what: &str, wavelength: f64) -> Result<()> {
 
 /// Newton's settings for load steps: at most 8 tangent iterations, 5 when they have not
 /// reduced the residual 1000-fold, 2 when they have not reduced it tenfold and 1 when it has
-/// not halved (a step that needs more is cut rather than ground through), the last factorisation reused while it
-/// contracts the residual, and no inertia at the solution of its own (the protocol asks for it).
+/// not halved (a step that needs more is cut rather than ground through), the last
+/// factorisation reused while it contracts the residual, and no inertia at the solution of its
+/// own (the protocol asks for it).
 pub fn simulation_newton() -> NewtonSettings {
     NewtonSettings {
         max_iterations: 8,

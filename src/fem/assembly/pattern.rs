@@ -69,12 +69,7 @@ impl Pattern {
             Some(p) if p.constrained == constrained && p.groups == groups => {}
             Some(p) if p.constrained == constrained => {
                 let added = group_pairs(&p.slots, groups);
-                let missing: Vec<_> = added
-                    .pairs
-                    .iter()
-                    .filter(|q| try_position(&p.symbolic, q).is_none())
-                    .copied()
-                    .collect();
+                let missing = p.missing(&added);
                 if missing.is_empty() {
                     p.place_groups(groups, added, mesh.elements().len());
                 } else {
@@ -95,11 +90,13 @@ impl Pattern {
 
     /// Whether `constrained` and `groups` keep the stored entries.
     pub(super) fn fits(&self, constrained: &[usize], groups: &[Vec<usize>]) -> bool {
-        self.constrained == constrained
-            && group_pairs(&self.slots, groups)
-                .pairs
-                .iter()
-                .all(|q| try_position(&self.symbolic, q).is_some())
+        self.constrained == constrained && self.missing(&group_pairs(&self.slots, groups)).is_empty()
+    }
+
+    /// The pairs of `added` that are not stored.
+    fn missing(&self, added: &GroupPairs) -> Vec<Pair<usize, usize>> {
+        let stored = |q: &&Pair<usize, usize>| try_position(&self.symbolic, q).is_some();
+        added.pairs.iter().filter(|q| !stored(q)).copied().collect()
     }
 
     /// Lays out new `groups`, whose pairs `added` are all stored, after the elements' entries.
@@ -187,22 +184,26 @@ fn build_pattern(
         .iter()
         .map(|nodes| std::array::from_fn(|i| 2 * nodes[i / 2] + i % 2))
         .collect();
-    let elements = block_pairs(&slots, element_dofs.iter().map(|d| d.as_slice()));
+    let GroupPairs {
+        pairs: mut all,
+        ends: element_ends,
+    } = block_pairs(&slots, element_dofs.iter().map(|d| d.as_slice()));
+    let element_entries = all.len();
     let added = group_pairs(&slots, groups);
     let mut coupled = coupled;
     coupled.extend(&added.pairs);
     coupled.extend(group_pairs(&slots, likely).pairs);
     coupled.sort_unstable_by_key(|q| (q.col, q.row));
     coupled.dedup();
-    let all: Vec<Pair<usize, usize>> = elements.pairs.iter().chain(&coupled).copied().collect();
+    // The elements' pairs, then the others.
+    all.extend(&coupled);
     let (symbolic, _) = SymbolicSparseColMat::try_new_from_indices(free.len(), free.len(), &all)
         .expect("pattern indices are in range by construction");
+    let (starts, sources) = gather_lists(&symbolic, &all[..element_entries]);
     drop(all);
-    let (starts, sources) = gather_lists(&symbolic, &elements.pairs);
     let diagonal = (0..free.len()).map(|f| position(&symbolic, f, f)).collect();
-    let element_entries = elements.pairs.len();
     let offsets = std::iter::once(0)
-        .chain(elements.ends)
+        .chain(element_ends)
         .chain(added.ends.iter().map(|end| element_entries + end))
         .collect();
     Pattern {
