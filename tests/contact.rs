@@ -184,3 +184,41 @@ fn multiplier_updates_bring_a_soft_penalty_within_the_tolerance() {
     let (soft_p, stiff_p) = (contact.state(&u).pressure[3], stiff.state(&stiff_u).pressure[3]);
     assert!((soft_p - stiff_p).abs() < 0.05 * stiff_p, "{soft_p} vs {stiff_p}");
 }
+
+#[test]
+fn the_line_search_starts_where_the_first_open_pair_closes() {
+    // Top node 1 (X = 0.25) faces the left plane x >= 0; its gap x is linear in u, so the
+    // fraction of a move at which the pressure argument s = lambda - eps g reaches 0 is exact.
+    let mesh = Mesh::new(MeshSpec::new(6, 1, 2, 0.5, 3.0, 2.0)).unwrap();
+    let node = mesh.top()[1];
+    let settings = ContactSettings {
+        penalty: 50.0,
+        tolerance: 1e-3,
+        search_distance: 0.5,
+        max_augmentations: 10,
+        self_contact: false,
+    };
+    let mut contact = Contact::new(&mesh, vec![Plane::left(0.0)], settings);
+    let at = |x: f64| {
+        let mut u = vec![0.0; mesh.num_dofs()];
+        u[dof(node, X)] = x - 0.25;
+        u
+    };
+    contact.search(&at(0.01));
+    assert!(contact.pairs().contains(&Pair::Plane { slave: 1, plane: 0 }));
+    // Open at x = 0.01, through the plane at x = -0.03: closes a quarter of the way.
+    let fraction = contact.switch_on_fraction(&at(0.01), &at(-0.03));
+    assert!((fraction - 0.25).abs() < 1e-14, "{fraction}");
+    // The same through a sum of energies.
+    let sum = fiberfold::fem::added::Sum::new(vec![&contact, &fiberfold::fem::added::NoAddedEnergy]);
+    assert_eq!(sum.switch_on_fraction(&at(0.01), &at(-0.03)), fraction);
+    // Opening further, or stopping short of the plane: the full step.
+    assert_eq!(contact.switch_on_fraction(&at(0.01), &at(0.2)), 1.0);
+    assert_eq!(contact.switch_on_fraction(&at(0.01), &at(0.001)), 1.0);
+    // A pair already pressed at the start is in the tangent: no limit.
+    assert_eq!(contact.switch_on_fraction(&at(-0.001), &at(-0.03)), 1.0);
+    // With a multiplier lambda the pair switches on at g = lambda / eps: here at x = 0.002.
+    contact.augment(&at(-0.002));
+    let fraction = contact.switch_on_fraction(&at(0.01), &at(-0.03));
+    assert!((fraction - 0.008 / 0.04).abs() < 1e-14, "{fraction}");
+}

@@ -47,6 +47,14 @@ pub trait AddedEnergy: Sync {
     fn likely_groups(&self) -> Vec<Vec<usize>> {
         Vec::new()
     }
+
+    /// The fraction of the move from `u` to `trial` (full vectors) at which the first group
+    /// that carries no force at `u` starts to carry one (1 if none does): a Newton step from a
+    /// tangent without a term overshoots where the term switches on (a contact pair that closes
+    /// in the step), so the line search starts there.
+    fn switch_on_fraction(&self, _u: &[f64], _trial: &[f64]) -> f64 {
+        1.0
+    }
 }
 
 /// Nothing added: the plain elastic problem.
@@ -94,6 +102,12 @@ impl AddedEnergy for Sum<'_> {
 
     fn likely_groups(&self) -> Vec<Vec<usize>> {
         self.parts.iter().flat_map(|p| p.likely_groups()).collect()
+    }
+
+    fn switch_on_fraction(&self, u: &[f64], trial: &[f64]) -> f64 {
+        self.parts
+            .iter()
+            .fold(1.0, |m, p| m.min(p.switch_on_fraction(u, trial)))
     }
 
     fn diagonal(&self, u: &[f64]) -> Option<Diagonal> {

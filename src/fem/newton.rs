@@ -4,6 +4,10 @@
 //! solve `K_ff du_f = -(r_f + K_fc du_c)` (the lifted, linearised system) and move both
 //! `u_f` and `u_c`, halving the step only while it inverts an element; once `u_c` has reached its
 //! values, steps must decrease `|r_f|` by the factor `1 - c alpha` (Armijo on the residual norm).
+//! The line search starts at `alpha = 1`, or where the first term of an added energy switches on
+//! along the step ([`AddedEnergy::switch_on_fraction`]): a contact pair that closes within the
+//! step is not in the tangent, so the full step overshoots it by up to the step's length, and
+//! halving back from 1 would cost several residual evaluations and a crawl of short steps.
 //! Convergence: `|r_f| <= s (rtol |f| + atol)`, where `|f|` is the internal force on all unknowns
 //! (reactions included) and `s` the factor on a raised incompressibility penalty (1 otherwise),
 //! or an update `|alpha du|_inf <= utol (1 + |u|_inf)`. Trial points are
@@ -289,8 +293,8 @@ impl Newton {
             let du = self.newton_step(&state.assembled, factorised, &mut problem.timings)?;
             factorised = false;
             tangent_steps += 1;
-            let (next, next_u, alpha) = self.line_search(&mut problem, u, &state, &du, iteration)?;
-            backtracks += backtracks_in(alpha);
+            let (next, next_u, alpha, halvings) = self.line_search(&mut problem, u, &state, &du, iteration)?;
+            backtracks += halvings;
             last_update = alpha * max_abs(&du);
             u.copy_from_slice(&next_u);
             state = next;
@@ -385,8 +389,10 @@ impl Newton {
         })
     }
 
-    /// Halves `alpha` from 1 until `u + alpha du` is admissible (and, once the prescribed values
-    /// are reached, decreases `|r|`); returns the new iterate, its displacement and `alpha`.
+    /// Halves `alpha` until `u + alpha du` is admissible (and, once the prescribed values are
+    /// reached, decreases `|r|`), starting from 1 or from where the first term of the added
+    /// energy switches on ([`AddedEnergy::switch_on_fraction`]); returns the new iterate, its
+    /// displacement, `alpha` and the number of halvings.
     fn line_search(
         &self,
         problem: &mut Problem,
@@ -394,11 +400,12 @@ impl Newton {
         state: &Iterate,
         du: &[f64],
         iteration: usize,
-    ) -> Result<(Iterate, Vec<f64>, f64), NewtonError> {
+    ) -> Result<(Iterate, Vec<f64>, f64, usize), NewtonError> {
         let s = self.settings;
         let residual = state.assembled.residual_norm();
-        let mut alpha = 1.0;
-        loop {
+        let full = problem.step(u, du, &state.pending, 1.0);
+        let mut alpha = problem.added.switch_on_fraction(u, &full);
+        for halvings in 0.. {
             let trial_u = problem.step(u, du, &state.pending, alpha);
             let pending: Vec<f64> = state.pending.iter().map(|p| (1.0 - alpha) * p).collect();
             let lifting = state.lifting && alpha < 1.0;
@@ -412,17 +419,18 @@ impl Newton {
                         pending,
                         lifting,
                     };
-                    return Ok((next, trial_u, alpha));
+                    return Ok((next, trial_u, alpha, halvings));
                 }
                 Ok(_) => NewtonError::LineSearch { iteration, residual },
                 Err(Error::NonPositiveJacobian { jacobian }) => NewtonError::Inverted { iteration, jacobian },
                 Err(e) => return Err(e.into()),
             };
-            if backtracks_in(alpha) == s.max_backtracks {
+            if halvings == s.max_backtracks {
                 return Err(failure);
             }
             alpha *= 0.5;
         }
+        unreachable!("the loop returns")
     }
 
     /// `du_f = -K_ff^-1 r_f` (with the held factorisation if it is `current`'s, `factorised`),
@@ -549,11 +557,6 @@ impl<'a> Problem<'a> {
         }
         next
     }
-}
-
-/// Number of halvings that led to step length `alpha`.
-fn backtracks_in(alpha: f64) -> usize {
-    (-alpha.log2()).round() as usize
 }
 
 /// The starting state's `J <= 0` as a Newton failure.

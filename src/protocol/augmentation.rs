@@ -96,7 +96,8 @@ impl Augmentation {
     }
 
     /// Equilibrium at `d` (prescribed by `bc`) from the predictor `u`, stepping from the
-    /// converged `(d0, u0)`; redone with a smaller `eta` while the step would exceed the
+    /// converged `(d0, u0)` with the step control at `control_step` (which decides whether
+    /// the step is damped, see [`Stabilisation::damper`]); redone with a smaller `eta` while the step would exceed the
     /// dissipation budget. On failure `u` is the predictor again and nothing is booked. The
     /// inertia, when Newton's settings ask for it, is that of the undamped tangent: read from
     /// Newton's factorisation at the predictor where that tangent is the same energy's (an
@@ -113,11 +114,19 @@ impl Augmentation {
         u: &mut [f64],
         bc: &Dirichlet,
         (d0, u0): (f64, &[f64]),
-        d: f64,
+        (d, control_step): (f64, f64),
     ) -> Result<(NewtonReport, AugmentedRecord)> {
         let settings = newton.settings;
         newton.settings.inertia_at_solution = false;
-        let result = self.solve_within_budget(newton, system, u, bc, (d0, u0), d, settings.inertia_at_solution);
+        let result = self.solve_within_budget(
+            newton,
+            system,
+            u,
+            bc,
+            (d0, u0),
+            (d, control_step),
+            settings.inertia_at_solution,
+        );
         newton.settings = settings;
         result
     }
@@ -130,7 +139,7 @@ impl Augmentation {
         u: &mut [f64],
         bc: &Dirichlet,
         (d0, u0): (f64, &[f64]),
-        d: f64,
+        (d, control_step): (f64, f64),
         wants_inertia: bool,
     ) -> Result<(NewtonReport, AugmentedRecord)> {
         let predictor = u.to_vec();
@@ -138,7 +147,7 @@ impl Augmentation {
         let length = system.mesh().spec().length;
         loop {
             let damper = match &self.stabilisation {
-                Some(s) => Some(s.damper(system, d0, u0, d)?),
+                Some(s) => Some(s.damper(system, (d0, u0), d, control_step)?),
                 None => None,
             };
             let other: &dyn AddedEnergy = match &damper {

@@ -346,7 +346,14 @@ impl Continuation {
         }
         if let Some(augmentation) = &mut self.augmentation {
             let (d0, u0) = self.history.back().expect("never empty");
-            let (report, record) = augmentation.solve(&mut self.newton, &mut self.system, &mut u, &bc, (*d0, u0), d)?;
+            let (report, record) = augmentation.solve(
+                &mut self.newton,
+                &mut self.system,
+                &mut u,
+                &bc,
+                (*d0, u0),
+                (d, self.step),
+            )?;
             return Ok((report, u, Some(record)));
         }
         let report = self.newton.solve(&mut self.system, &mut u, &bc)?;

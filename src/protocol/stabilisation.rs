@@ -103,9 +103,10 @@ impl Stabilisation {
         self.dissipated
     }
 
-    /// The damper of the step from `(d0, u0)` to `d` on `system`'s mesh (zero damping on steps
-    /// of at least `engage_below`).
-    pub fn damper(&self, system: &System, d0: f64, u0: &[f64], d: f64) -> Result<Damper<'_>> {
+    /// The damper of the step from `(d0, u0)` to `d` on `system`'s mesh, made by a step control
+    /// whose current step is `control_step`: zero damping unless that is below `engage_below`
+    /// (a step shortened only to land on the end of the path is not damped).
+    pub fn damper(&self, system: &System, (d0, u0): (f64, &[f64]), d: f64, control_step: f64) -> Result<Damper<'_>> {
         let mesh = system.mesh();
         let before = homogeneous_displacement(mesh, &homogeneous_state(&self.materials, d0)?);
         let after = homogeneous_displacement(mesh, &homogeneous_state(&self.materials, d)?);
@@ -117,7 +118,7 @@ impl Stabilisation {
         Ok(Damper {
             stiffness: &self.stiffness,
             reference,
-            factor: if d - d0 < self.settings.engage_below {
+            factor: if control_step < self.settings.engage_below {
                 self.eta / (d - d0)
             } else {
                 0.0
@@ -201,5 +202,34 @@ impl AddedEnergy for Damper<'_> {
             gradient,
             curvature,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{Mesh, MeshSpec};
+    use crate::Parameters;
+
+    /// The damper engages by the step control's step, not by the step's length: the last step
+    /// shortened to land on `d_max` is as undamped as the full steps before it, and a cut step
+    /// is damped with `eta / h` of its own length `h`.
+    #[test]
+    fn only_steps_the_control_has_cut_are_damped() {
+        let materials = Bilayer::new(&Parameters::default());
+        let system = System::new(Mesh::new(MeshSpec::new(4, 1, 2, 0.5, 4.0, 4.0)).unwrap(), &materials).unwrap();
+        let stabilisation = Stabilisation::new(&system, &materials, StabilisationSettings::default()).unwrap();
+        let u0 = vec![0.0; system.num_dofs()];
+        let (d0, h) = (0.1, 2.5e-4);
+        let landing = stabilisation.damper(&system, (d0, &u0), d0 + h, 5e-3).unwrap();
+        assert!(!landing.damps());
+        let cut = stabilisation.damper(&system, (d0, &u0), d0 + h, h).unwrap();
+        assert!(cut.damps());
+        // Its force is eta / h times the stiffness: twice as short a cut step, twice the work.
+        let shorter = stabilisation.damper(&system, (d0, &u0), d0 + h / 2.0, h / 2.0).unwrap();
+        let moved = |damper: &Damper| -> Vec<f64> { damper.reference.iter().map(|r| r + 1e-3).collect() };
+        let ratio = shorter.dissipation(&moved(&shorter)) / cut.dissipation(&moved(&cut));
+        assert!((ratio - 2.0).abs() < 1e-12, "{ratio}");
+        assert_eq!(landing.dissipation(&moved(&cut)), 0.0);
     }
 }

@@ -49,14 +49,19 @@ fn ramp_integral<D: DualNum<Primitive = f64> + Copy>(s: D, b: f64) -> D {
     }
 }
 
+/// The half-width `b = eps delta / 2` of the switch in the pressure argument `s`.
+pub fn switch_half_width(penalty: f64) -> f64 {
+    0.5 * penalty * SWITCH_GAP
+}
+
 /// The pair energy `psi(g) = w / eps Phi(lambda - eps g)` (module docs).
 pub fn pair_energy<D: DualNum<Primitive = f64> + Copy>(gap: D, multiplier: f64, penalty: f64, weight: f64) -> D {
-    ramp_integral(-gap * penalty + multiplier, 0.5 * penalty * SWITCH_GAP) * (weight / penalty)
+    ramp_integral(-gap * penalty + multiplier, switch_half_width(penalty)) * (weight / penalty)
 }
 
 /// Contact pressure `P(lambda - eps g)`.
 pub fn pressure(gap: f64, multiplier: f64, penalty: f64) -> f64 {
-    let (s, b) = (multiplier - penalty * gap, 0.5 * penalty * SWITCH_GAP);
+    let (s, b) = (multiplier - penalty * gap, switch_half_width(penalty));
     if s >= b {
         s
     } else if s > -b {
