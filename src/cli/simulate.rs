@@ -172,8 +172,8 @@ pub struct SimulateArgs {
     pub eta: f64,
 
     /// Do not track the number of negative eigenvalues of the tangent at every converged state
-    /// (Newton then keeps one factorisation over several steps instead of factorising at every
-    /// predictor; secondary.json then has no bifurcations).
+    /// (saves the extra factorisation of damped and contact states; secondary.json then has no
+    /// bifurcations).
     #[arg(long)]
     pub no_inertia: bool,
 

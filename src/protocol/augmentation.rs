@@ -158,7 +158,7 @@ impl Augmentation {
             let unloaded =
                 |contact: &Option<Contact>, u: &[f64]| contact.as_ref().is_none_or(|c| c.loaded_pairs(u).is_empty());
             let plain = !damped && unloaded(&self.contact, u);
-            newton.settings.factorise_start = wants_inertia && plain && !system.has_multipliers();
+            newton.settings.factorise_start = plain && !system.has_multipliers();
             // Across a damped snap or with contact forces the residual may stagnate for a few
             // steps before it converges: there only the slower stall rule cuts the step.
             if !plain {

