@@ -96,9 +96,9 @@ impl Augmentation {
     }
 
     /// Equilibrium at `d` (prescribed by `bc`) from the predictor `u`, stepping from the
-    /// converged `(d0, u0)` with the step control at `control_step` (which decides whether
-    /// the step is damped, see [`Stabilisation::damper`]); redone with a smaller `eta` while the step would exceed the
-    /// dissipation budget. On failure `u` is the predictor again and nothing is booked. The
+    /// converged `(d0, u0)` with the step control at `control_step` (which decides whether the
+    /// step is damped, see [`Stabilisation::damper`]); redone with a smaller `eta` while the
+    /// step would exceed the dissipation budget. On failure `u` is the predictor again and nothing is booked. The
     /// inertia, when Newton's settings ask for it, is that of the undamped tangent: read from
     /// Newton's factorisation at the predictor where that tangent is the same energy's (an
     /// undamped step, no contact force at the predictor or at the solution, one Newton solve;

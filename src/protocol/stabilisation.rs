@@ -6,13 +6,14 @@
 //! motion (`u_h` is the homogeneous solution of the bilayer, so uniform compression is not
 //! damped). The damping is proportional to the stiffness, `c_i = K_ii` of the reference state,
 //! so that `eta / h` is the damping relative to the elastic tangent at every scale of the mesh
-//! (the cusp of a closing trough is an element-scale instability). The damper engages only on
-//! steps shorter than `engage_below` (`1e-3`, a fifth of the usual step): where the path is
-//! smooth it is not damped at all (so the onset and `A(d)` are those of the elastic problem);
-//! across a snap the step is cut and `eta / h` grows until the damped step is well posed, so
-//! the damper carries the jump. The work of the damping forces, `eta / h |du|_c^2` per step, is summed and reported
-//! against the strain energy; `eta` is cut whenever that fraction would exceed the budget, and
-//! the step is redone.
+//! (the cusp of a closing trough is an element-scale instability). The damper engages only
+//! where the step control has cut the step below `engage_below` (`1e-3`, a fifth of the usual
+//! step; a last step shortened only to land on the end of the path is not damped): where the
+//! path is smooth it is not damped at all (so the onset and `A(d)` are those of the elastic
+//! problem); across a snap the step is cut and `eta / h` grows until the damped step is well
+//! posed, so the damper carries the jump. The work of the damping forces, `eta / h |du|_c^2`
+//! per step, is summed and reported against the strain energy; `eta` is cut whenever that
+//! fraction would exceed the budget, and the step is redone.
 
 use crate::error::{Error, Result};
 use crate::fem::added::{AddedEnergy, Block, Diagonal};
