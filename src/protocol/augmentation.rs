@@ -98,14 +98,14 @@ impl Augmentation {
     /// Equilibrium at `d` (prescribed by `bc`) from the predictor `u`, stepping from the
     /// converged `(d0, u0)` with the step control at `control_step` (which decides whether the
     /// step is damped, see [`Stabilisation::damper`]); redone with a smaller `eta` while the
-    /// step would exceed the dissipation budget. On failure `u` is the predictor again and nothing is booked. The
-    /// inertia, when Newton's settings ask for it, is that of the undamped tangent: read from
-    /// Newton's factorisation at the predictor where that tangent is the same energy's (an
-    /// undamped step, no contact force at the predictor or at the solution, one Newton solve;
-    /// see [`crate::fem::newton`]) and the predictor was within 1e-2 (`PREDICTOR_CLOSENESS`) of a
-    /// step of the solution, otherwise from one more factorisation at the solution, counted on
-    /// a second thread while the next step goes on (the record is then `inertia_pending`, and
-    /// [`Augmentation::next_inertia`] gives the count).
+    /// step would exceed the dissipation budget. On failure `u` is the predictor again and
+    /// nothing is booked. The inertia, when Newton's settings ask for it, is that of the
+    /// undamped tangent: read from Newton's factorisation at the predictor where that tangent is
+    /// the same energy's (an undamped step, no contact force at the predictor or at the
+    /// solution, one Newton solve; see [`crate::fem::newton`]) and the predictor was within 1e-2
+    /// (`PREDICTOR_CLOSENESS`) of a step of the solution, otherwise from one more factorisation
+    /// at the solution, counted on a second thread while the next step goes on (the record is
+    /// then `inertia_pending`, and [`Augmentation::next_inertia`] gives the count).
     #[allow(clippy::too_many_arguments)]
     pub fn solve(
         &mut self,
@@ -158,7 +158,7 @@ impl Augmentation {
             let unloaded =
                 |contact: &Option<Contact>, u: &[f64]| contact.as_ref().is_none_or(|c| c.loaded_pairs(u).is_empty());
             let plain = !damped && unloaded(&self.contact, u);
-            newton.settings.factorise_start = plain && !system.has_multipliers();
+            newton.settings.factorise_start = plain;
             // Across a damped snap or with contact forces the residual may stagnate for a few
             // steps before it converges: there only the slower stall rule cuts the step.
             if !plain {

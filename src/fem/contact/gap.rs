@@ -50,7 +50,7 @@ fn ramp_integral<D: DualNum<Primitive = f64> + Copy>(s: D, b: f64) -> D {
 }
 
 /// The half-width `b = eps delta / 2` of the switch in the pressure argument `s`.
-pub fn switch_half_width(penalty: f64) -> f64 {
+fn switch_half_width(penalty: f64) -> f64 {
     0.5 * penalty * SWITCH_GAP
 }
 
@@ -59,9 +59,14 @@ pub fn pair_energy<D: DualNum<Primitive = f64> + Copy>(gap: D, multiplier: f64, 
     ramp_integral(-gap * penalty + multiplier, switch_half_width(penalty)) * (weight / penalty)
 }
 
+/// The pressure argument `s = lambda - eps g`.
+pub fn pressure_argument(gap: f64, multiplier: f64, penalty: f64) -> f64 {
+    multiplier - penalty * gap
+}
+
 /// Contact pressure `P(lambda - eps g)`.
 pub fn pressure(gap: f64, multiplier: f64, penalty: f64) -> f64 {
-    let (s, b) = (multiplier - penalty * gap, switch_half_width(penalty));
+    let (s, b) = (pressure_argument(gap, multiplier, penalty), switch_half_width(penalty));
     if s >= b {
         s
     } else if s > -b {

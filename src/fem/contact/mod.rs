@@ -19,7 +19,7 @@ pub use solve::{solve_with_contact, ContactSolve};
 
 use super::added::{AddedEnergy, Block};
 use crate::mesh::Mesh;
-use gap::{differentiate, pair_energy, plane_gap, pressure, segment_gap, switch_half_width};
+use gap::{differentiate, pair_energy, plane_gap, pressure, pressure_argument, segment_gap};
 use std::collections::HashMap;
 
 /// Surface nodes on either side of a contact pair whose coupling the tangent's pattern stores
@@ -289,18 +289,17 @@ impl AddedEnergy for Contact {
             .collect()
     }
 
-    /// Where the first open pair closes: its pressure argument `s = lambda - eps g` crosses 0,
-    /// interpolated linearly between `u` and `trial`.
+    /// Where the first pair without pressure at `u` closes: its pressure argument
+    /// `s = lambda - eps g` crosses 0, interpolated linearly between `u` and `trial`.
     fn switch_on_fraction(&self, u: &[f64], trial: &[f64]) -> f64 {
         let eps = self.settings.penalty;
-        let b = switch_half_width(eps);
-        let argument = |g: f64, lambda: f64| lambda - eps * g;
         self.gaps(u)
             .into_iter()
             .zip(self.gaps(trial))
             .zip(&self.multipliers)
-            .map(|((g0, g1), &lambda)| (argument(g0, lambda), argument(g1, lambda)))
-            .filter(|&(s0, s1)| s0 <= -b && s1 > 0.0)
+            .filter(|&((g0, _), &lambda)| pressure(g0, lambda, eps) == 0.0)
+            .map(|((g0, g1), &lambda)| (pressure_argument(g0, lambda, eps), pressure_argument(g1, lambda, eps)))
+            .filter(|&(_, s1)| s1 > 0.0)
             .fold(1.0, |m, (s0, s1)| m.min(s0 / (s0 - s1)))
     }
 
