@@ -12,6 +12,7 @@
 use crate::error::{Error, Result};
 use crate::numerics::density::equidistribute;
 use crate::numerics::grading::geometric_ratio;
+use crate::parameters::Parameters;
 use serde::{Deserialize, Serialize};
 
 /// Thickness of the stiff layer: the unit of length.
@@ -25,6 +26,10 @@ pub enum Region {
     /// The fibre-reinforced substrate, `-D <= Y <= 0`.
     Substrate,
 }
+
+/// `K / mu` above which the displacement element locks noticeably (README: its coarse-mesh
+/// bifurcation is 1.0e-3 off the linear theory at 100, 3.7e-3 at 1000, and fails from 1e5).
+pub const LOCKING_RATIO: f64 = 100.0;
 
 /// The finite element on the mesh (both interpolate displacements with Q2).
 ///
@@ -67,6 +72,18 @@ impl ElementKind {
             ));
         }
         Ok(())
+    }
+
+    /// A one-line note when this element locks for `params`: the displacement element with a
+    /// layer's `K / mu` above [`LOCKING_RATIO`]; it points to the mixed element.
+    pub fn locking_note(self, params: &Parameters) -> Option<String> {
+        let ratio = (params.K_l / params.mu_l).max(params.K_s / params.mu_s);
+        (self == ElementKind::Displacement && !params.incompressible && ratio > LOCKING_RATIO).then(|| {
+            format!(
+                "note: K / mu = {ratio:.1e} with the displacement element, which locks above K / mu ~ {LOCKING_RATIO} \
+                 (too stiff in bending; from about 1e5 its runs fail); --element mixed does not"
+            )
+        })
     }
 
     /// The element of results written before the mixed element existed (a missing field).
@@ -447,6 +464,21 @@ impl Mesh {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_displacement_element_notes_its_locking_above_k_over_mu_100() {
+        let mut params = Parameters::default();
+        assert_eq!(ElementKind::Displacement.locking_note(&params), None); // K / mu = 3
+        params.K_s = 1e6;
+        let note = ElementKind::Displacement.locking_note(&params).unwrap();
+        assert!(note.contains("1.0e6") && note.contains("--element mixed"), "{note}");
+        assert_eq!(ElementKind::Mixed.locking_note(&params), None);
+        params.K_s = 3.0;
+        params.K_l = 101.0 * params.mu_l;
+        assert!(ElementKind::Displacement.locking_note(&params).is_some());
+        params.incompressible = true; // refused elsewhere, with its own message
+        assert_eq!(ElementKind::Displacement.locking_note(&params), None);
+    }
 
     #[test]
     fn small_mesh_numbering_and_sets() {

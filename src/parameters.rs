@@ -189,11 +189,7 @@ impl Parameters {
         ];
         for (name, value) in moduli {
             if !(value.is_finite() && (MODULUS_MIN..=MODULUS_MAX).contains(&value)) {
-                return Err(Error::invalid_number(
-                    name,
-                    value,
-                    "[1e-12, 1e12] (moduli in units of mu_s)",
-                ));
+                return Err(Error::invalid_number(name, value, modulus_range(name)));
             }
         }
         if !(self.mu_f.is_finite() && (0.0..=MODULUS_MAX).contains(&self.mu_f)) {
@@ -245,10 +241,21 @@ pub fn validate_compression(name: &str, d: f64) -> Result<()> {
     }
 }
 
+/// The allowed range of the modulus `name`; a bulk modulus beyond it (e.g. `K_s = inf`) is
+/// pointed to exact incompressibility.
+fn modulus_range(name: &str) -> &'static str {
+    if name.starts_with('K') {
+        "[1e-12, 1e12] (moduli in units of mu_s; for exactly incompressible layers set incompressible = true)"
+    } else {
+        "[1e-12, 1e12] (moduli in units of mu_s)"
+    }
+}
+
 /// Parses a finite number given for `name`.
 pub fn parse_number(name: &str, text: &str) -> Result<f64> {
     match text.parse::<f64>() {
         Ok(x) if x.is_finite() => Ok(x),
+        Ok(x) if x > 0.0 && name.starts_with('K') => Err(Error::invalid(name, text, modulus_range(name))),
         _ => Err(Error::invalid(name, text, "a finite number")),
     }
 }
@@ -302,6 +309,13 @@ mod tests {
             ..Parameters::default()
         };
         assert!(p.validate().unwrap_err().to_string().contains("mu_l"));
+        // An infinite bulk modulus, in a file or after --set, is pointed to incompressible = true.
+        let file = Parameters::from_toml_str("K_s = inf");
+        let mut p = Parameters::default();
+        for msg in [file.unwrap_err().to_string(), p.set("K_l=inf").unwrap_err().to_string()] {
+            assert!(msg.contains("incompressible = true") && msg.contains("1e12"), "{msg}");
+        }
+        assert!(!p.set("mu_l=inf").unwrap_err().to_string().contains("incompressible"));
         assert!(validate_compression("d", 1.0).is_err());
         assert!(validate_compression("d", f64::NAN).is_err());
     }

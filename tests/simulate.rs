@@ -313,6 +313,18 @@ fn onset_estimators_recover_d_c_of_a_perfect_pitchfork() {
     assert!((fit - (dc - a0 * a0 / c)).abs() < 1e-9);
 }
 
+#[test]
+fn an_a2_fit_that_crosses_zero_outside_the_curve_is_no_onset() {
+    // A curve that steepens at a kink (d = 0.08) and then grows slowly: its A^2 line crosses
+    // zero at d = 0.08 - 1/5 = -0.12, before the curve starts.
+    let (d, a) = sample(|d| (1.0 + 5.0 * (d - 0.08).max(0.0)).sqrt());
+    assert!((steepest(&d, &a).unwrap() - 0.08).abs() < 0.005);
+    assert_eq!(a2_fit(&d, &a), None);
+    // The same kink where the curve starts from A = 0.1 has its zero inside: an estimate.
+    let (d, a) = sample(|d| (0.01 + 5.0 * (d - 0.08).max(0.0)).sqrt());
+    assert!((a2_fit(&d, &a).unwrap() - 0.078).abs() < 1e-9);
+}
+
 /// The positive root of the imperfect pitchfork `A^3 - c (d - dc) A - c e d = 0` (bisection).
 fn imperfect_pitchfork(d: f64, dc: f64, c: f64, e: f64) -> f64 {
     let f = |a: f64| a * a * a - c * (d - dc) * a - c * e * d;

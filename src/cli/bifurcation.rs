@@ -42,6 +42,9 @@ pub fn run(args: &BifurcationArgs) -> Result<()> {
         "bifurcation of the perfect system: inertia of the tangent along the homogeneous path, {} unknowns",
         mesh.num_dofs()
     );
+    if let Some(note) = mesh.element.locking_note(&params) {
+        println!("{note}");
+    }
     let r = bifurcation::run(&params, &study, &args.out)?;
     println!(
         "d_bifurcation = {:.7} (bracket [{:.7}, {:.7}], {} negative pivot(s) past it), mode: {} half waves, k = {:.5}",

@@ -94,6 +94,9 @@ pub fn run(args: &CreaseArgs) -> Result<()> {
         "crease onset (energy of a seeded crease against the flat state) for folds a = {:?} H, d in [{}, {}]",
         study.fold_lengths, study.scan.from, study.scan.to
     );
+    if let Some(note) = study.mesh.element.locking_note(&params) {
+        println!("{note}");
+    }
     let bar = ProgressBar::new_spinner();
     bar.set_style(
         ProgressStyle::with_template("{spinner} {pos} crease energies ({elapsed})").expect("static template"),

@@ -236,6 +236,9 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         memory.factor_entries,
         available_bytes().map_or(String::new(), |a| format!("; {:.0} MB available", a / 1e6))
     );
+    if let Some(note) = study.mesh.element.locking_note(&params) {
+        println!("{note}");
+    }
     let bar = ProgressBar::new(1000);
     bar.set_style(
         ProgressStyle::with_template("{msg} [{bar:40}] ({elapsed})")

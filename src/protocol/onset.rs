@@ -85,7 +85,9 @@ pub fn steepest(d: &[f64], a: &[f64]) -> Option<f64> {
 }
 
 /// (c) The zero of the least-squares line through `(d_i, A_i^2)` for `d_i` in
-/// `[d_steepest, d_steepest + A2_FIT_WINDOW]` (at least three points).
+/// `[d_steepest, d_steepest + A2_FIT_WINDOW]` (at least three points), if it lies within the
+/// recorded `d`: a zero outside (a curve that ends before its onset, whose steepest point is
+/// a kink of the path) is no estimate.
 pub fn a2_fit(d: &[f64], a: &[f64]) -> Option<f64> {
     let start = steepest(d, a)?;
     let points: Vec<(f64, f64)> = d
@@ -95,7 +97,8 @@ pub fn a2_fit(d: &[f64], a: &[f64]) -> Option<f64> {
         .map(|(&di, &ai)| (di, ai * ai))
         .collect();
     let (intercept, slope) = line_fit(&points)?;
-    (slope > 0.0).then(|| -intercept / slope)
+    let zero = -intercept / slope;
+    (slope > 0.0 && zero >= d[0] && zero <= d[d.len() - 1]).then_some(zero)
 }
 
 /// Least-squares `y = intercept + slope x`; `None` below three points or for a degenerate `x`.

@@ -194,7 +194,8 @@ pub struct OnsetReport {
 const ONSET_NOTE: &str = "d_max_curvature is the first peak (largest within +-0.01 in d) of \
     kappa = A''/(1 + A'^2)^(3/2), the paper's rule; kappa, and so this estimate, depends on the relative scaling \
     of A (in units of H) and d, and on the imperfection. d_steepest is the first peak of A'. d_a2_fit is where a \
-    straight line fitted to A^2 against d over [d_steepest, d_steepest + a2_fit_window] crosses zero. \
+    straight line fitted to A^2 against d over [d_steepest, d_steepest + a2_fit_window] crosses zero (null if that \
+    lies outside the recorded d). \
     d_linear_theory is the exact linear theory's d_c(k) for the seeded k. d_ellipticity_loss is the compression at \
     which the homogeneous state loses strong ellipticity (null if it does not): beyond it the continuum admits \
     shear bands (e.g. compressed fibres at small beta) and the solution depends on the mesh.";
