@@ -132,8 +132,8 @@ mod tests {
     use super::*;
     use crate::parameters::Parameters;
 
-    /// Eq. (4a) as printed but with the matrix term weighted by mu_s (NOTES.md): sigma_22 of the
-    /// substrate, written out independently of the material module.
+    /// Eq. (4a) as printed but with the matrix term weighted by mu_s (`docs/model.md`, section
+    /// "Corrections"): sigma_22 of the substrate, written out independently of the material module.
     fn eq_4a(p: &Parameters, l1: f64, l2: f64) -> f64 {
         let j = l1 * l2;
         let f_prime = |eta: f64| p.mu_f / 2.0 * (eta - p.lambda_f * p.lambda_f);

@@ -1,5 +1,5 @@
 //! Structured meshes of the bilayer: 9-node biquadratic (Q2) quadrilaterals over the reference
-//! domain `0 <= X <= L`, `-D <= Y <= 1` (NOTES.md, "The finite-element set-up"). Elements are
+//! domain `0 <= X <= L`, `-D <= Y <= 1` (`docs/model.md`, "The finite-element set-up"). Elements are
 //! uniform in X (or refined near chosen points, [`XRefinement`]) and through the layer
 //! `0 <= Y <= 1`; in the substrate they grow geometrically from `h0` at the interface,
 //! `h_k = h0 r^k`, with `r` chosen so that `sum_k h_k = D` exactly.

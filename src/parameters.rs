@@ -8,7 +8,7 @@ use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
-/// Material parameters of the bilayer (paper, Table 1 and eqs. 1-3, corrected per NOTES.md).
+/// Material parameters of the bilayer (the paper's Table 1 and eqs. 1-3; `docs/model.md`, "Parameters").
 #[allow(non_snake_case)]
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

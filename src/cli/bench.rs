@@ -62,7 +62,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             if args.coarse_only {
                 meshes.truncate(1);
             }
-            // The curve is at beta = pi/4; explicit --params/--set replace it.
+            // The benchmark's curve is at beta = pi/4; explicit --params/--set replace it.
             let user_params = args.params.params.is_some() || !args.params.set.is_empty();
             let setup = if user_params {
                 FeBenchSetup {

@@ -10,7 +10,7 @@ use fiberfold::{Error, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 
-/// The mesh presets of the issue.
+/// The mesh presets (coarse, fine, extra).
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum MeshPreset {
     /// 100 x (2 + 25) elements, h0 = 0.5: 22,110 unknowns.

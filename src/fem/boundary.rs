@@ -1,4 +1,4 @@
-//! Prescribed displacements (Dirichlet conditions), and those of the model (NOTES.md, "The
+//! Prescribed displacements (Dirichlet conditions), and those of the model (`docs/model.md`, "The
 //! finite-element set-up"): `u_x = 0` on `X = 0`, `u_x = -L d` on `X = L`, `u_y = 0` on
 //! `Y = -D`; the top is traction free and `u_y` is free on both vertical edges.
 

@@ -1,5 +1,5 @@
-//! Compressible neo-Hookean solid (layer, and matrix of the substrate; NOTES.md form of eqs. 1-2):
-//! `W = mu/2 (Ibar1 - 3) + K/2 (ln J)^2`, `Ibar1 = J^(-2/3) I1`.
+//! Compressible neo-Hookean solid (layer, and matrix of the substrate; eqs. 1-2 as corrected in
+//! `docs/model.md`, "Strain energies"): `W = mu/2 (Ibar1 - 3) + K/2 (ln J)^2`, `Ibar1 = J^(-2/3) I1`.
 
 use super::{cofactor, Response, StrainEnergy, Tensor2};
 use num_dual::DualNum;

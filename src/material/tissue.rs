@@ -121,7 +121,8 @@ impl Bilayer {
 impl Tissue {
     /// The split `W(F) = W_rest(F) + kappa/2 (ln J)^2` of this tissue's energy: `W_rest` is the
     /// same tissue with a zero bulk modulus, `kappa` the bulk modulus it carries (`phi_m K_s` in
-    /// the substrate). Exact for NOTES.md's energies, whose only `J`-term is `K/2 (ln J)^2`.
+    /// the substrate). Exact for the energies of `docs/model.md` ("Strain energies"), whose only
+    /// `J`-term is `K/2 (ln J)^2`.
     pub fn volumetric_split(&self) -> (Tissue, f64) {
         match *self {
             Tissue::Layer(m) => (Tissue::Layer(NeoHookean { bulk: 0.0, ..m }), m.bulk),
