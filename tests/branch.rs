@@ -7,7 +7,7 @@
 //! wherever that is the same energy's) is the exact inertia of the converged state's tangent.
 
 use fiberfold::fem::added::NoAddedEnergy;
-use fiberfold::fem::{model_conditions, Newton, NewtonSettings, System};
+use fiberfold::fem::{model_conditions, Newton, System};
 use fiberfold::material::Bilayer;
 use fiberfold::mesh::MeshSpec;
 use fiberfold::protocol::secondary::branch;
@@ -37,7 +37,7 @@ fn four_wave_run_of(
     protocol.newton.inertia_at_solution = true;
     protocol.imperfection2 = a2;
     protocol.imperfection2_waves = n2;
-    let (mut records, mut exact) = (Vec::new(), Newton::new(NewtonSettings::default()));
+    let (mut records, mut exact) = (Vec::new(), Newton::new());
     let materials = Bilayer::new(params);
     let outcome = stages::run(
         &materials,
@@ -49,7 +49,9 @@ fn four_wave_run_of(
                 if !record.augmented.as_ref().is_some_and(|a| a.in_contact) {
                     let mut elastic = System::new(system.mesh().clone(), &materials)?;
                     let bc = model_conditions(system.mesh(), record.d)?;
-                    let count = exact.inertia(&mut elastic, u, &bc, &NoAddedEnergy).unwrap();
+                    let count = exact
+                        .inertia(&mut elastic, u, &bc, &NoAddedEnergy, &mut Default::default())
+                        .unwrap();
                     assert_eq!(record.negative_pivots, count, "inertia at d = {}", record.d);
                 }
                 records.push(record.clone());

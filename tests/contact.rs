@@ -9,9 +9,10 @@ mod common;
 
 use common::homogeneous_material;
 use fiberfold::fem::boundary::{X, Y};
-use fiberfold::fem::contact::{solve_with_contact, Contact, ContactSettings, End, Pair, Plane};
+use fiberfold::fem::contact::{Contact, ContactSettings, End, Pair, Plane};
+use fiberfold::fem::equilibrium::solve_with_contact;
 use fiberfold::fem::fields::cell_fields;
-use fiberfold::fem::{dof, Dirichlet, Newton, NewtonSettings, System};
+use fiberfold::fem::{dof, Dirichlet, Newton, NewtonPolicy, System};
 use fiberfold::mesh::{Mesh, MeshSpec};
 
 /// Energy and gradient (all unknowns) of an added energy at `u`.
@@ -130,7 +131,7 @@ fn pressed_block(penalty: f64) -> (System, Vec<f64>, Contact, usize, Newton) {
     let contact = Contact::new(&mesh, vec![plane], settings);
     let mut system = System::new(mesh, &materials).unwrap();
     let mut u = vec![0.0; system.num_dofs()];
-    let mut newton = Newton::new(NewtonSettings::default());
+    let mut newton = Newton::new();
     let mut contact = contact;
     let solved = solve_with_contact(
         &mut newton,
@@ -139,9 +140,10 @@ fn pressed_block(penalty: f64) -> (System, Vec<f64>, Contact, usize, Newton) {
         &bc,
         &mut contact,
         &fiberfold::fem::added::NoAddedEnergy,
+        &NewtonPolicy::default(),
     )
     .unwrap();
-    (system, u, contact, solved.augmentations, newton)
+    (system, u, contact, solved.updates.contact + 1, newton)
 }
 
 #[test]

@@ -8,7 +8,7 @@ mod common;
 use common::{boundary_values, distortion, error_norms, homogeneous_material, worst_nodal_error};
 use fiberfold::fem::boundary::{X, Y};
 use fiberfold::fem::linear_solver::multiply;
-use fiberfold::fem::{dof, model_conditions, Newton, NewtonError, NewtonSettings, System};
+use fiberfold::fem::{dof, equilibrium, model_conditions, Newton, NewtonError, NewtonPolicy, Reuse, System};
 use fiberfold::homogeneous::homogeneous_state;
 use fiberfold::material::Bilayer;
 use fiberfold::mesh::{ElementKind, Mesh, MeshSpec};
@@ -55,9 +55,8 @@ fn patch_test_reproduces_an_affine_deformation_on_a_distorted_mesh() {
         let bc = boundary_values(&mesh, affine);
         let mut system = System::new(mesh.clone(), &homogeneous_material()).unwrap();
         let mut u = vec![0.0; mesh.num_dofs()];
-        let report = Newton::new(NewtonSettings::default())
-            .solve(&mut system, &mut u, &bc)
-            .unwrap();
+        let report =
+            equilibrium::solve(&mut Newton::new(), &mut system, &mut u, &bc, &NewtonPolicy::default()).unwrap();
         let worst = worst_nodal_error(&mesh, &u, affine);
         assert!(worst < 1e-12, "{element:?}: patch test error {worst:e} ({report:?})");
     }
@@ -143,9 +142,7 @@ fn newton_converges_quadratically() {
     let mut system = System::new(mesh.clone(), &Bilayer::new(&p)).unwrap();
     let bc = model_conditions(&mesh, 0.1).unwrap();
     let mut u = vec![0.0; mesh.num_dofs()];
-    let report = Newton::new(NewtonSettings::default())
-        .solve(&mut system, &mut u, &bc)
-        .unwrap();
+    let report = equilibrium::solve(&mut Newton::new(), &mut system, &mut u, &bc, &NewtonPolicy::default()).unwrap();
     let scaled: Vec<f64> = report.residual_history.iter().map(|r| r / report.force_norm).collect();
     println!("iterations {}, scaled residuals {}", report.iterations, list(&scaled));
     assert!(report.iterations <= 8);
@@ -167,17 +164,23 @@ fn newton_converges_quadratically() {
 fn the_factorisation_at_the_predictor_serves_the_solve_and_gives_its_inertia() {
     let (p, mesh) = wavy_problem();
     let mut system = System::new(mesh.clone(), &Bilayer::new(&p)).unwrap();
-    let mut newton = Newton::new(NewtonSettings {
-        reuse_factorisation: true,
+    let mut newton = Newton::new();
+    let policy = NewtonPolicy {
+        reuse: Reuse::Definite,
         factorise_start: true,
         inertia_at_solution: false,
-        ..NewtonSettings::default()
-    });
+        ..NewtonPolicy::default()
+    };
     let mut path = vec![vec![0.0; mesh.num_dofs()]; 2];
     for (u, d) in path.iter_mut().zip([0.1, 0.11]) {
-        newton
-            .solve(&mut system, u, &model_conditions(&mesh, d).unwrap())
-            .unwrap();
+        equilibrium::solve(
+            &mut newton,
+            &mut system,
+            u,
+            &model_conditions(&mesh, d).unwrap(),
+            &policy,
+        )
+        .unwrap();
     }
     // The secant predictor: u(0.12) ~ 2 u(0.11) - u(0.1).
     let bc = model_conditions(&mesh, 0.12).unwrap();
@@ -185,7 +188,7 @@ fn the_factorisation_at_the_predictor_serves_the_solve_and_gives_its_inertia() {
     for (&dof, &value) in bc.dofs().iter().zip(bc.values()) {
         u[dof] = value;
     }
-    let report = newton.solve(&mut system, &mut u, &bc).unwrap();
+    let report = equilibrium::solve(&mut newton, &mut system, &mut u, &bc, &policy).unwrap();
     println!(
         "{} iterations, {} factorisations, residuals {}",
         report.iterations,
@@ -194,8 +197,14 @@ fn the_factorisation_at_the_predictor_serves_the_solve_and_gives_its_inertia() {
     );
     assert_eq!(report.timings.factorisations, 1);
     assert_eq!(report.start_negative_pivots, Some(0));
-    let exact = Newton::new(NewtonSettings::default())
-        .inertia(&mut system, &u, &bc, &fiberfold::fem::added::NoAddedEnergy)
+    let exact = Newton::new()
+        .inertia(
+            &mut system,
+            &u,
+            &bc,
+            &fiberfold::fem::added::NoAddedEnergy,
+            &mut Default::default(),
+        )
         .unwrap();
     assert_eq!(report.start_negative_pivots, exact);
 }
@@ -207,17 +216,17 @@ fn reused_factorisation_reaches_the_full_newton_solution_with_fewer_factorisatio
     // factorisation (the one at the previous solution, as in a continuation).
     let path = |reuse: bool| {
         let mut system = System::new(mesh.clone(), &Bilayer::new(&p)).unwrap();
-        let mut newton = Newton::new(NewtonSettings {
-            reuse_factorisation: reuse,
-            ..NewtonSettings::default()
-        });
+        let mut newton = Newton::new();
+        let policy = NewtonPolicy {
+            reuse: if reuse { Reuse::Definite } else { Reuse::Never },
+            ..NewtonPolicy::default()
+        };
         let mut u = vec![0.0; mesh.num_dofs()];
         let mut factorisations = 0;
         for step in 1..=6 {
             let d = 0.02 * step as f64;
-            let report = newton
-                .solve(&mut system, &mut u, &model_conditions(&mesh, d).unwrap())
-                .unwrap();
+            let bc = model_conditions(&mesh, d).unwrap();
+            let report = equilibrium::solve(&mut newton, &mut system, &mut u, &bc, &policy).unwrap();
             assert_eq!(report.negative_pivots, Some(0), "d = {d}");
             factorisations += report.timings.factorisations;
         }
@@ -244,13 +253,12 @@ fn perfect_mesh_reproduces_the_homogeneous_state() {
             ..Parameters::default()
         });
         let mut system = System::new(mesh.clone(), &materials).unwrap();
-        let mut newton = Newton::new(NewtonSettings::default());
+        let mut newton = Newton::new();
         let mut u = vec![0.0; mesh.num_dofs()];
         for d in [0.1, 0.3] {
             let exact = homogeneous_state(&materials, d).unwrap();
-            newton
-                .solve(&mut system, &mut u, &model_conditions(&mesh, d).unwrap())
-                .unwrap();
+            let bc = model_conditions(&mesh, d).unwrap();
+            equilibrium::solve(&mut newton, &mut system, &mut u, &bc, &NewtonPolicy::default()).unwrap();
             for (&top, &interface) in mesh.top().iter().zip(&mesh.interface()) {
                 let lambda2_layer = 1.0 + (u[dof(top, Y)] - u[dof(interface, Y)]);
                 let lambda2_substrate = 1.0 + u[dof(interface, Y)] / depth;
@@ -330,12 +338,12 @@ fn small_strain_solution(eps: f64) -> impl Fn([f64; 2]) -> [f64; 2] {
 #[test]
 fn q2_displacement_converges_at_third_order_in_l2() {
     let exact = small_strain_solution(1e-7);
-    let settings = NewtonSettings {
+    let settings = NewtonPolicy {
         absolute_tolerance: 0.0,
         update_tolerance: 0.0,
         // Round-off of P at strains of 1e-7 limits the attainable relative residual.
         residual_tolerance: 1e-8,
-        ..NewtonSettings::default()
+        ..NewtonPolicy::default()
     };
     for element in [ElementKind::Displacement, ElementKind::Mixed] {
         let errors: Vec<f64> = [2, 4, 8, 16]
@@ -347,7 +355,7 @@ fn q2_displacement_converges_at_third_order_in_l2() {
                 let bc = boundary_values(&mesh, &exact);
                 let mut system = System::new(mesh, &homogeneous_material()).unwrap();
                 let mut u = vec![0.0; system.num_dofs()];
-                Newton::new(settings).solve(&mut system, &mut u, &bc).unwrap();
+                equilibrium::solve(&mut Newton::new(), &mut system, &mut u, &bc, &settings).unwrap();
                 error_norms(&system, &u, &exact, &|_| [0.0; 4]).relative_l2()
             })
             .collect();
@@ -364,11 +372,11 @@ fn inverting_load_is_an_error_and_leaves_the_state_unchanged() {
     // The boundary reflected (F = diag(-1/2, 1)): no deformation with J > 0 matches it.
     let bc = boundary_values(&mesh, |[x, _]| [-1.5 * x, 0.0]);
     let mut u = vec![0.0; mesh.num_dofs()];
-    let settings = NewtonSettings {
+    let settings = NewtonPolicy {
         max_iterations: 15,
-        ..NewtonSettings::default()
+        ..NewtonPolicy::default()
     };
-    let error = Newton::new(settings).solve(&mut system, &mut u, &bc).unwrap_err();
+    let error = equilibrium::solve(&mut Newton::new(), &mut system, &mut u, &bc, &settings).unwrap_err();
     println!("{error}");
     assert!(matches!(
         error,
@@ -430,9 +438,8 @@ fn timing_of_one_newton_iteration() {
             solver.negative_pivots(),
         );
         let mut u = vec![0.0; mesh.num_dofs()];
-        let report = Newton::new(NewtonSettings::default())
-            .solve(&mut system, &mut u, &bc)
-            .unwrap();
+        let report =
+            equilibrium::solve(&mut Newton::new(), &mut system, &mut u, &bc, &NewtonPolicy::default()).unwrap();
         println!(
             "{name}: Newton at d = 0.02 from rest: {} iterations, residuals {}, {:?}",
             report.iterations,

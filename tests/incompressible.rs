@@ -6,7 +6,7 @@
 mod common;
 
 use common::{boundary_values, distortion, fiberfold, mixed_bifurcation, scratch, worst_nodal_error};
-use fiberfold::fem::{model_conditions, Newton, NewtonSettings, System};
+use fiberfold::fem::{equilibrium, model_conditions, Newton, NewtonPolicy, System};
 use fiberfold::homogeneous::constraint_pressure;
 use fiberfold::material::Bilayer;
 use fiberfold::mesh::{ElementKind, Mesh, MeshSpec};
@@ -38,10 +38,15 @@ fn compressed_incompressible_bilayer_reaches_the_closed_form_state() {
     let mut system = System::new(mesh.clone(), &materials).unwrap();
     let d = 0.2;
     let mut u = vec![0.0; system.num_dofs()];
-    let report = Newton::new(NewtonSettings::default())
-        .solve(&mut system, &mut u, &model_conditions(&mesh, d).unwrap())
-        .unwrap();
-    assert!(report.multiplier_updates > 0, "{report:?}");
+    let report = equilibrium::solve(
+        &mut Newton::new(),
+        &mut system,
+        &mut u,
+        &model_conditions(&mesh, d).unwrap(),
+        &NewtonPolicy::default(),
+    )
+    .unwrap();
+    assert!(report.updates.pressure > 0, "{report:?}");
     let depth = mesh.spec().depth;
     for (n, &[_, y]) in mesh.coordinates().iter().enumerate() {
         let expected = (1.0 / (1.0 - d) - 1.0) * (y + depth);
@@ -81,9 +86,14 @@ fn patch_test_with_the_constraint() {
     let affine = |[x, y]: [f64; 2]| [g[0][0] * x + g[0][1] * y, g[1][0] * x + g11 * y];
     let mut system = System::new(mesh.clone(), &Bilayer::new(&incompressible(1.0))).unwrap();
     let mut u = vec![0.0; system.num_dofs()];
-    Newton::new(NewtonSettings::default())
-        .solve(&mut system, &mut u, &boundary_values(&mesh, affine))
-        .unwrap();
+    equilibrium::solve(
+        &mut Newton::new(),
+        &mut system,
+        &mut u,
+        &boundary_values(&mesh, affine),
+        &NewtonPolicy::default(),
+    )
+    .unwrap();
     let worst = worst_nodal_error(&mesh, &u, affine);
     assert!(worst < 1e-10, "patch test error {worst:e}");
 }

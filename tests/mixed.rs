@@ -8,7 +8,7 @@ mod common;
 use common::{boundary_values, distortion, error_norms, mixed_bifurcation, ErrorNorms};
 use fiberfold::fem::added::{AddedEnergy, Block, Diagonal};
 use fiberfold::fem::element::{gauss_rule, shape_functions};
-use fiberfold::fem::{Newton, NewtonSettings, System};
+use fiberfold::fem::{equilibrium, Newton, NewtonPolicy, System};
 use fiberfold::material::{Bilayer, Hyperelastic, NeoHookean, Tensor2};
 use fiberfold::mesh::{ElementKind, Mesh, MeshSpec};
 use fiberfold::Parameters;
@@ -107,9 +107,15 @@ fn manufactured_errors(element: ElementKind, bulk: f64, n: usize, a: f64) -> Err
     let mut system = System::new(mesh.clone(), &material).unwrap();
     let mut u = vec![0.0; system.num_dofs()];
     let (bc, load) = (boundary_values(&mesh, |x| exact(a, x)), nodal_load(&system, a));
-    Newton::new(NewtonSettings::default())
-        .solve_with(&mut system, &mut u, &bc, &load)
-        .unwrap_or_else(|e| panic!("{element:?}, K = {bulk}, n = {n}: {e}"));
+    equilibrium::solve_with(
+        &mut Newton::new(),
+        &mut system,
+        &mut u,
+        &bc,
+        &load,
+        &NewtonPolicy::default(),
+    )
+    .unwrap_or_else(|e| panic!("{element:?}, K = {bulk}, n = {n}: {e}"));
     error_norms(&system, &u, &|x| exact(a, x), &|x| exact_gradient(a, x))
 }
 

@@ -106,8 +106,8 @@ fn failure_at_the_minimum_step_keeps_the_curve_and_names_d() {
     // divergence cut); the one to 0.3 cannot, and may not be cut.
     let mut study = fixed_step_study(0.1, 0.3);
     study.protocol.newton.max_iterations = 12;
-    study.protocol.newton.stall_steps = usize::MAX;
-    study.protocol.newton.diverging_steps = usize::MAX;
+    study.protocol.newton.stall = None;
+    study.protocol.newton.diverging_after = None;
     let error = simulate::run(&params(), &study, &dir, &quiet).unwrap_err();
     let message = error.to_string();
     println!("{message}");

@@ -113,9 +113,6 @@ pub struct System {
     /// or a bulk modulus far above the shear modulus): the unknowns' vector then ends with
     /// [`PRESSURES`] multipliers per element ([`crate::fem::mixed`]).
     multipliers: bool,
-    /// The factor on the constraint's penalty in assemblies (raised while the multipliers
-    /// converge slowly, larger inside [`System::assemble_for_stability`]).
-    penalty_scale: f64,
     pattern: Option<Pattern>,
     /// Element-matrix entries of the last assembly (reused to avoid reallocating).
     entries: Vec<f64>,
@@ -157,7 +154,6 @@ impl System {
             geometry,
             mixed,
             multipliers,
-            penalty_scale: 1.0,
             pattern: None,
             entries: Vec::new(),
         })
@@ -200,18 +196,20 @@ impl System {
     }
 
     /// Element `e`'s force, energy and smallest `J` at its nodal displacements `u` (and
-    /// multipliers `lambda`, used by incompressible elements only), and its tangent into
-    /// `stiffness` when given, by the mesh's element.
+    /// multipliers `lambda`, used by incompressible elements only, whose constraint's penalty
+    /// is multiplied by `penalty_scale`), and its tangent into `stiffness` when given, by the
+    /// mesh's element.
     pub fn element_state(
         &self,
         e: usize,
         u: &ElementVector,
         lambda: &[f64; PRESSURES],
+        penalty_scale: f64,
         stiffness: Option<&mut ElementMatrix>,
     ) -> Result<ElementState> {
         match self.mixed.get(e) {
             Some(mixed) => Ok(mixed
-                .evaluate(&self.geometry[e], u, lambda, self.penalty_scale, stiffness)?
+                .evaluate(&self.geometry[e], u, lambda, penalty_scale, stiffness)?
                 .state),
             None => element::evaluate(&self.geometry[e], &self.materials[e], u, stiffness),
         }
@@ -266,6 +264,20 @@ impl System {
         with_tangent: bool,
         added: &dyn AddedEnergy,
     ) -> Result<Assembled> {
+        self.assemble_penalised(u, bc, lift, with_tangent, added, 1.0)
+    }
+
+    /// [`System::assemble_with`] with the multipliers' penalty multiplied by `penalty_scale`
+    /// ([`crate::fem::mixed`]; the method of multipliers raises it where they converge slowly).
+    pub fn assemble_penalised(
+        &mut self,
+        u: &[f64],
+        bc: &Dirichlet,
+        lift: Option<&[f64]>,
+        with_tangent: bool,
+        added: &dyn AddedEnergy,
+        penalty_scale: f64,
+    ) -> Result<Assembled> {
         assert_eq!(u.len(), self.num_dofs(), "displacement vector length");
         assert!(
             lift.is_none_or(|l| l.len() == bc.len()),
@@ -288,7 +300,7 @@ impl System {
             .into_par_iter()
             .enumerate()
             .with_min_len(32)
-            .map(|(e, chunk)| self.element_contribution(pattern, e, u, lift, chunk))
+            .map(|(e, chunk)| self.element_contribution(pattern, e, (u, penalty_scale), lift, chunk))
             .collect::<Result<Vec<_>>>()?;
         let added_results: Vec<(Block, Vec<f64>)> = group_chunks
             .into_par_iter()
@@ -356,12 +368,13 @@ impl System {
         })
     }
 
-    /// Element `e`'s state, its lifting force `K_e lift_e`, and its free-free block into `chunk`.
+    /// Element `e`'s state at `u` (with the multipliers' penalty scaled by `penalty_scale`), its
+    /// lifting force `K_e lift_e`, and its free-free block into `chunk`.
     fn element_contribution(
         &self,
         pattern: &Pattern,
         e: usize,
-        u: &[f64],
+        (u, penalty_scale): (&[f64], f64),
         lift: Option<&[f64]>,
         chunk: &mut [f64],
     ) -> Result<(ElementState, ElementVector)> {
@@ -373,6 +386,7 @@ impl System {
             e,
             &self.element_displacements(e, u),
             &self.element_multipliers(e, u),
+            penalty_scale,
             needs_tangent.then_some(&mut k),
         )?;
         let mut lifted = [0.0; DOFS];

@@ -40,7 +40,7 @@
 //! few steps), whose minimiser Newton's method finds; then
 //! `lambda <- p = (1 - kappa/K) lambda + kappa M^-1 g`, whose fixed point `lambda = K M^-1 g` is
 //! the condensed element's pressure (`M^-1 g = 0` for `K = inf`)
-//! ([`crate::fem::Newton`] repeats both, with Aitken's relaxation and a tenfold penalty whenever
+//! ([`crate::fem::equilibrium`] repeats both, with Aitken's relaxation and a tenfold penalty whenever
 //! an update fails to halve the violation, until `|M^-1 g - lambda / K| <= 1e-7`: the
 //! element-mean `ln J - lambda / K` and its gradient vanish to solver tolerance). At the
 //! solution the state, the energy and the pressure `lambda` are those of the condensed element
@@ -280,6 +280,9 @@ fn inverse3(m: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
     let det = (0..3).map(|j| m[0][j] * cof(0, j)).sum::<f64>();
     std::array::from_fn(|i| std::array::from_fn(|j| cof(j, i) / det))
 }
+
+mod multipliers;
+pub use multipliers::{PressureUpdate, CONSTRAINT_TOLERANCE};
 
 #[cfg(test)]
 mod tests;

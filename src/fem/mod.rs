@@ -1,14 +1,16 @@
 //! Nonlinear plane-strain finite elements of the bilayer: Q2 elements ([`element`]), prescribed
 //! displacements ([`boundary`]), assembly on the free unknowns ([`assembly`]) with energies
 //! added to the elastic one ([`added`]) such as surface contact ([`contact`]), a sparse
-//! `L D L^T` solver with inertia ([`linear_solver`]), Newton's method ([`newton`]) and
-//! element-centre output fields ([`fields`]).
+//! `L D L^T` solver with inertia ([`linear_solver`]), Newton's method ([`newton`]) inside the
+//! outer loops of multipliers and contact ([`equilibrium`]) and element-centre output fields
+//! ([`fields`]).
 
 pub mod added;
 pub mod assembly;
 pub mod boundary;
 pub mod contact;
 pub mod element;
+pub mod equilibrium;
 pub mod fields;
 pub mod inertia;
 pub mod lanczos;
@@ -20,4 +22,4 @@ pub mod newton;
 pub use assembly::{Assembled, System, Tangent};
 pub use boundary::{dof, model_conditions, Dirichlet};
 pub use linear_solver::{Factorisation, SparseLdlt};
-pub use newton::{Newton, NewtonError, NewtonReport, NewtonSettings, Timings};
+pub use newton::{Newton, NewtonError, NewtonPolicy, NewtonReport, Precision, Reuse, Stall, Timings, Updates};

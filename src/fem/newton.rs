@@ -12,106 +12,53 @@
 //! (reactions included) and `s` the factor on a raised incompressibility penalty (1 otherwise),
 //! or an update `|alpha du|_inf <= utol (1 + |u|_inf)`. Trial points are
 //! assembled without the tangent (first-order AD only); the tangent is assembled at an accepted
-//! point only when another step follows (or its inertia is asked for).
+//! point only when another step follows.
 //!
-//! With `reuse_factorisation`, the last factorisation (of an earlier iterate, or of an earlier
+//! With [`Reuse::Definite`], the last factorisation (of an earlier iterate, or of an earlier
 //! solve of the same pattern) is kept as the iteration matrix while it contracts the residual by
 //! at least `contraction` per step and is positive definite (modified Newton): such a step
 //! costs one residual assembly and one solve instead of a tangent assembly and a
-//! factorisation. With `reuse_indefinite`, an indefinite factorisation made in this solve is
-//! kept too, while it contracts by `contraction^2` (about as a fresh tangent would). A step
-//! that contracts less, or does not decrease `|r|`, falls back to the consistent tangent at the
-//! current iterate, so the iteration is never worse than full Newton's; the converged state is
-//! the same to the tolerances.
+//! factorisation. With [`Reuse::AlsoIndefinite`], an indefinite factorisation made in this
+//! solve is kept too, while it contracts by `contraction^2` (about as a fresh tangent would). A
+//! step that contracts less, or does not decrease `|r|`, falls back to the consistent tangent at
+//! the current iterate, so the iteration is never worse than full Newton's; the converged state
+//! is the same to the tolerances.
 //!
 //! With `factorise_start`, the tangent at the starting iterate (the predictor of a load step)
 //! is factorised first, and the iteration starts with that factor: from a good predictor it
 //! converges in two or three steps. Its inertia is reported (`start_negative_pivots`): the
 //! caller may take it for the solution's where the predictor was close
 //! ([`crate::protocol::augmentation`]).
+//!
+//! This is the iteration alone, a function of the equations, the start and a
+//! [`NewtonPolicy`] passed per call; the solver keeps only its factorisation between calls. The
+//! outer loops that update what the equations depend on (the mixed element's multipliers,
+//! contact) and the inertia at the solution are [`crate::fem::equilibrium`]'s.
 
-use super::added::{AddedEnergy, NoAddedEnergy};
+use super::added::AddedEnergy;
 use super::assembly::{norm, Assembled, System};
 use super::boundary::Dirichlet;
 use super::linear_solver::{multiply, Factorisation, SparseLdlt};
 use crate::error::Error;
 
-mod multipliers;
+mod policy;
 mod report;
-pub use multipliers::CONSTRAINT_TOLERANCE;
-pub use report::{NewtonError, NewtonReport, Timings};
+pub use policy::{NewtonPolicy, Precision, Reuse, Stall};
+pub use report::{NewtonError, NewtonReport, Timings, Updates};
 
-/// Tolerances and limits of Newton's method.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct NewtonSettings {
-    /// Largest number of Newton steps.
-    pub max_iterations: usize,
-    /// `rtol`: residual relative to the internal-force norm (keep it above the residual's round-off).
-    pub residual_tolerance: f64,
-    /// `atol`: absolute residual floor, for nearly unloaded states.
-    pub absolute_tolerance: f64,
-    /// `utol`: update relative to `1 + |u|_inf` below which the iterate no longer changes.
-    pub update_tolerance: f64,
-    /// Largest number of step halvings in one line search.
-    pub max_backtracks: usize,
-    /// Armijo constant `c` of the sufficient decrease `|r(u + alpha du)| <= (1 - c alpha) |r(u)|`.
-    pub sufficient_decrease: f64,
-    /// Relative residual of a linear solve above which `L B L^T` replaces `L D L^T`.
-    pub solve_tolerance: f64,
-    /// Whether to factorise the tangent at the solution to report its inertia.
-    pub inertia_at_solution: bool,
-    /// Whether to factorise the tangent at the starting iterate (the predictor) and start with it.
-    pub factorise_start: bool,
-    /// Whether a factorisation made in this solve is reused even if indefinite (for a step on
-    /// a smooth stretch of an unstable path; not near a fold, where every step needs a fresh
-    /// tangent).
-    pub reuse_indefinite: bool,
-    /// Whether to keep iterating with the last factorisation while it contracts the residual.
-    pub reuse_factorisation: bool,
-    /// Largest ratio `|r_(n+1)| / |r_n|` of a step with a reused factorisation for the next step to
-    /// reuse it too; above it the tangent is refactorised.
-    pub contraction: f64,
-    /// Give up (as not converged) when, after this many tangent steps, `|r|` is still above
-    /// both `stall_reduction` times its start and the geometric mean of its start and the
-    /// tolerance: a converging iteration from a good predictor is far below by then, and a load
-    /// step that stalls is cheaper to cut than to grind through.
-    pub stall_steps: usize,
-    pub stall_reduction: f64,
-    /// Give up when, after this many tangent steps, `|r|` has not fallen tenfold from its
-    /// start, or after the first it has not halved (`usize::MAX`: never): an iteration from a
-    /// usable predictor has by then, and one that has not is stagnating on a fold (measured on
-    /// the fine benchmark: every such attempt failed after three to five more steps, and the
-    /// first step of the undamped ones that converged there cut `|r|` 20-90-fold).
-    pub diverging_steps: usize,
+/// The equations one Newton solve makes stationary: the strain energy of `system` plus `added`,
+/// with `bc` prescribed and the multipliers' penalty multiplied by `penalty_scale`.
+pub struct Equations<'a> {
+    pub system: &'a mut System,
+    pub bc: &'a Dirichlet,
+    pub added: &'a dyn AddedEnergy,
+    pub penalty_scale: f64,
 }
 
-impl Default for NewtonSettings {
-    /// `rtol = 1e-10`, `atol = 1e-12`, `utol = 1e-13`, 30 steps, 12 halvings, full Newton.
-    fn default() -> Self {
-        NewtonSettings {
-            max_iterations: 30,
-            residual_tolerance: 1e-10,
-            absolute_tolerance: 1e-12,
-            update_tolerance: 1e-13,
-            max_backtracks: 12,
-            sufficient_decrease: 1e-4,
-            solve_tolerance: 1e-8,
-            inertia_at_solution: true,
-            factorise_start: false,
-            reuse_indefinite: false,
-            reuse_factorisation: false,
-            contraction: 0.25,
-            stall_steps: usize::MAX,
-            stall_reduction: 1e-3,
-            diverging_steps: usize::MAX,
-        }
-    }
-}
-
-/// Newton's method, keeping the symbolic factorisation between calls with the same pattern.
+/// Newton's method: the factorisation it keeps between solves (and the symbolic analysis
+/// between solves with the same pattern). How each solve iterates is the policy passed to it.
+#[derive(Default)]
 pub struct Newton {
-    /// Tolerances and limits.
-    pub settings: NewtonSettings,
     solver: Option<Held>,
 }
 
@@ -125,9 +72,9 @@ struct Held {
 }
 
 impl Newton {
-    /// A solver with the given settings.
-    pub fn new(settings: NewtonSettings) -> Self {
-        Newton { settings, solver: None }
+    /// A solver holding no factorisation yet.
+    pub fn new() -> Self {
+        Newton::default()
     }
 
     /// Frees the held factorisation and its analysis (the next solve starts afresh).
@@ -155,61 +102,45 @@ impl Newton {
             .map(|held| held.solver.sibling())
     }
 
-    /// Solves equilibrium with `bc` prescribed, starting from `u` (full vector); on success `u`
-    /// holds the solution, on failure it is unchanged.
-    pub fn solve(&mut self, system: &mut System, u: &mut [f64], bc: &Dirichlet) -> Result<NewtonReport, NewtonError> {
-        self.solve_with(system, u, bc, &NoAddedEnergy)
-    }
-
-    /// [`Newton::solve`] for the strain energy plus `added` (contact, damping).
-    pub fn solve_with(
-        &mut self,
-        system: &mut System,
-        u: &mut [f64],
-        bc: &Dirichlet,
-        added: &dyn AddedEnergy,
-    ) -> Result<NewtonReport, NewtonError> {
-        let (start, scale) = (u.to_vec(), system.penalty_scale());
-        let result = self.iterate_with_multipliers(system, u, bc, added);
-        system.set_penalty_scale(scale);
-        if result.is_err() {
-            u.copy_from_slice(&start);
-        }
-        result
-    }
-
     /// Negative eigenvalues of the tangent of the strain energy plus `added` at `u` (with `bc`
-    /// prescribed), factorised with the cached analysis when the pattern is the same.
+    /// prescribed) whose inertia is the state's stability ([`System::assemble_for_stability`]),
+    /// factorised with the cached analysis when the pattern is the same.
     pub fn inertia(
         &mut self,
         system: &mut System,
         u: &[f64],
         bc: &Dirichlet,
         added: &dyn AddedEnergy,
+        timings: &mut Timings,
     ) -> Result<Option<usize>, NewtonError> {
+        let start = std::time::Instant::now();
         let assembled = system.assemble_for_stability(u, bc, added)?;
-        Ok(self.factorize(&assembled, &mut Timings::default()).negative_pivots())
+        timings.assembly += start.elapsed();
+        timings.assemblies += 1;
+        Ok(self.factorize(&assembled, timings).negative_pivots())
     }
 
-    fn iterate(
+    /// Newton's iteration on `equations` from `u` (full vector) with `policy`: on success `u`
+    /// holds the solution (whose inertia this does not count: [`crate::fem::equilibrium`]
+    /// does), on failure it is left at the last iterate.
+    pub fn iterate(
         &mut self,
-        system: &mut System,
+        equations: Equations,
         u: &mut [f64],
-        bc: &Dirichlet,
-        added: &dyn AddedEnergy,
+        policy: &NewtonPolicy,
     ) -> Result<NewtonReport, NewtonError> {
-        let s = self.settings;
-        let mut problem = Problem::new(system, bc, added)?;
+        let s = *policy;
+        let mut problem = Problem::new(equations)?;
+        let bc = problem.bc;
         let pending: Vec<f64> = bc.dofs().iter().zip(bc.values()).map(|(&d, &g)| g - u[d]).collect();
         let lifting = pending.iter().any(|&p| p != 0.0);
-        // Not with multipliers: their inertia is that of another matrix ([`System::assemble_for_stability`]).
-        let factorise_start = s.factorise_start && !lifting && !problem.system.has_multipliers();
+        let factorise_start = s.factorise_start && !lifting;
         let assembled = problem
             .assemble(
                 u,
                 &pending,
                 lifting,
-                lifting || !s.reuse_factorisation || factorise_start,
+                lifting || s.reuse == Reuse::Never || factorise_start,
             )
             .map_err(|e| inverted(e, 0))?;
         // Whether the held factorisation is that of the current iterate's tangent.
@@ -219,8 +150,9 @@ impl Newton {
         } else {
             None
         };
-        let mut reuse =
-            s.reuse_factorisation && !lifting && self.holds(assembled.pattern, s.reuse_indefinite && factorised);
+        let mut reuse = s.reuse != Reuse::Never
+            && !lifting
+            && self.holds(assembled.pattern, s.reuse == Reuse::AlsoIndefinite && factorised);
         let mut state = Iterate {
             assembled,
             pending,
@@ -233,19 +165,25 @@ impl Newton {
             // A penalty raised by the multiplier updates raises the residual's round-off with it
             // (measured: in proportion), so the tolerance follows; at the largest raise the
             // equilibrium then holds to 1e-7 relative, as the constraint does.
-            let tolerance = (s.residual_tolerance * state.assembled.force_norm() + s.absolute_tolerance)
-                * problem.system.penalty_scale();
+            let tolerance =
+                (s.residual_tolerance * state.assembled.force_norm() + s.absolute_tolerance) * problem.penalty_scale;
             // The displacements' scale (not the multipliers' that may follow them).
             let scale = 1.0 + max_abs(&u[..problem.system.mesh().num_dofs()]);
             if !state.lifting && (residual <= tolerance || last_update <= s.update_tolerance * scale) {
-                return self.report(
-                    problem,
-                    u,
-                    state.assembled,
-                    (iteration, tangent_steps, start_negative_pivots),
-                    history,
+                return Ok(NewtonReport {
+                    iterations: iteration,
+                    tangent_steps,
+                    residual_history: history,
+                    force_norm: state.assembled.force_norm(),
+                    energy: state.assembled.energy,
+                    min_jacobian: state.assembled.min_jacobian,
+                    reactions: state.assembled.reactions,
+                    negative_pivots: None,
+                    start_negative_pivots,
                     backtracks,
-                );
+                    updates: Updates::default(),
+                    timings: problem.timings,
+                });
             }
             // Reused steps each contract |r| by `contraction`, so they are few; bound them anyway.
             // Stalled: short of both a `stall_reduction` decrease and half the decrease (in
@@ -253,11 +191,13 @@ impl Newton {
             let halfway = (history[0] * tolerance).sqrt();
             // Diverging: where a tangent step must show convergence, |r| not halved by the
             // first, or not down tenfold after `diverging_steps`.
-            let diverging = s.diverging_steps != usize::MAX
-                && ((tangent_steps == 1 && residual > 0.5 * history[0])
-                    || (tangent_steps >= s.diverging_steps && residual > 0.1 * history[0]));
-            let stalled =
-                (tangent_steps >= s.stall_steps && residual > halfway.max(s.stall_reduction * history[0])) || diverging;
+            let diverging = s.diverging_after.is_some_and(|steps| {
+                (tangent_steps == 1 && residual > 0.5 * history[0])
+                    || (tangent_steps >= steps && residual > 0.1 * history[0])
+            });
+            let stalled = s.stall.is_some_and(|stall| {
+                tangent_steps >= stall.steps && residual > halfway.max(stall.reduction * history[0])
+            }) || diverging;
             if stalled || tangent_steps == s.max_iterations || iteration == 2 * s.max_iterations {
                 return Err(NewtonError::NotConverged {
                     iterations: iteration,
@@ -269,7 +209,7 @@ impl Newton {
             if reuse {
                 // A reused step rounds the held factor to single precision: a full step refactorises.
                 factorised = false;
-                match self.reused_step(&mut problem, u, &state, residual)? {
+                match self.reused_step(&mut problem, u, &state, (residual, &s))? {
                     Some((next, next_u, update, ratio)) => {
                         last_update = update;
                         u.copy_from_slice(&next_u);
@@ -290,16 +230,18 @@ impl Newton {
             if state.assembled.tangent.is_none() {
                 state.assembled = problem.assemble(u, &state.pending, state.lifting, true)?;
             }
-            let du = self.newton_step(&state.assembled, factorised, &mut problem.timings)?;
+            let du = self.newton_step(&state.assembled, factorised, s.solve_tolerance, &mut problem.timings)?;
             factorised = false;
             tangent_steps += 1;
-            let (next, next_u, alpha, halvings) = self.line_search(&mut problem, u, &state, &du, iteration)?;
+            let (next, next_u, alpha, halvings) = line_search(&mut problem, u, &state, &du, (iteration, &s))?;
             backtracks += halvings;
             last_update = alpha * max_abs(&du);
             u.copy_from_slice(&next_u);
             state = next;
             history.push(state.assembled.residual_norm());
-            reuse = s.reuse_factorisation && !state.lifting && self.holds(state.assembled.pattern, s.reuse_indefinite);
+            reuse = s.reuse != Reuse::Never
+                && !state.lifting
+                && self.holds(state.assembled.pattern, s.reuse == Reuse::AlsoIndefinite);
         }
         unreachable!("the loop returns")
     }
@@ -322,22 +264,19 @@ impl Newton {
         problem: &mut Problem,
         u: &[f64],
         state: &Iterate,
-        residual: f64,
+        (residual, policy): (f64, &NewtonPolicy),
     ) -> Result<Option<ReusedStep>, NewtonError> {
         let solver = &mut self.solver.as_mut().expect("held, checked by the caller").solver;
         let mut du: Vec<f64> = state.assembled.residual.iter().map(|r| -r).collect();
-        // Single precision (the next residual checks the step), except with the
-        // incompressibility penalty, whose conditioning leaves it too few digits.
-        if problem.system.has_multipliers() {
-            solver.solve_in_place(&mut du)?;
-        } else {
-            solver.solve_in_place_single(&mut du)?;
+        match policy.reused_precision {
+            Precision::Single => solver.solve_in_place_single(&mut du)?,
+            Precision::Double => solver.solve_in_place(&mut du)?,
         }
         problem.timings.solve += solver.solve_time();
         problem.timings.solves += 1;
         let trial_u = problem.step(u, &du, &state.pending, 1.0);
         match problem.assemble(&trial_u, &state.pending, false, false) {
-            Ok(assembled) if assembled.residual_norm() <= (1.0 - self.settings.sufficient_decrease) * residual => {
+            Ok(assembled) if assembled.residual_norm() <= (1.0 - policy.sufficient_decrease) * residual => {
                 let ratio = assembled.residual_norm() / residual;
                 let next = Iterate {
                     assembled,
@@ -351,97 +290,15 @@ impl Newton {
         }
     }
 
-    /// The converged state `u`, with the inertia of its tangent if requested.
-    fn report(
-        &mut self,
-        mut problem: Problem,
-        u: &[f64],
-        mut assembled: Assembled,
-        (iterations, tangent_steps, start_negative_pivots): (usize, usize, Option<usize>),
-        residual_history: Vec<f64>,
-        backtracks: usize,
-    ) -> Result<NewtonReport, NewtonError> {
-        let negative_pivots = if !self.settings.inertia_at_solution || problem.free.is_empty() {
-            None
-        } else {
-            if problem.system.has_multipliers() {
-                let start = std::time::Instant::now();
-                assembled = problem.system.assemble_for_stability(u, problem.bc, problem.added)?;
-                problem.timings.assembly += start.elapsed();
-            } else if assembled.tangent.is_none() {
-                assembled = problem.assemble(u, &[], false, true)?;
-            }
-            self.factorize(&assembled, &mut problem.timings).negative_pivots()
-        };
-        Ok(NewtonReport {
-            iterations,
-            tangent_steps,
-            residual_history,
-            force_norm: assembled.force_norm(),
-            energy: assembled.energy,
-            min_jacobian: assembled.min_jacobian,
-            reactions: assembled.reactions,
-            negative_pivots,
-            start_negative_pivots,
-            backtracks,
-            multiplier_updates: 0,
-            timings: problem.timings,
-        })
-    }
-
-    /// Halves `alpha` until `u + alpha du` is admissible (and, once the prescribed values are
-    /// reached, decreases `|r|`), starting from 1 or from where the first term of the added
-    /// energy switches on ([`AddedEnergy::switch_on_fraction`]); returns the new iterate, its
-    /// displacement, `alpha` and the number of halvings.
-    fn line_search(
-        &self,
-        problem: &mut Problem,
-        u: &[f64],
-        state: &Iterate,
-        du: &[f64],
-        iteration: usize,
-    ) -> Result<(Iterate, Vec<f64>, f64, usize), NewtonError> {
-        let s = self.settings;
-        let residual = state.assembled.residual_norm();
-        let full = problem.step(u, du, &state.pending, 1.0);
-        let mut alpha = problem.added.switch_on_fraction(u, &full);
-        for halvings in 0.. {
-            let trial_u = problem.step(u, du, &state.pending, alpha);
-            let pending: Vec<f64> = state.pending.iter().map(|p| (1.0 - alpha) * p).collect();
-            let lifting = state.lifting && alpha < 1.0;
-            let failure = match problem.assemble(&trial_u, &pending, lifting, false) {
-                Ok(assembled)
-                    if state.lifting
-                        || assembled.residual_norm() <= (1.0 - s.sufficient_decrease * alpha) * residual =>
-                {
-                    let next = Iterate {
-                        assembled,
-                        pending,
-                        lifting,
-                    };
-                    return Ok((next, trial_u, alpha, halvings));
-                }
-                Ok(_) => NewtonError::LineSearch { iteration, residual },
-                Err(Error::NonPositiveJacobian { jacobian }) => NewtonError::Inverted { iteration, jacobian },
-                Err(e) => return Err(e.into()),
-            };
-            if halvings == s.max_backtracks {
-                return Err(failure);
-            }
-            alpha *= 0.5;
-        }
-        unreachable!("the loop returns")
-    }
-
     /// `du_f = -K_ff^-1 r_f` (with the held factorisation if it is `current`'s, `factorised`),
-    /// retried with `L B L^T` if the `L D L^T` solve is inaccurate.
+    /// retried with `L B L^T` if the `L D L^T` solve's relative residual is above `tolerance`.
     fn newton_step(
         &mut self,
         current: &Assembled,
         factorised: bool,
+        tolerance: f64,
         timings: &mut Timings,
     ) -> Result<Vec<f64>, NewtonError> {
-        let tolerance = self.settings.solve_tolerance;
         let k = current.tangent.as_ref().expect("assembled with the tangent").as_ref();
         if !factorised || self.solver.is_none() {
             self.factorize(current, timings);
@@ -495,6 +352,47 @@ impl Newton {
     }
 }
 
+/// Halves `alpha` until `u + alpha du` is admissible (and, once the prescribed values are
+/// reached, decreases `|r|`), starting from 1 or from where the first term of the added
+/// energy switches on ([`AddedEnergy::switch_on_fraction`]); returns the new iterate, its
+/// displacement, `alpha` and the number of halvings.
+fn line_search(
+    problem: &mut Problem,
+    u: &[f64],
+    state: &Iterate,
+    du: &[f64],
+    (iteration, s): (usize, &NewtonPolicy),
+) -> Result<(Iterate, Vec<f64>, f64, usize), NewtonError> {
+    let residual = state.assembled.residual_norm();
+    let full = problem.step(u, du, &state.pending, 1.0);
+    let mut alpha = problem.added.switch_on_fraction(u, &full);
+    for halvings in 0.. {
+        let trial_u = problem.step(u, du, &state.pending, alpha);
+        let pending: Vec<f64> = state.pending.iter().map(|p| (1.0 - alpha) * p).collect();
+        let lifting = state.lifting && alpha < 1.0;
+        let failure = match problem.assemble(&trial_u, &pending, lifting, false) {
+            Ok(assembled)
+                if state.lifting || assembled.residual_norm() <= (1.0 - s.sufficient_decrease * alpha) * residual =>
+            {
+                let next = Iterate {
+                    assembled,
+                    pending,
+                    lifting,
+                };
+                return Ok((next, trial_u, alpha, halvings));
+            }
+            Ok(_) => NewtonError::LineSearch { iteration, residual },
+            Err(Error::NonPositiveJacobian { jacobian }) => NewtonError::Inverted { iteration, jacobian },
+            Err(e) => return Err(e.into()),
+        };
+        if halvings == s.max_backtracks {
+            return Err(failure);
+        }
+        alpha *= 0.5;
+    }
+    unreachable!("the loop returns")
+}
+
 /// A step with the held factorisation: the new iterate, its displacement, `|du|_inf` and the
 /// residual ratio.
 type ReusedStep = (Iterate, Vec<f64>, f64, f64);
@@ -513,23 +411,31 @@ fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m, x| m.max(x.abs()))
 }
 
-/// The system being solved, with the wall times a solve accumulates.
+/// The equations being solved, with their free unknowns and the wall times a solve accumulates.
 struct Problem<'a> {
     system: &'a mut System,
     bc: &'a Dirichlet,
     added: &'a dyn AddedEnergy,
+    penalty_scale: f64,
     free: Vec<usize>,
     timings: Timings,
 }
 
 impl<'a> Problem<'a> {
-    /// The problem of `system` with `bc` prescribed and `added` energy; no time spent yet.
-    fn new(system: &'a mut System, bc: &'a Dirichlet, added: &'a dyn AddedEnergy) -> crate::Result<Self> {
+    /// The problem of `equations`; no time spent yet.
+    fn new(equations: Equations<'a>) -> crate::Result<Self> {
+        let Equations {
+            system,
+            bc,
+            added,
+            penalty_scale,
+        } = equations;
         let free = system.free_dofs(bc)?.to_vec();
         Ok(Problem {
             system,
             bc,
             added,
+            penalty_scale,
             free,
             timings: Timings::default(),
         })
@@ -538,9 +444,14 @@ impl<'a> Problem<'a> {
     /// Residual (and tangent when `with_tangent`) at `u`, lifted by `K_fc pending` when
     /// `lifting`; timed.
     fn assemble(&mut self, u: &[f64], pending: &[f64], lifting: bool, with_tangent: bool) -> crate::Result<Assembled> {
-        let assembled = self
-            .system
-            .assemble_with(u, self.bc, lifting.then_some(pending), with_tangent, self.added)?;
+        let assembled = self.system.assemble_penalised(
+            u,
+            self.bc,
+            lifting.then_some(pending),
+            with_tangent,
+            self.added,
+            self.penalty_scale,
+        )?;
         self.timings.assembly += assembled.elapsed;
         self.timings.assemblies += 1;
         Ok(assembled)

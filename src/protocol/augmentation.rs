@@ -6,9 +6,10 @@
 use super::stabilisation::{Stabilisation, StabilisationSettings};
 use crate::error::Result;
 use crate::fem::added::{AddedEnergy, NoAddedEnergy, Sum};
-use crate::fem::contact::{solve_with_contact, Contact, ContactSettings, Plane};
+use crate::fem::contact::{Contact, ContactSettings, Plane};
+use crate::fem::equilibrium::{solve_with, solve_with_contact};
 use crate::fem::inertia::BackgroundInertia;
-use crate::fem::{Dirichlet, Newton, NewtonReport, System};
+use crate::fem::{Assembled, Dirichlet, Newton, NewtonPolicy, NewtonReport, System, Updates};
 use crate::material::Bilayer;
 use serde::Serialize;
 
@@ -97,102 +98,50 @@ impl Augmentation {
 
     /// Equilibrium at `d` (prescribed by `bc`) from the predictor `u`, stepping from the
     /// converged `(d0, u0)` with the step control at `control_step` (which decides whether the
-    /// step is damped, see [`Stabilisation::damper`]); redone with a smaller `eta` while the
-    /// step would exceed the dissipation budget. On failure `u` is the predictor again and
-    /// nothing is booked. The inertia, when Newton's settings ask for it, is that of the
-    /// undamped tangent: read from Newton's factorisation at the predictor where that tangent is
-    /// the same energy's (an undamped step, no contact force at the predictor or at the
-    /// solution, one Newton solve; see [`crate::fem::newton`]) and the predictor was within 1e-2
-    /// (`PREDICTOR_CLOSENESS`) of a step of the solution, otherwise from one more factorisation
-    /// at the solution, counted on a second thread while the next step goes on (the record is
-    /// then `inertia_pending`, and [`Augmentation::next_inertia`] gives the count).
+    /// step is damped, see [`Stabilisation::damper`]) and Newton's `policy`; redone with a
+    /// smaller `eta` while the step would exceed the dissipation budget. On failure `u` is the
+    /// predictor again and nothing is booked. The inertia, when the policy asks for it, is that
+    /// of the undamped tangent ([`Augmentation::count_inertia`]).
     #[allow(clippy::too_many_arguments)]
     pub fn solve(
         &mut self,
         newton: &mut Newton,
+        policy: &NewtonPolicy,
         system: &mut System,
         u: &mut [f64],
         bc: &Dirichlet,
         (d0, u0): (f64, &[f64]),
         (d, control_step): (f64, f64),
-    ) -> Result<(NewtonReport, AugmentedRecord)> {
-        let settings = newton.settings;
-        newton.settings.inertia_at_solution = false;
-        let result = self.solve_within_budget(
-            newton,
-            system,
-            u,
-            bc,
-            (d0, u0),
-            (d, control_step),
-            settings.inertia_at_solution,
-        );
-        newton.settings = settings;
-        result
-    }
-
-    #[allow(clippy::too_many_arguments)]
-    fn solve_within_budget(
-        &mut self,
-        newton: &mut Newton,
-        system: &mut System,
-        u: &mut [f64],
-        bc: &Dirichlet,
-        (d0, u0): (f64, &[f64]),
-        (d, control_step): (f64, f64),
-        wants_inertia: bool,
     ) -> Result<(NewtonReport, AugmentedRecord)> {
         let predictor = u.to_vec();
         let saved_contact = self.contact.clone();
-        let length = system.mesh().spec().length;
         loop {
             let damper = match &self.stabilisation {
                 Some(s) => Some(s.damper(system, (d0, u0), d, control_step)?),
                 None => None,
             };
-            let other: &dyn AddedEnergy = match &damper {
-                Some(damper) => damper,
-                None => &NoAddedEnergy,
-            };
             let damped = damper.as_ref().is_some_and(|damper| damper.damps());
-            let unloaded =
-                |contact: &Option<Contact>, u: &[f64]| contact.as_ref().is_none_or(|c| c.loaded_pairs(u).is_empty());
             let plain = !damped && unloaded(&self.contact, u);
-            newton.settings.factorise_start = plain;
-            // Across a damped snap or with contact forces the residual may stagnate for a few
-            // steps before it converges: there only the slower stall rule cuts the step.
-            if !plain {
-                newton.settings.diverging_steps = usize::MAX;
-            }
-            let (mut report, augmentations, loaded_at_start) = match &mut self.contact {
-                Some(contact) => {
-                    contact.set_plane(RIGHT_PLANE, Plane::right(length * (1.0 - d)));
-                    // A new structure means a new analysis and pattern, which are large: the
-                    // count in the background finishes first, freeing its factor.
-                    let mut probe = contact.clone();
-                    probe.search(u);
-                    if !system.keeps_structure(bc, probe.groups()) {
-                        self.inertia.release();
-                    }
-                    let solved = solve_with_contact(newton, system, u, bc, contact, other)?;
-                    let mut report = solved.report;
-                    report.iterations = solved.iterations;
-                    report.tangent_steps = solved.tangent_steps;
-                    (report, solved.augmentations, solved.loaded_at_start)
-                }
-                None => (newton.solve_with(system, u, bc, other)?, 1, false),
+            let other: &dyn AddedEnergy = damper.as_ref().map_or(&NoAddedEnergy, |damper| damper);
+            let step_policy = policy_of_step(policy, plain);
+            let loaded_at_start = prepare_contact((&mut self.contact, &mut self.inertia), system, u, (bc, d));
+            let mut report = match &mut self.contact {
+                Some(contact) => solve_with_contact(newton, system, u, bc, contact, other, &step_policy)?,
+                None => solve_with(newton, system, u, bc, other, &step_policy)?,
             };
             let dissipation = damper.as_ref().map_or(0.0, |damper| damper.dissipation(u));
-            let mut record = AugmentedRecord {
-                augmentations,
-                ..AugmentedRecord::default()
-            };
+            // The predictor's inertia is the solution's for an undamped step without contact
+            // forces, solved in one pass from close by.
             let close = distance(u, &predictor) <= PREDICTOR_CLOSENESS * distance(u, u0);
-            let from_start = report
-                .start_negative_pivots
-                .filter(|_| close && !damped && augmentations == 1 && !loaded_at_start && unloaded(&self.contact, u));
+            let from_start = report.start_negative_pivots.filter(|_| {
+                close
+                    && !damped
+                    && report.updates == Updates::default()
+                    && !loaded_at_start
+                    && unloaded(&self.contact, u)
+            });
             let started = std::time::Instant::now();
-            let undamped_tangent = match (wants_inertia, from_start) {
+            let undamped_tangent = match (policy.inertia_at_solution, from_start) {
                 (true, Some(count)) => {
                     report.negative_pivots = Some(count);
                     None
@@ -206,6 +155,10 @@ impl Augmentation {
                 }
                 (false, _) => None,
             };
+            let mut record = AugmentedRecord {
+                augmentations: report.updates.contact + 1,
+                ..AugmentedRecord::default()
+            };
             if let Some(s) = &mut self.stabilisation {
                 let Some(fraction) = s.book(dissipation, report.energy)? else {
                     u.copy_from_slice(&predictor);
@@ -217,24 +170,81 @@ impl Augmentation {
                 record.eta = s.eta();
             }
             if let Some(tangent) = undamped_tangent {
-                // Counted while the next step goes on, which starts from a new factorisation
-                // (as it did when this count replaced Newton's held one: that of an unstable
-                // state is not reused).
-                self.inertia
-                    .start(tangent, |structure| newton.sibling_solver(structure));
-                newton.forget_factorisation();
-                record.inertia_pending = true;
-                record.inertia_seconds = started.elapsed().as_secs_f64();
+                self.count_inertia(newton, tangent, &mut record, started);
             }
             if let Some(contact) = &self.contact {
-                let state = contact.state(u);
-                record.in_contact = state.in_contact;
-                record.contact_length = state.contact_length;
-                record.contact_zones = state.zones;
-                record.penetration = state.penetration;
-                record.pressure = contact.surface().nodes.iter().copied().zip(state.pressure).collect();
+                record.record_contact(contact, u);
             }
             return Ok((report, record));
         }
+    }
+
+    /// Starts counting the inertia of the accepted state's undamped `tangent` on the second
+    /// thread, while the next step goes on; that step starts from a new factorisation (as it
+    /// did when this count replaced Newton's held one: that of an unstable state is not reused).
+    fn count_inertia(
+        &mut self,
+        newton: &mut Newton,
+        tangent: Assembled,
+        record: &mut AugmentedRecord,
+        started: std::time::Instant,
+    ) {
+        self.inertia
+            .start(tangent, |structure| newton.sibling_solver(structure));
+        newton.forget_factorisation();
+        record.inertia_pending = true;
+        record.inertia_seconds = started.elapsed().as_secs_f64();
+    }
+}
+
+/// Moves the right symmetry plane to `L (1 - d)` and, when the pairs at `u` change the
+/// tangent's structure (a new analysis and pattern, which are large), lets the count in the
+/// background finish first, freeing its factor. Returns whether a pair is loaded at `u` (then
+/// the first tangent holds contact terms).
+fn prepare_contact(
+    (contact, inertia): (&mut Option<Contact>, &mut BackgroundInertia),
+    system: &System,
+    u: &[f64],
+    (bc, d): (&Dirichlet, f64),
+) -> bool {
+    let Some(contact) = contact else {
+        return false;
+    };
+    contact.set_plane(RIGHT_PLANE, Plane::right(system.mesh().spec().length * (1.0 - d)));
+    let mut probe = contact.clone();
+    probe.search(u);
+    if !system.keeps_structure(bc, probe.groups()) {
+        inertia.release();
+    }
+    !probe.loaded_pairs(u).is_empty()
+}
+
+/// Whether no contact pair carries force at `u`.
+fn unloaded(contact: &Option<Contact>, u: &[f64]) -> bool {
+    contact.as_ref().is_none_or(|c| c.loaded_pairs(u).is_empty())
+}
+
+/// Newton's `policy` for one step: a plain step (undamped, no contact forces) factorises its
+/// predictor first, whose inertia may be the solution's; across a damped snap or with contact
+/// forces the residual may stagnate for a few steps before it converges, so only the slower
+/// stall rule cuts the step there. The inertia is the augmentation's to count, not Newton's.
+fn policy_of_step(policy: &NewtonPolicy, plain: bool) -> NewtonPolicy {
+    NewtonPolicy {
+        inertia_at_solution: false,
+        factorise_start: plain,
+        diverging_after: if plain { policy.diverging_after } else { None },
+        ..*policy
+    }
+}
+
+impl AugmentedRecord {
+    /// The contact of the accepted state `u`.
+    fn record_contact(&mut self, contact: &Contact, u: &[f64]) {
+        let state = contact.state(u);
+        self.in_contact = state.in_contact;
+        self.contact_length = state.contact_length;
+        self.contact_zones = state.zones;
+        self.penetration = state.penetration;
+        self.pressure = contact.surface().nodes.iter().copied().zip(state.pressure).collect();
     }
 }

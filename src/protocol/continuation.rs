@@ -7,11 +7,15 @@
 //! Newton's method corrects it. A step that converges in at most `easy_iterations` grows
 //! `h` by `grow`; a failure (no convergence, line search, `J <= 0` anywhere) discards the trial
 //! and cuts `h` by `cut`. A failure at the minimum step stops the continuation.
+//!
+//! [`Continuation::advance_to`] reads as the algorithm: [`Continuation::attempt`] (predict,
+//! correct), then [`Continuation::accept`] (record, grow) or [`Continuation::cut`].
 
 use super::augmentation::{Augmentation, AugmentedRecord};
 use super::surface::amplitude;
 use crate::error::{Error, Result};
-use crate::fem::{model_conditions, Newton, NewtonReport, System, Timings};
+use crate::fem::equilibrium;
+use crate::fem::{model_conditions, Newton, NewtonPolicy, NewtonReport, Reuse, System, Timings};
 use serde::Serialize;
 use std::collections::VecDeque;
 use std::time::Instant;
@@ -158,6 +162,8 @@ pub enum Event<'a> {
 pub struct Continuation {
     system: System,
     newton: Newton,
+    /// Newton's policy of every step (its reuse set per step, see [`Continuation::attempt`]).
+    policy: NewtonPolicy,
     control: StepControl,
     step: f64,
     /// Up to four converged `(d, u)`, newest last.
@@ -171,16 +177,42 @@ pub struct Continuation {
     pending: Option<StepRecord>,
 }
 
+/// A converged attempt: Newton's report, the displacement, and what contact and
+/// stabilisation report.
+type Solved = (NewtonReport, Vec<f64>, Option<AugmentedRecord>);
+
+/// The wall time of the step being tried, and of its attempts discarded so far.
+struct StepClock {
+    started: Instant,
+    failed_seconds: f64,
+}
+
+impl StepClock {
+    fn start() -> Self {
+        StepClock {
+            started: Instant::now(),
+            failed_seconds: 0.0,
+        }
+    }
+}
+
 /// How many converged states the predictor extrapolates through (cubic).
 const PREDICTOR_POINTS: usize = 4;
 
 impl Continuation {
-    /// Starts at the converged state `u` at `d`, solving with `newton` (and its cached factor).
-    pub fn new(system: System, newton: Newton, control: StepControl, d: f64, u: Vec<f64>) -> Result<Self> {
+    /// Starts at the converged state `u` at `d`, solving with `newton` (and its cached factor)
+    /// by `policy`.
+    pub fn new(
+        (system, newton, policy): (System, Newton, NewtonPolicy),
+        control: StepControl,
+        d: f64,
+        u: Vec<f64>,
+    ) -> Result<Self> {
         control.validate()?;
         Ok(Continuation {
             system,
             newton,
+            policy,
             step: control.initial.min(control.max),
             control,
             history: VecDeque::from([(d, u)]),
@@ -251,63 +283,84 @@ impl Continuation {
     }
 
     fn advance(&mut self, target: f64, observer: &mut dyn FnMut(Event<'_>) -> Result<()>) -> Result<()> {
-        let c = self.control;
-        let mut started = Instant::now();
-        let mut failed_seconds = 0.0;
+        let mut clock = StepClock::start();
         while target - self.d() > 1e-12 {
             let step = self.step.min(target - self.d());
             let d = self.d() + step;
             let attempt_started = Instant::now();
-            // A full-length step lies on a smooth stretch of the path: Newton may keep a fresh
-            // indefinite tangent there; a cut step is near a fold, where it may not.
-            self.newton.settings.reuse_indefinite = step >= c.max * (1.0 - 1e-9);
-            let attempt = self.attempt(d);
+            let attempt = self.attempt(d, step);
             let attempt_seconds = attempt_started.elapsed().as_secs_f64();
             self.report_pending(observer, true)?;
             match attempt {
-                Ok((report, u, augmented)) => {
-                    let a = amplitude(self.system.mesh(), &u);
-                    let mut record = StepRecord::new(d, step, a, &report, started.elapsed().as_secs_f64());
-                    let pending = augmented.as_ref().is_some_and(|a| a.inertia_pending);
-                    record.augmented = augmented;
-                    record.failed_seconds = failed_seconds;
-                    if pending {
-                        self.pending = Some(record);
-                    } else {
-                        observer(Event::Step {
-                            record: &record,
-                            system: &self.system,
-                            u: &u,
-                        })?;
-                    }
-                    self.history.push_back((d, u));
-                    if self.history.len() > PREDICTOR_POINTS {
-                        self.history.pop_front();
-                    }
-                    // A pass after an update of the multipliers takes a step or so of its own.
-                    if report.tangent_steps <= c.easy_iterations + report.multiplier_updates {
-                        self.step = (self.step * c.grow).min(c.max);
-                    }
-                    started = Instant::now();
-                    failed_seconds = 0.0;
-                }
-                Err(reason) if step > c.min * (1.0 + 1e-9) => {
-                    failed_seconds += attempt_seconds;
-                    observer(Event::Cut(&Cut {
-                        d,
-                        step,
-                        reason: reason.to_string(),
-                    }))?;
-                    self.step = (step * c.cut).max(c.min);
+                Ok(solved) => {
+                    self.accept((d, step), solved, &clock, observer)?;
+                    clock = StepClock::start();
                 }
                 Err(reason) => {
-                    return Err(Error::Solver(format!(
-                        "continuation stopped at d = {d:.6} (last converged d = {:.6}) with the minimum step {step:.3e}: {reason}",
-                        self.d()
-                    )))
+                    self.cut(d, step, reason, observer)?;
+                    clock.failed_seconds += attempt_seconds;
                 }
             }
         }
+        Ok(())
+    }
+
+    /// Records the converged state at `d` (now, or once its inertia is counted), keeps it for
+    /// the predictor, and grows the step if it was easy.
+    fn accept(
+        &mut self,
+        (d, step): (f64, f64),
+        (report, u, augmented): Solved,
+        clock: &StepClock,
+        observer: &mut dyn FnMut(Event<'_>) -> Result<()>,
+    ) -> Result<()> {
+        let a = amplitude(self.system.mesh(), &u);
+        let mut record = StepRecord::new(d, step, a, &report, clock.started.elapsed().as_secs_f64());
+        let pending = augmented.as_ref().is_some_and(|a| a.inertia_pending);
+        record.augmented = augmented;
+        record.failed_seconds = clock.failed_seconds;
+        if pending {
+            self.pending = Some(record);
+        } else {
+            observer(Event::Step {
+                record: &record,
+                system: &self.system,
+                u: &u,
+            })?;
+        }
+        self.history.push_back((d, u));
+        if self.history.len() > PREDICTOR_POINTS {
+            self.history.pop_front();
+        }
+        // A pass after an update of the multipliers takes a step or so of its own.
+        let c = self.control;
+        if report.tangent_steps <= c.easy_iterations + report.updates.pressure {
+            self.step = (self.step * c.grow).min(c.max);
+        }
+        Ok(())
+    }
+
+    /// Discards the failed attempt at `d` and cuts the step; at the minimum step, stops.
+    fn cut(
+        &mut self,
+        d: f64,
+        step: f64,
+        reason: Error,
+        observer: &mut dyn FnMut(Event<'_>) -> Result<()>,
+    ) -> Result<()> {
+        let c = self.control;
+        if step <= c.min * (1.0 + 1e-9) {
+            return Err(Error::Solver(format!(
+                "continuation stopped at d = {d:.6} (last converged d = {:.6}) with the minimum step {step:.3e}: {reason}",
+                self.d()
+            )));
+        }
+        observer(Event::Cut(&Cut {
+            d,
+            step,
+            reason: reason.to_string(),
+        }))?;
+        self.step = (step * c.cut).max(c.min);
         Ok(())
     }
 
@@ -334,9 +387,10 @@ impl Continuation {
         })
     }
 
-    /// Predictor and Newton corrector at `d`; the converged displacement, or why it failed.
-    /// From a single state, Newton's first (lifted) step is the predictor: the tangent one.
-    fn attempt(&mut self, d: f64) -> Result<(NewtonReport, Vec<f64>, Option<AugmentedRecord>)> {
+    /// Predictor and Newton corrector at `d`, reached by a step of `step`; the converged
+    /// displacement, or why it failed. From a single state, Newton's first (lifted) step is
+    /// the predictor: the tangent one.
+    fn attempt(&mut self, d: f64, step: f64) -> Result<Solved> {
         let bc = model_conditions(self.system.mesh(), d)?;
         let mut u = self.predict(d);
         if self.history.len() > 1 || self.slope.is_some() {
@@ -344,10 +398,24 @@ impl Continuation {
                 u[dof] = value;
             }
         }
+        // A full-length step lies on a smooth stretch of the path: Newton may keep a fresh
+        // indefinite tangent there; a cut step is near a fold, where it may not.
+        let policy = match self.policy.reuse {
+            Reuse::Never => self.policy,
+            _ if step >= self.control.max * (1.0 - 1e-9) => NewtonPolicy {
+                reuse: Reuse::AlsoIndefinite,
+                ..self.policy
+            },
+            _ => NewtonPolicy {
+                reuse: Reuse::Definite,
+                ..self.policy
+            },
+        };
         if let Some(augmentation) = &mut self.augmentation {
             let (d0, u0) = self.history.back().expect("never empty");
             let (report, record) = augmentation.solve(
                 &mut self.newton,
+                &policy,
                 &mut self.system,
                 &mut u,
                 &bc,
@@ -356,7 +424,7 @@ impl Continuation {
             )?;
             return Ok((report, u, Some(record)));
         }
-        let report = self.newton.solve(&mut self.system, &mut u, &bc)?;
+        let report = equilibrium::solve(&mut self.newton, &mut self.system, &mut u, &bc, &policy)?;
         Ok((report, u, None))
     }
 

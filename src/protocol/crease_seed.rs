@@ -15,8 +15,9 @@ use super::bifurcation::homogeneous_unknowns;
 use crate::error::{Error, Result};
 use crate::fem::added::NoAddedEnergy;
 use crate::fem::boundary::{dof, X};
-use crate::fem::contact::{solve_with_contact, Contact, ContactSettings, Plane};
-use crate::fem::{model_conditions, Dirichlet, Newton, NewtonSettings, System};
+use crate::fem::contact::{Contact, ContactSettings, Plane};
+use crate::fem::equilibrium::solve_with_contact;
+use crate::fem::{model_conditions, Dirichlet, Newton, NewtonPolicy, System};
 use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
 use crate::mesh::{Mesh, MeshSpec};
@@ -75,23 +76,32 @@ pub fn crease_energy(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_leng
     let mut system = System::new(mesh, materials)?;
     let mut u = homogeneous_unknowns(&system, materials, &state)?;
     let flat_energy = system.assemble(&u, &model, None, false)?.energy;
-    let mut newton = Newton::new(NewtonSettings {
+    let mut newton = Newton::new();
+    let policy = NewtonPolicy {
         max_iterations: 25,
         inertia_at_solution: false,
-        ..NewtonSettings::default()
-    });
+        ..NewtonPolicy::default()
+    };
     let (mut t, mut step, mut steps) = (0.0f64, 0.125f64, 0);
     let mut report = None;
     while t < 1.0 {
         let next = (t + step).min(1.0);
         let bc = folding_conditions(&system, &model, &folded, state.lambda1, next)?;
-        match solve_with_contact(&mut newton, &mut system, &mut u, &bc, &mut contact, &NoAddedEnergy) {
+        match solve_with_contact(
+            &mut newton,
+            &mut system,
+            &mut u,
+            &bc,
+            &mut contact,
+            &NoAddedEnergy,
+            &policy,
+        ) {
             Ok(solved) => {
                 (t, steps) = (next, steps + 1);
                 if solved.iterations <= 8 {
                     step = (2.0 * step).min(0.25);
                 }
-                report = Some((solved.report, bc));
+                report = Some((solved, bc));
             }
             Err(_) if step > MIN_RAMP_STEP => step *= 0.5,
             Err(e) => {

@@ -17,8 +17,6 @@
 
 use crate::error::{Error, Result};
 use crate::fem::added::{AddedEnergy, Block, Diagonal};
-use crate::fem::element::{self, DOFS};
-use crate::fem::mixed::{Volumetric, PRESSURES};
 use crate::fem::System;
 use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
@@ -70,21 +68,7 @@ impl Stabilisation {
     /// damping volume change by the penalty would hold the displacements against the
     /// multipliers' updates on short steps.
     pub fn new(system: &System, materials: &Bilayer, settings: StabilisationSettings) -> Result<Self> {
-        let mesh = system.mesh();
-        let mut stiffness = vec![0.0; mesh.num_dofs()];
-        let mut k = [[0.0; DOFS]; DOFS];
-        for e in 0..mesh.elements().len() {
-            match system.mixed_elements().get(e) {
-                Some(mixed) if matches!(mixed.volumetric(), Volumetric::Augmented { .. }) => {
-                    element::evaluate(&system.geometry()[e], mixed.rest(), &[0.0; DOFS], Some(&mut k))?
-                }
-                _ => system.element_state(e, &[0.0; DOFS], &[0.0; PRESSURES], Some(&mut k))?,
-            };
-            let nodes = &mesh.elements()[e];
-            for (i, row) in k.iter().enumerate() {
-                stiffness[2 * nodes[i / 2] + i % 2] += row[i];
-            }
-        }
+        let stiffness = system.reference_stiffness_diagonal()?;
         Ok(Stabilisation {
             settings,
             materials: *materials,

@@ -10,7 +10,8 @@ use super::imperfection::{mode_number, wavenumber_of_waves, Imperfection};
 use super::stabilisation::StabilisationSettings;
 use super::surface::amplitude;
 use crate::error::{Error, Result};
-use crate::fem::{model_conditions, Newton, NewtonSettings, System};
+use crate::fem::equilibrium;
+use crate::fem::{model_conditions, Newton, NewtonPolicy, Reuse, Stall, System};
 use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
 use crate::mesh::{Mesh, MeshSpec};
@@ -32,8 +33,8 @@ pub struct Protocol {
     pub d_max: f64,
     /// Adaptive steps of stage 3.
     pub control: StepControl,
-    /// Newton's method in every stage.
-    pub newton: NewtonSettings,
+    /// Newton's policy in every stage.
+    pub newton: NewtonPolicy,
     /// Contact of the top surface with the symmetry planes and with itself in stage 3.
     pub contact: bool,
     /// Viscous stabilisation of stage 3, if any.
@@ -146,15 +147,18 @@ fn resolves(spec: &MeshSpec, what: &str, wavelength: f64) -> Result<()> {
 /// where no inertia is asked for: from the cubic predictor it converges in two steps, where a
 /// factorisation kept from the step before contracts the residual only about fourfold per step
 /// (measured: 42 smooth states on the fine mesh in 5.0 s instead of 5.8 s).
-pub fn simulation_newton() -> NewtonSettings {
-    NewtonSettings {
+pub fn simulation_newton() -> NewtonPolicy {
+    NewtonPolicy {
         max_iterations: 8,
         inertia_at_solution: false,
         factorise_start: true,
-        reuse_factorisation: true,
-        stall_steps: 5,
-        diverging_steps: 2,
-        ..NewtonSettings::default()
+        reuse: Reuse::Definite,
+        stall: Some(Stall {
+            steps: 5,
+            reduction: 1e-3,
+        }),
+        diverging_after: Some(2),
+        ..NewtonPolicy::default()
     }
 }
 
@@ -175,7 +179,7 @@ pub fn run(
 ) -> Result<Outcome> {
     protocol.validate(&spec)?;
     let d0 = STAGE_ONE_COMPRESSION;
-    let mut newton = Newton::new(protocol.newton);
+    let mut newton = Newton::new();
     let start = Instant::now();
     observer(Event::Stage(&format!(
         "stage 1: homogeneous compression of the perfect bilayer to d = {d0}"
@@ -187,11 +191,12 @@ pub fn run(
     let bc = model_conditions(&perfect, d0)?;
     let imperfect = protocol.imperfection > 0.0 || protocol.imperfection2 > 0.0;
     // Stage 2 reports the inertia of its own state (stage 1's is not reported then).
-    newton.settings.inertia_at_solution = protocol.newton.inertia_at_solution && !imperfect;
-    let mut report = newton
-        .solve(&mut system, &mut u, &bc)
+    let stage_one = NewtonPolicy {
+        inertia_at_solution: protocol.newton.inertia_at_solution && !imperfect,
+        ..protocol.newton
+    };
+    let mut report = equilibrium::solve(&mut newton, &mut system, &mut u, &bc, &stage_one)
         .map_err(|e| stage_failure(1, e.into()))?;
-    newton.settings = protocol.newton;
     if imperfect {
         observer(Event::Stage(&format!(
             "stage 2: imperfection {} cos({:.6} X){} of the reference geometry, equilibrium at d = {d0}",
@@ -221,8 +226,7 @@ pub fn run(
             [0.0, a + b]
         });
         system = system.with_moved_nodes(mesh, materials)?;
-        report = newton
-            .solve(&mut system, &mut u, &bc)
+        report = equilibrium::solve(&mut newton, &mut system, &mut u, &bc, &protocol.newton)
             .map_err(|e| stage_failure(2, e.into()))?;
     }
     let a = amplitude(system.mesh(), &u);
@@ -245,7 +249,8 @@ pub fn run(
     let h = 1e-3;
     let (ahead, behind) = (homogeneous(d0 + h)?, homogeneous(d0 - h)?);
     let slope = ahead.iter().zip(&behind).map(|(a, b)| (a - b) / (2.0 * h)).collect();
-    let mut continuation = Continuation::new(system, newton, protocol.control, d0, u)?.with_first_slope(slope);
+    let mut continuation =
+        Continuation::new((system, newton, protocol.newton), protocol.control, d0, u)?.with_first_slope(slope);
     if let Some(augmentation) = augmentation {
         continuation = continuation.with_augmentation(augmentation);
     }

@@ -6,6 +6,7 @@ use super::{Assembled, System};
 use crate::error::Result;
 use crate::fem::added::AddedEnergy;
 use crate::fem::boundary::Dirichlet;
+use crate::fem::element::{self, DOFS};
 use crate::fem::mixed::{Volumetric, PRESSURES};
 use crate::material::{Bilayer, Tissue};
 use crate::mesh::Region;
@@ -46,10 +47,11 @@ impl System {
         std::array::from_fn(|i| u[start + i])
     }
 
-    /// The method of multipliers' step at `u`: the largest violation `|M^-1 g - lambda / K|`
-    /// over the elements and the change `p - lambda` of every multiplier (in the order of the
-    /// multipliers in `u`; zero in elements condensed exactly). `None` without multipliers.
-    pub fn multiplier_step(&self, u: &[f64]) -> Result<Option<(f64, Vec<f64>)>> {
+    /// The method of multipliers' step at `u` with the penalty multiplied by `penalty_scale`:
+    /// the largest violation `|M^-1 g - lambda / K|` over the elements and the change
+    /// `p - lambda` of every multiplier (in the order of the multipliers in `u`; zero in
+    /// elements condensed exactly). `None` without multipliers.
+    pub fn multiplier_step(&self, u: &[f64], penalty_scale: f64) -> Result<Option<(f64, Vec<f64>)>> {
         if !self.multipliers {
             return Ok(None);
         }
@@ -62,7 +64,7 @@ impl System {
                     &self.geometry[e],
                     &self.element_displacements(e, u),
                     &lambda,
-                    self.penalty_scale,
+                    penalty_scale,
                     None,
                 )?;
                 let violation = state.violation.iter().fold(0.0f64, |v, x| v.max(x.abs()));
@@ -93,25 +95,34 @@ impl System {
         u
     }
 
+    /// The diagonal `K_ii` of the stiffness at `u = 0` on every displacement unknown: a scale
+    /// of each unknown's stiffness (of the viscous damper, of the minimiser's shift). In
+    /// elements with multipliers, of the energy without its volumetric part: that part's
+    /// penalty would make the displacements it scales stiff against the multipliers' updates.
+    pub fn reference_stiffness_diagonal(&self) -> Result<Vec<f64>> {
+        let mesh = self.mesh();
+        let mut stiffness = vec![0.0; mesh.num_dofs()];
+        let mut k = [[0.0; DOFS]; DOFS];
+        for e in 0..mesh.elements().len() {
+            match self.mixed.get(e) {
+                Some(mixed) if matches!(mixed.volumetric(), Volumetric::Augmented { .. }) => {
+                    element::evaluate(&self.geometry[e], mixed.rest(), &[0.0; DOFS], Some(&mut k))?
+                }
+                _ => self.element_state(e, &[0.0; DOFS], &[0.0; PRESSURES], 1.0, Some(&mut k))?,
+            };
+            let nodes = &mesh.elements()[e];
+            for (i, row) in k.iter().enumerate() {
+                stiffness[2 * nodes[i / 2] + i % 2] += row[i];
+            }
+        }
+        Ok(stiffness)
+    }
+
     /// The tangent (and residual) of the strain energy plus `added` whose inertia is the
     /// stability of `u`: [`System::assemble_with`], with multipliers at the stability penalty
     /// ([`crate::fem::mixed`]).
     pub fn assemble_for_stability(&mut self, u: &[f64], bc: &Dirichlet, added: &dyn AddedEnergy) -> Result<Assembled> {
-        let scale = std::mem::replace(&mut self.penalty_scale, STABILITY_PENALTY);
-        let assembled = self.assemble_with(u, bc, None, true, added);
-        self.penalty_scale = scale;
-        assembled
-    }
-
-    /// The factor on the constraint's penalty.
-    pub fn penalty_scale(&self) -> f64 {
-        self.penalty_scale
-    }
-
-    /// Sets the factor on the constraint's penalty (Newton's method raises it while the
-    /// multipliers converge slowly).
-    pub fn set_penalty_scale(&mut self, scale: f64) {
-        self.penalty_scale = scale;
+        self.assemble_penalised(u, bc, None, true, added, STABILITY_PENALTY)
     }
 
     /// Whether multipliers follow the displacements in the unknowns' vector.

@@ -1,6 +1,7 @@
 //! Contact of the top surface with the symmetry planes and with itself, by an augmented
 //! Lagrangian ([`gap`]) on pairs found on the deformed surface ([`search`]), solved by
-//! Newton's method inside Uzawa's multiplier updates ([`solve`]).
+//! Newton's method inside Uzawa's multiplier updates ([`solve`], an outer loop of
+//! [`crate::fem::equilibrium`]).
 //!
 //! Both vertical edges are symmetry planes, so a trough that sits on one of them closes
 //! against its own mirror image: that self-contact is exactly contact of the surface with the
@@ -15,7 +16,7 @@ pub mod search;
 pub mod solve;
 
 pub use search::{End, Pair, Plane, Surface};
-pub use solve::{solve_with_contact, ContactSolve};
+pub use solve::ContactUpdate;
 
 use super::added::{AddedEnergy, Block};
 use crate::mesh::Mesh;

@@ -57,16 +57,48 @@ pub struct NewtonReport {
     pub min_jacobian: f64,
     /// Reactions on the prescribed unknowns, in the order of `Dirichlet::dofs`.
     pub reactions: Vec<f64>,
-    /// Negative eigenvalues of `K_ff` at the solution, if requested in the settings.
+    /// Negative eigenvalues of `K_ff` at the solution, if the policy asked for them.
     pub negative_pivots: Option<usize>,
     /// Negative eigenvalues of `K_ff` at the starting iterate, if it was factorised.
     pub start_negative_pivots: Option<usize>,
     /// Total number of step halvings.
     pub backtracks: usize,
-    /// Updates of the incompressibility multipliers, each followed by more Newton steps.
-    pub multiplier_updates: usize,
+    /// Updates of the outer loops, each followed by another Newton solve.
+    pub updates: Updates,
     /// Wall times of the phases.
     pub timings: Timings,
+}
+
+/// How often each outer loop around Newton's iteration updated its unknowns and solved again
+/// ([`crate::fem::equilibrium`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Updates {
+    /// Updates of the mixed element's multipliers (the incompressibility pressure).
+    pub pressure: usize,
+    /// Updates of the contact pairs and their multipliers.
+    pub contact: usize,
+}
+
+impl NewtonReport {
+    /// This solve continued by `next`, another solve after an update: counts and times add
+    /// up, the residual histories join, and the solution is `next`'s.
+    pub fn followed_by(self, next: NewtonReport) -> NewtonReport {
+        let mut residual_history = self.residual_history;
+        residual_history.extend(next.residual_history);
+        NewtonReport {
+            iterations: self.iterations + next.iterations,
+            tangent_steps: self.tangent_steps + next.tangent_steps,
+            residual_history,
+            backtracks: self.backtracks + next.backtracks,
+            updates: Updates {
+                pressure: self.updates.pressure + next.updates.pressure,
+                contact: self.updates.contact + next.updates.contact,
+            },
+            start_negative_pivots: self.start_negative_pivots,
+            timings: self.timings + next.timings,
+            ..next
+        }
+    }
 }
 
 /// Why Newton's method failed; the displacement is then left as it was.

@@ -1,0 +1,167 @@
+//! Equilibrium at fixed prescribed displacements: Newton's iteration ([`crate::fem::newton`])
+//! inside the outer loops that update what its equations depend on, each of one shape, *solve,
+//! update, check* ([`Update`], [`repeat`]):
+//!
+//! - contact ([`crate::fem::contact::solve`]): a new search on the deformed surface and Uzawa's
+//!   multiplier update, until the penetration is within tolerance and the loaded pairs no
+//!   longer change;
+//! - inside it, the mixed element's incompressibility multipliers ([`crate::fem::mixed`]): the
+//!   method of multipliers, until the constraint holds.
+//!
+//! One save and restore covers the whole solve (a failure leaves the state and the contact as
+//! they were), one report sums its passes, and the inertia at the solution is counted once,
+//! after the last update.
+
+use super::added::{AddedEnergy, Sum};
+use super::assembly::System;
+use super::boundary::Dirichlet;
+use super::contact::{Contact, ContactUpdate};
+use super::mixed::PressureUpdate;
+use super::newton::{Equations, Newton, NewtonError, NewtonPolicy, NewtonReport, Precision, Updates};
+
+/// What an outer loop does between two converged solves.
+pub trait Update {
+    /// Most updates, each followed by another solve.
+    fn max_updates(&self) -> usize;
+
+    /// Checks the converged state `u` and updates: [`Check::Accepted`] if the state passes the
+    /// loop's check (the update may still have refreshed estimates that do not change the
+    /// state), otherwise [`Check::Updated`] with `u` or the loop's own unknowns changed.
+    fn update(&mut self, system: &System, u: &mut [f64]) -> Result<Check, NewtonError>;
+
+    /// Counts one update into `updates`.
+    fn count(&self, updates: &mut Updates);
+
+    /// Why the loop failed after its last update.
+    fn exhausted(&self) -> NewtonError;
+}
+
+/// The verdict of an [`Update`] on a converged state.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Check {
+    Accepted,
+    Updated,
+}
+
+/// Solve, update, check: `solve` (which sees the loop's current state), then `update`, again
+/// until the check passes or the updates run out; the report of all solves together.
+pub fn repeat<U: Update>(
+    update: &mut U,
+    system: &mut System,
+    u: &mut [f64],
+    mut solve: impl FnMut(&U, &mut System, &mut [f64]) -> Result<NewtonReport, NewtonError>,
+) -> Result<NewtonReport, NewtonError> {
+    let mut report = solve(update, system, u)?;
+    for _ in 0..update.max_updates() {
+        if update.update(system, u)? == Check::Accepted {
+            return Ok(report);
+        }
+        report = report.followed_by(solve(update, system, u)?);
+        update.count(&mut report.updates);
+    }
+    match update.update(system, u)? {
+        Check::Accepted => Ok(report),
+        Check::Updated => Err(update.exhausted()),
+    }
+}
+
+/// Equilibrium of the strain energy with `bc` prescribed, from `u`; on failure `u` is unchanged.
+pub fn solve(
+    newton: &mut Newton,
+    system: &mut System,
+    u: &mut [f64],
+    bc: &Dirichlet,
+    policy: &NewtonPolicy,
+) -> Result<NewtonReport, NewtonError> {
+    let loads = (None, &super::added::NoAddedEnergy as &dyn AddedEnergy);
+    solve_equilibrium(newton, (system, u, bc), loads, policy)
+}
+
+/// [`solve`] for the strain energy plus `added` (e.g. damping).
+pub fn solve_with(
+    newton: &mut Newton,
+    system: &mut System,
+    u: &mut [f64],
+    bc: &Dirichlet,
+    added: &dyn AddedEnergy,
+    policy: &NewtonPolicy,
+) -> Result<NewtonReport, NewtonError> {
+    solve_equilibrium(newton, (system, u, bc), (None, added), policy)
+}
+
+/// [`solve_with`] with contact: the strain energy plus `contact` plus `other`; on failure `u`
+/// and `contact` are restored.
+pub fn solve_with_contact(
+    newton: &mut Newton,
+    system: &mut System,
+    u: &mut [f64],
+    bc: &Dirichlet,
+    contact: &mut Contact,
+    other: &dyn AddedEnergy,
+    policy: &NewtonPolicy,
+) -> Result<NewtonReport, NewtonError> {
+    solve_equilibrium(newton, (system, u, bc), (Some(contact), other), policy)
+}
+
+fn solve_equilibrium(
+    newton: &mut Newton,
+    (system, u, bc): (&mut System, &mut [f64], &Dirichlet),
+    (mut contact, other): (Option<&mut Contact>, &dyn AddedEnergy),
+    policy: &NewtonPolicy,
+) -> Result<NewtonReport, NewtonError> {
+    let policy = for_system(policy, system);
+    let (start, saved) = (u.to_vec(), contact.as_deref().cloned());
+    let mut pressure_passes = |added: &dyn AddedEnergy, system: &mut System, u: &mut [f64]| {
+        repeat(&mut PressureUpdate::new(), system, u, |pressure, system, u| {
+            let equations = Equations {
+                system,
+                bc,
+                added,
+                penalty_scale: pressure.penalty_scale(),
+            };
+            newton.iterate(equations, u, &policy)
+        })
+    };
+    let solved = match contact.as_deref_mut() {
+        Some(contact) => repeat(&mut ContactUpdate::new(contact, u), system, u, |update, system, u| {
+            pressure_passes(&Sum::new(vec![update.contact(), other]), system, u)
+        }),
+        None => pressure_passes(other, system, u),
+    };
+    let result = solved.and_then(|mut report| {
+        if policy.inertia_at_solution && !system.free_dofs(bc)?.is_empty() {
+            let with_contact;
+            let added: &dyn AddedEnergy = match contact.as_deref() {
+                Some(contact) => {
+                    with_contact = Sum::new(vec![contact, other]);
+                    &with_contact
+                }
+                None => other,
+            };
+            report.negative_pivots = newton.inertia(system, u, bc, added, &mut report.timings)?;
+        }
+        Ok(report)
+    });
+    if result.is_err() {
+        u.copy_from_slice(&start);
+        if let (Some(contact), Some(saved)) = (contact, saved) {
+            *contact = saved;
+        }
+    }
+    result
+}
+
+/// `policy` for `system`'s equations. With multipliers, the iteration's tangent is not the one
+/// whose inertia is the state's ([`System::assemble_for_stability`]), so the start is not
+/// factorised for its inertia, and the penalty's conditioning leaves a reused factor too few
+/// digits in single precision.
+fn for_system(policy: &NewtonPolicy, system: &System) -> NewtonPolicy {
+    match system.has_multipliers() {
+        true => NewtonPolicy {
+            factorise_start: false,
+            reused_precision: Precision::Double,
+            ..*policy
+        },
+        false => *policy,
+    }
+}

@@ -1,0 +1,96 @@
+//! How one Newton solve iterates: tolerances, limits, when to give up, and which factorisations
+//! it may reuse. A value passed per call; nothing a caller sets is seen by the next one.
+
+/// Tolerances, limits and reuse rules of one Newton solve.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NewtonPolicy {
+    /// Largest number of Newton steps with a newly factorised tangent.
+    pub max_iterations: usize,
+    /// `rtol`: residual relative to the internal-force norm (keep it above the residual's round-off).
+    pub residual_tolerance: f64,
+    /// `atol`: absolute residual floor, for nearly unloaded states.
+    pub absolute_tolerance: f64,
+    /// `utol`: update relative to `1 + |u|_inf` below which the iterate no longer changes.
+    pub update_tolerance: f64,
+    /// Largest number of step halvings in one line search.
+    pub max_backtracks: usize,
+    /// Armijo constant `c` of the sufficient decrease `|r(u + alpha du)| <= (1 - c alpha) |r(u)|`.
+    pub sufficient_decrease: f64,
+    /// Relative residual of a linear solve above which `L B L^T` replaces `L D L^T`.
+    pub solve_tolerance: f64,
+    /// Whether the inertia of the tangent at the solution is counted
+    /// ([`crate::fem::equilibrium`] counts it, once the outer loops have converged).
+    pub inertia_at_solution: bool,
+    /// Whether to factorise the tangent at the starting iterate (the predictor) and start with it.
+    pub factorise_start: bool,
+    /// Which held factorisations the iteration keeps using while they contract the residual.
+    pub reuse: Reuse,
+    /// Largest ratio `|r_(n+1)| / |r_n|` of a step with a reused factorisation for the next step to
+    /// reuse it too; above it the tangent is refactorised.
+    pub contraction: f64,
+    /// Precision of the solves with a reused factorisation (the next residual checks the step).
+    pub reused_precision: Precision,
+    /// Give up when the residual stalls ([`Stall`]); `None`: never on that ground.
+    pub stall: Option<Stall>,
+    /// Give up when, after this many tangent steps, `|r|` has not fallen tenfold from its
+    /// start, or after the first it has not halved: an iteration from a usable predictor has by
+    /// then, and one that has not is stagnating on a fold (measured on the fine benchmark:
+    /// every such attempt failed after three to five more steps, and the first step of the
+    /// undamped ones that converged there cut `|r|` 20-90-fold). `None`: never on that ground.
+    pub diverging_after: Option<usize>,
+}
+
+/// Which factorisations a solve keeps as its iteration matrix (modified Newton).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Reuse {
+    /// Every step factorises the consistent tangent.
+    Never,
+    /// A positive definite factorisation is kept, whichever solve of the same pattern made it.
+    Definite,
+    /// Also an indefinite one made in this very solve (for a step on a smooth stretch of an
+    /// unstable path; not near a fold, where every step needs a fresh tangent).
+    AlsoIndefinite,
+}
+
+/// Precision of a solve with a reused factor.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Precision {
+    /// The factor rounded to single precision: half the memory traffic.
+    Single,
+    /// Full precision, where the tangent's conditioning leaves single precision too few digits
+    /// (the incompressibility penalty of the mixed element's multipliers).
+    Double,
+}
+
+/// The stall rule: give up (as not converged) when, after `steps` tangent steps, `|r|` is still
+/// above both `reduction` times its start and the geometric mean of its start and the
+/// tolerance. A converging iteration from a good predictor is far below by then, and a load
+/// step that stalls is cheaper to cut than to grind through.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Stall {
+    pub steps: usize,
+    pub reduction: f64,
+}
+
+impl Default for NewtonPolicy {
+    /// `rtol = 1e-10`, `atol = 1e-12`, `utol = 1e-13`, 30 steps, 12 halvings, full Newton, the
+    /// inertia at the solution.
+    fn default() -> Self {
+        NewtonPolicy {
+            max_iterations: 30,
+            residual_tolerance: 1e-10,
+            absolute_tolerance: 1e-12,
+            update_tolerance: 1e-13,
+            max_backtracks: 12,
+            sufficient_decrease: 1e-4,
+            solve_tolerance: 1e-8,
+            inertia_at_solution: true,
+            factorise_start: false,
+            reuse: Reuse::Never,
+            contraction: 0.25,
+            reused_precision: Precision::Single,
+            stall: None,
+            diverging_after: None,
+        }
+    }
+}
