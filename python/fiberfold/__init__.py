@@ -171,6 +171,7 @@ def simulate(
     force: bool = False,
     progress: Optional[Callable[[Dict[str, Any]], None]] = None,
     element: str = "displacement",
+    stabilisation: str = "viscous",
 ) -> Simulation:
     """The paper's finite-element protocol, exactly as ``fiberfold simulate`` with the same
     options (see ``fiberfold simulate --help`` for each; the defaults are the CLI's).
@@ -180,8 +181,11 @@ def simulate(
     ``layer_elements``, ``substrate_elements`` and ``h0``. ``progress`` is called with a dict
     (``event``: ``"stage"``, ``"step"`` or ``"cut"``; ``d``, ``A``, ``message``...) after every
     stage, accepted state and cut. ``element`` is ``"displacement"`` (the default) or ``"mixed"``
-    (more accurate, and needed for nearly and exactly incompressible tissue). Raises :class:`SolverError` (with ``result``, the
-    path so far) if the path stops before ``d_max``.
+    (more accurate, and needed for nearly and exactly incompressible tissue). ``stabilisation``
+    is how a snap is crossed: ``"snap"`` (the default: the energy is minimised at that d and the
+    stable equilibrium reached is recorded, see ``summary["snaps"]``), ``"viscous"`` (damped
+    steps, with ``eta``) or ``"none"``. Raises :class:`SolverError` (with ``result``, the path so
+    far) if the path stops before ``d_max``.
     """
     if progress is not None and not callable(progress):
         raise TypeError("progress must be callable")
@@ -189,6 +193,7 @@ def simulate(
         _check_parameters(params), mesh, nx, layer_elements, substrate_elements, h0, waves, k, d_max,
         imperfection, max_step, min_step, max_newton_iterations, refine_troughs, refine_width,
         imperfection2, imperfection2_waves, contact, eta, inertia, force, progress, element,
+        stabilisation,
     )
     result = Simulation(columns, json.loads(summary), state, stopped)
     if stopped is not None:

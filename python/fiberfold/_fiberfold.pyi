@@ -78,6 +78,7 @@ def simulate_run(
     force: bool,
     progress: Optional[Callable[[Dict[str, Any]], None]],
     element: str,
+    stabilisation: str,
 ) -> Tuple[Dict[str, npt.NDArray[np.float64]], str, State, Optional[str]]: ...
 def bifurcation_run(params: Parameters, out: str, mesh: str = ..., element: str = ...) -> str: ...
 def crease_run(

@@ -12,7 +12,8 @@ use fiberfold::stability::discrete::DiscreteOptions;
 use fiberfold::stability::{Method, StabilityAnalysis, K_MAX};
 use fiberfold::studies::homogeneous::{columns, CSV_HEADER};
 use fiberfold::studies::simulate::{
-    self, amplitude_header, amplitude_row, cell_arrays, displacement_array, Progress, SimulateOptions, StateFields,
+    self, amplitude_header, amplitude_row, cell_arrays, displacement_array, Crossing, EllipticityReport, Progress,
+    SimulateOptions, StateFields,
 };
 use fiberfold::studies::stability::{DispersionCurve, OnsetSummary, SweepStudy};
 use fiberfold::Error;
@@ -374,7 +375,7 @@ fn shaped<'py>(py: Python<'py>, array: &DataArray) -> Bound<'py, PyAny> {
 #[pyfunction]
 #[pyo3(signature = (params, mesh, nx, layer_elements, substrate_elements, h0, waves, k, d_max, imperfection,
     max_step, min_step, max_newton_iterations, refine_troughs, refine_width, imperfection2, imperfection2_waves,
-    contact, eta, inertia, force, progress, element))]
+    contact, eta, inertia, force, progress, element, stabilisation))]
 #[allow(clippy::too_many_arguments)]
 fn simulate_run<'py>(
     py: Python<'py>,
@@ -401,6 +402,7 @@ fn simulate_run<'py>(
     force: bool,
     progress: Option<Py<PyAny>>,
     element: &str,
+    stabilisation: &str,
 ) -> PyResult<(Bound<'py, PyDict>, String, PyState, Option<String>)> {
     let spec = MeshSpec::preset(mesh)
         .map_err(to_py)?
@@ -420,6 +422,7 @@ fn simulate_run<'py>(
         imperfection2,
         imperfection2_waves,
         contact,
+        crossing: Crossing::from_name(stabilisation).map_err(to_py)?,
         eta,
         inertia,
         force,
@@ -487,6 +490,8 @@ fn simulate_run<'py>(
         "onset": solution.onset,
         "contact": solution.contact,
         "secondary": solution.inertia_changes,
+        "snaps": solution.curve.records.iter().filter_map(|r| r.snap.clone()).collect::<Vec<_>>(),
+        "ellipticity": EllipticityReport::new(&solution.curve.records),
     });
     let stopped = solution.curve.stopped.as_ref().map(|e| e.to_string());
     Ok((

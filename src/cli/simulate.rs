@@ -5,7 +5,7 @@ use clap::{Args, ValueEnum};
 use fiberfold::fem::memory::{available_bytes, MemoryEstimate};
 use fiberfold::mesh::{ElementKind, MeshSpec};
 use fiberfold::protocol::mode_number;
-use fiberfold::studies::simulate::{self, Progress, SimulateOptions, SimulateStudy};
+use fiberfold::studies::simulate::{self, Crossing, Progress, SimulateOptions, SimulateStudy};
 use fiberfold::{Error, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
@@ -36,6 +36,24 @@ impl From<ElementChoice> for ElementKind {
         match choice {
             ElementChoice::Displacement => ElementKind::Displacement,
             ElementChoice::Mixed => ElementKind::Mixed,
+        }
+    }
+}
+
+/// How stage 3 crosses a snap.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum CrossingChoice {
+    Snap,
+    Viscous,
+    None,
+}
+
+impl From<CrossingChoice> for Crossing {
+    fn from(choice: CrossingChoice) -> Self {
+        match choice {
+            CrossingChoice::Snap => Crossing::Snap,
+            CrossingChoice::Viscous => Crossing::Viscous,
+            CrossingChoice::None => Crossing::None,
         }
     }
 }
@@ -166,8 +184,18 @@ pub struct SimulateArgs {
     #[arg(long)]
     pub no_contact: bool,
 
-    /// Viscous stabilisation: damping eta / h relative to the reference stiffness on a step h
-    /// in d; 0 turns it off.
+    /// How to cross a snap (a limit point in d, a closing trough), where Newton's method cannot
+    /// follow the branch: `viscous` damps the steps the step control has cut below 1e-3
+    /// (ABAQUS's *STATIC, STABILIZE: those recorded states carry damping forces); `snap`
+    /// minimises the energy where a step of 1e-6 fails and records the stable equilibrium
+    /// reached (snaps.json: every recorded state an exact equilibrium; a snap onto a closing
+    /// trough, with contact, is not yet found reliably and then stops the path); `none` stops
+    /// where Newton's method fails.
+    #[arg(long, value_enum, default_value_t = CrossingChoice::Viscous)]
+    pub stabilisation: CrossingChoice,
+
+    /// Viscous stabilisation's damping eta / h relative to the reference stiffness on a step h
+    /// in d, in (0, inf) (with --stabilisation viscous).
     #[arg(long, default_value_t = 1e-6, allow_negative_numbers = true)]
     pub eta: f64,
 
@@ -207,6 +235,7 @@ impl SimulateArgs {
             imperfection2: self.imperfection2,
             imperfection2_waves: self.imperfection2_waves,
             contact: !self.no_contact,
+            crossing: self.stabilisation.into(),
             eta: self.eta,
             inertia: !self.no_inertia,
             vtu_every: self.vtu_every,
@@ -259,6 +288,20 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
                     };
                     format!("{contact}  dissipated {:.1e}", a.stabilisation_energy_fraction)
                 });
+                if let Some(snap) = &r.snap {
+                    bar.suspend(|| {
+                        println!(
+                            "snap at d = {:.6}: A {:.4} -> {:.4}, energy {:.6e} -> {:.6e} (released {:.3e}) by {} minimisation steps",
+                            snap.d,
+                            snap.amplitude_before,
+                            snap.amplitude_after,
+                            snap.energy_start,
+                            snap.energy_after,
+                            snap.energy_released,
+                            snap.steps
+                        )
+                    });
+                }
                 bar.suspend(|| {
                     println!(
                         "d = {:.6}  step {:.1e}  A = {:.6}  {} it  |r| {}  min J {:.4}{inertia}{augmented}  {:.2} s",
@@ -331,6 +374,29 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         c.stabilisation_energy_fraction_max,
         c.min_jacobian
     );
+    let e = &summary.ellipticity;
+    for (layer, d) in [("layer", e.d_loss_layer), ("substrate", e.d_loss_substrate)] {
+        if let Some(d) = d {
+            println!(
+                "note: the {layer} loses strong ellipticity at a Gauss point first at d = {d:.5} (smallest margin \
+                 {:.3e}); beyond it the continuum admits shear bands and the answer depends on the mesh",
+                if layer == "layer" {
+                    e.smallest_layer
+                } else {
+                    e.smallest_substrate
+                }
+            );
+        }
+    }
+    if !summary.snaps.is_empty() {
+        let released: f64 = summary.snaps.iter().map(|s| s.energy_released).sum();
+        println!(
+            "snaps: {} (first at d = {:.6}), energy released {released:.4e} in all; every recorded state is an \
+             undamped equilibrium (snaps.json)",
+            summary.snaps.len(),
+            summary.snaps[0].d
+        );
+    }
     let s = &summary.secondary;
     println!(
         "secondary bifurcations: first at d = {} ({} changes of the inertia); branch followed: {}",

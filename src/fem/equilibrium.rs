@@ -8,9 +8,11 @@
 //! - inside it, the mixed element's incompressibility multipliers ([`crate::fem::mixed`]): the
 //!   method of multipliers, until the constraint holds.
 //!
-//! One save and restore covers the whole solve (a failure leaves the state and the contact as
-//! they were), one report sums its passes, and the inertia at the solution is counted once,
-//! after the last update.
+//! The inner solver is Newton's iteration, or, for a snap, the minimisation of the energy
+//! ([`Newton::minimise`], a trust-region Newton method that ends at a local minimum). One save
+//! and restore covers the whole solve (a failure leaves the state and the contact as they
+//! were), one report sums its passes, and the inertia at the solution is counted once, after
+//! the last update.
 
 use super::added::{AddedEnergy, Sum};
 use super::assembly::System;
@@ -65,6 +67,16 @@ pub fn repeat<U: Update>(
     }
 }
 
+/// The solver inside the outer loops.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Inner {
+    /// Newton's iteration: the equilibrium nearest the start.
+    Newton,
+    /// The trust-region minimisation of the energy: a local minimum, reached by steps that
+    /// never raise the energy.
+    Minimise,
+}
+
 /// Equilibrium of the strain energy with `bc` prescribed, from `u`; on failure `u` is unchanged.
 pub fn solve(
     newton: &mut Newton,
@@ -74,7 +86,7 @@ pub fn solve(
     policy: &NewtonPolicy,
 ) -> Result<NewtonReport, NewtonError> {
     let loads = (None, &super::added::NoAddedEnergy as &dyn AddedEnergy);
-    solve_equilibrium(newton, (system, u, bc), loads, policy)
+    solve_equilibrium(newton, (system, u, bc), loads, (Inner::Newton, policy))
 }
 
 /// [`solve`] for the strain energy plus `added` (e.g. damping).
@@ -86,7 +98,7 @@ pub fn solve_with(
     added: &dyn AddedEnergy,
     policy: &NewtonPolicy,
 ) -> Result<NewtonReport, NewtonError> {
-    solve_equilibrium(newton, (system, u, bc), (None, added), policy)
+    solve_equilibrium(newton, (system, u, bc), (None, added), (Inner::Newton, policy))
 }
 
 /// [`solve_with`] with contact: the strain energy plus `contact` plus `other`; on failure `u`
@@ -100,14 +112,28 @@ pub fn solve_with_contact(
     other: &dyn AddedEnergy,
     policy: &NewtonPolicy,
 ) -> Result<NewtonReport, NewtonError> {
-    solve_equilibrium(newton, (system, u, bc), (Some(contact), other), policy)
+    solve_equilibrium(newton, (system, u, bc), (Some(contact), other), (Inner::Newton, policy))
+}
+
+/// A local minimum of the strain energy plus `contact` (if any) plus `other` with `bc`
+/// prescribed, from `u` (whose prescribed unknowns must hold their values), with the outer
+/// loops around the minimisation; the inertia of a stable state is counted (none negative)
+/// if `policy` asks for it. On failure `u` and `contact` are restored.
+pub fn minimise(
+    newton: &mut Newton,
+    (system, u, bc): (&mut System, &mut [f64], &Dirichlet),
+    contact: Option<&mut Contact>,
+    other: &dyn AddedEnergy,
+    policy: &NewtonPolicy,
+) -> Result<NewtonReport, NewtonError> {
+    solve_equilibrium(newton, (system, u, bc), (contact, other), (Inner::Minimise, policy))
 }
 
 fn solve_equilibrium(
     newton: &mut Newton,
     (system, u, bc): (&mut System, &mut [f64], &Dirichlet),
     (mut contact, other): (Option<&mut Contact>, &dyn AddedEnergy),
-    policy: &NewtonPolicy,
+    (inner, policy): (Inner, &NewtonPolicy),
 ) -> Result<NewtonReport, NewtonError> {
     let policy = for_system(policy, system);
     let (start, saved) = (u.to_vec(), contact.as_deref().cloned());
@@ -119,7 +145,10 @@ fn solve_equilibrium(
                 added,
                 penalty_scale: pressure.penalty_scale(),
             };
-            newton.iterate(equations, u, &policy)
+            match inner {
+                Inner::Newton => newton.iterate(equations, u, &policy),
+                Inner::Minimise => newton.minimise(equations, u, &policy),
+            }
         })
     };
     let solved = match contact.as_deref_mut() {

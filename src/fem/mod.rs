@@ -10,6 +10,7 @@ pub mod assembly;
 pub mod boundary;
 pub mod contact;
 pub mod element;
+pub mod ellipticity;
 pub mod equilibrium;
 pub mod fields;
 pub mod inertia;

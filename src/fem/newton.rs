@@ -43,6 +43,7 @@ use crate::error::Error;
 
 mod policy;
 mod report;
+mod trust_region;
 pub use policy::{NewtonPolicy, Precision, Reuse, Stall};
 pub use report::{NewtonError, NewtonReport, Timings, Updates};
 

@@ -8,6 +8,7 @@
 //! Conventions: `F` is stored row-major as `[F11, F12, F21, F22]` (index `2 i + J` for `F_iJ`),
 //! with `F33 = 1`; invariants are the 3D ones (`J = det F`, `I1 = tr C + 1`).
 
+pub mod ellipticity;
 mod fibre;
 mod neo_hookean;
 mod tissue;

@@ -7,7 +7,7 @@ use super::stabilisation::{Stabilisation, StabilisationSettings};
 use crate::error::Result;
 use crate::fem::added::{AddedEnergy, NoAddedEnergy, Sum};
 use crate::fem::contact::{Contact, ContactSettings, Plane};
-use crate::fem::equilibrium::{solve_with, solve_with_contact};
+use crate::fem::equilibrium::{minimise, solve_with, solve_with_contact};
 use crate::fem::inertia::BackgroundInertia;
 use crate::fem::{Assembled, Dirichlet, Newton, NewtonPolicy, NewtonReport, System, Updates};
 use crate::material::Bilayer;
@@ -194,6 +194,50 @@ impl Augmentation {
         newton.forget_factorisation();
         record.inertia_pending = true;
         record.inertia_seconds = started.elapsed().as_secs_f64();
+    }
+}
+
+impl Augmentation {
+    /// The stable equilibrium at `d` (prescribed by `bc`) reached by minimising the energy
+    /// from `u` (the last equilibrium with the boundary moved to `d`; [`crate::protocol::snap`]),
+    /// with contact, and its inertia. On failure `u` and the contact are as they were.
+    pub fn minimise(
+        &mut self,
+        newton: &mut Newton,
+        policy: &NewtonPolicy,
+        system: &mut System,
+        u: &mut [f64],
+        (bc, d): (&Dirichlet, f64),
+    ) -> Result<(NewtonReport, AugmentedRecord)> {
+        let saved_plane = self.contact.clone();
+        prepare_contact((&mut self.contact, &mut self.inertia), system, u, (bc, d));
+        let policy = NewtonPolicy {
+            inertia_at_solution: true,
+            ..*policy
+        };
+        let report = match minimise(newton, (system, u, bc), self.contact.as_mut(), &NoAddedEnergy, &policy) {
+            Ok(report) => report,
+            Err(e) => {
+                self.contact = saved_plane;
+                return Err(e.into());
+            }
+        };
+        let mut record = AugmentedRecord {
+            augmentations: report.updates.contact + 1,
+            ..AugmentedRecord::default()
+        };
+        if let Some(contact) = &self.contact {
+            record.record_contact(contact, u);
+        }
+        Ok((report, record))
+    }
+
+    /// The total energy at `u` with `bc` prescribed: the strain energy plus the contact terms
+    /// of the current pairs and multipliers.
+    pub fn energy(&self, system: &mut System, u: &[f64], bc: &Dirichlet) -> Result<f64> {
+        let contact: &dyn AddedEnergy = self.contact.as_ref().map_or(&NoAddedEnergy, |c| c);
+        let assembled = system.assemble_with(u, bc, None, false, contact)?;
+        Ok(assembled.energy + assembled.added_energy)
     }
 }
 

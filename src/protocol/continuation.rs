@@ -8,14 +8,22 @@
 //! `h` by `grow`; a failure (no convergence, line search, `J <= 0` anywhere) discards the trial
 //! and cuts `h` by `cut`. A failure at the minimum step stops the continuation.
 //!
+//! Where a step of at most [`SnapSettings::below`] (or the minimum step) fails, the
+//! continuation instead minimises
+//! the energy at that `d` ([`Continuation::snap`], [`super::snap`]): the stable state the
+//! structure snaps to, from which the path goes on (its predictor restarts from that state).
+//!
 //! [`Continuation::advance_to`] reads as the algorithm: [`Continuation::attempt`] (predict,
-//! correct), then [`Continuation::accept`] (record, grow) or [`Continuation::cut`].
+//! correct), then [`Continuation::accept`] (record, grow), or a snap, or [`Continuation::cut`].
 
 use super::augmentation::{Augmentation, AugmentedRecord};
+use super::snap::{SnapRecord, SnapSettings};
 use super::surface::amplitude;
 use crate::error::{Error, Result};
+use crate::fem::added::NoAddedEnergy;
+use crate::fem::ellipticity::{ellipticity_margins, EllipticityMargins};
 use crate::fem::equilibrium;
-use crate::fem::{model_conditions, Newton, NewtonPolicy, NewtonReport, Reuse, System, Timings};
+use crate::fem::{model_conditions, Dirichlet, Newton, NewtonPolicy, NewtonReport, Reuse, System, Timings};
 use serde::Serialize;
 use std::collections::VecDeque;
 use std::time::Instant;
@@ -109,11 +117,20 @@ pub struct StepRecord {
     pub timings: Timings,
     /// Contact and stabilisation of the step, when the continuation has them.
     pub augmented: Option<AugmentedRecord>,
+    /// The snap that reached this state, if it was reached by one.
+    pub snap: Option<SnapRecord>,
+    /// The smallest strong-ellipticity margin of each layer over its Gauss points.
+    pub ellipticity: EllipticityMargins,
 }
 
 impl StepRecord {
-    /// The record of a converged Newton solve.
-    pub(super) fn new(d: f64, step: f64, amplitude: f64, report: &NewtonReport, seconds: f64) -> Self {
+    /// The record of a converged Newton solve, the state's `amplitude` and `ellipticity`.
+    pub(super) fn new(
+        (d, step): (f64, f64),
+        (amplitude, ellipticity): (f64, EllipticityMargins),
+        report: &NewtonReport,
+        seconds: f64,
+    ) -> Self {
         let residual = *report.residual_history.last().expect("at least the initial residual");
         StepRecord {
             d,
@@ -129,6 +146,8 @@ impl StepRecord {
             failed_seconds: 0.0,
             timings: report.timings,
             augmented: None,
+            snap: None,
+            ellipticity,
         }
     }
 }
@@ -170,6 +189,8 @@ pub struct Continuation {
     history: VecDeque<(f64, Vec<f64>)>,
     /// Contact and stabilisation, if any.
     augmentation: Option<Augmentation>,
+    /// When a failed step is retried as a snap (never if `None`).
+    snaps: Option<SnapSettings>,
     /// `du/dd` for the predictor while only one state is known.
     slope: Option<Vec<f64>>,
     /// The record of the last accepted state (the newest in `history`) while its inertia is
@@ -217,6 +238,7 @@ impl Continuation {
             control,
             history: VecDeque::from([(d, u)]),
             augmentation: None,
+            snaps: None,
             slope: None,
             pending: None,
         })
@@ -225,6 +247,12 @@ impl Continuation {
     /// The same continuation with contact and stabilisation.
     pub fn with_augmentation(mut self, augmentation: Augmentation) -> Self {
         self.augmentation = Some(augmentation);
+        self
+    }
+
+    /// The same continuation retrying failed short steps as snaps.
+    pub fn with_snaps(mut self, snaps: SnapSettings) -> Self {
+        self.snaps = Some(snaps);
         self
     }
 
@@ -291,34 +319,55 @@ impl Continuation {
             let attempt = self.attempt(d, step);
             let attempt_seconds = attempt_started.elapsed().as_secs_f64();
             self.report_pending(observer, true)?;
-            match attempt {
+            let reason = match attempt {
                 Ok(solved) => {
-                    self.accept((d, step), solved, &clock, observer)?;
+                    self.accept((d, step), (solved, None), &clock, observer)?;
                     clock = StepClock::start();
+                    continue;
                 }
-                Err(reason) => {
-                    self.cut(d, step, reason, observer)?;
-                    clock.failed_seconds += attempt_seconds;
-                }
-            }
+                Err(reason) => reason,
+            };
+            let reason = match self.snaps {
+                Some(snaps) if step <= snaps.below.max(self.control.min) * (1.0 + 1e-9) => match self.snap(d) {
+                    Ok((solved, snap)) => {
+                        self.accept((d, step), (solved, Some(snap)), &clock, observer)?;
+                        clock = StepClock::start();
+                        continue;
+                    }
+                    Err(e) => Error::Solver(format!("{reason}; the snap at this d failed too: {e}")),
+                },
+                _ => reason,
+            };
+            self.cut(d, step, reason, observer)?;
+            clock.failed_seconds += attempt_seconds;
         }
         Ok(())
     }
 
     /// Records the converged state at `d` (now, or once its inertia is counted), keeps it for
-    /// the predictor, and grows the step if it was easy.
+    /// the predictor, and grows the step if it was easy. After a snap, the predictor restarts
+    /// from the new state alone.
     fn accept(
         &mut self,
         (d, step): (f64, f64),
-        (report, u, augmented): Solved,
+        ((report, u, augmented), snap): (Solved, Option<SnapRecord>),
         clock: &StepClock,
         observer: &mut dyn FnMut(Event<'_>) -> Result<()>,
     ) -> Result<()> {
-        let a = amplitude(self.system.mesh(), &u);
-        let mut record = StepRecord::new(d, step, a, &report, clock.started.elapsed().as_secs_f64());
+        let state = (
+            amplitude(self.system.mesh(), &u),
+            ellipticity_margins(&self.system, &u)?,
+        );
+        let mut record = StepRecord::new((d, step), state, &report, clock.started.elapsed().as_secs_f64());
         let pending = augmented.as_ref().is_some_and(|a| a.inertia_pending);
         record.augmented = augmented;
         record.failed_seconds = clock.failed_seconds;
+        if snap.is_some() {
+            self.history.clear();
+            self.slope = None;
+        }
+        let snapped = snap.is_some();
+        record.snap = snap;
         if pending {
             self.pending = Some(record);
         } else {
@@ -334,7 +383,7 @@ impl Continuation {
         }
         // A pass after an update of the multipliers takes a step or so of its own.
         let c = self.control;
-        if report.tangent_steps <= c.easy_iterations + report.updates.pressure {
+        if !snapped && report.tangent_steps <= c.easy_iterations + report.updates.pressure {
             self.step = (self.step * c.grow).min(c.max);
         }
         Ok(())
@@ -426,6 +475,73 @@ impl Continuation {
         }
         let report = equilibrium::solve(&mut self.newton, &mut self.system, &mut u, &bc, &policy)?;
         Ok((report, u, None))
+    }
+
+    /// The snap at `d`: the stable equilibrium there reached by minimising the energy from the
+    /// last equilibrium with the boundary moved to `d` ([`super::snap`]); fails if the minimum
+    /// reached is not stable (after the outer loops' updates).
+    fn snap(&mut self, d: f64) -> Result<(Solved, SnapRecord)> {
+        let started = Instant::now();
+        let (d0, u0) = self.history.back().expect("never empty").clone();
+        let (before, bc) = (
+            model_conditions(self.system.mesh(), d0)?,
+            model_conditions(self.system.mesh(), d)?,
+        );
+        let mut u = u0.clone();
+        for (&dof, &value) in bc.dofs().iter().zip(bc.values()) {
+            u[dof] = value;
+        }
+        let energy_before = self.energy(&u0, &before)?;
+        let energy_start = self.energy(&u, &bc)?;
+        let policy = NewtonPolicy {
+            inertia_at_solution: true,
+            ..self.policy
+        };
+        let (report, augmented) = match &mut self.augmentation {
+            Some(augmentation) => {
+                let (report, record) =
+                    augmentation.minimise(&mut self.newton, &policy, &mut self.system, &mut u, (&bc, d))?;
+                (report, Some(record))
+            }
+            None => {
+                let state = (&mut self.system, &mut u[..], &bc);
+                (
+                    equilibrium::minimise(&mut self.newton, state, None, &NoAddedEnergy, &policy)?,
+                    None,
+                )
+            }
+        };
+        if report.negative_pivots != Some(0) {
+            return Err(Error::Solver(format!(
+                "the minimum reached at d = {d:.6} has {:?} negative eigenvalues after the contact updates",
+                report.negative_pivots
+            )));
+        }
+        let energy_after = self.energy(&u, &bc)?;
+        let mesh = self.system.mesh();
+        let snap = SnapRecord {
+            d,
+            d_before: d0,
+            amplitude_before: amplitude(mesh, &u0),
+            energy_before,
+            energy_start,
+            amplitude_after: amplitude(mesh, &u),
+            energy_after,
+            energy_released: energy_start - energy_after,
+            negative_pivots_after: report.negative_pivots,
+            steps: report.iterations,
+            factorisations: report.timings.factorisations,
+            seconds: started.elapsed().as_secs_f64(),
+        };
+        Ok(((report, u, augmented), snap))
+    }
+
+    /// The total energy (strain plus contact) at `u` with `bc` prescribed.
+    fn energy(&mut self, u: &[f64], bc: &Dirichlet) -> Result<f64> {
+        match &self.augmentation {
+            Some(augmentation) => augmentation.energy(&mut self.system, u, bc),
+            None => Ok(self.system.assemble(u, bc, None, false)?.energy),
+        }
     }
 
     /// The predictor at `d` from the stored states (see [`extrapolate`]).

@@ -3,8 +3,9 @@
 //! imperfection and admissible wavenumbers ([`imperfection`]), the top surface and its
 //! amplitude ([`surface`]), onset estimates from `A(d)` ([`onset`]), and the exact bifurcation
 //! of the discretised perfect system from the inertia of its tangent ([`bifurcation`]). Past the
-//! onset, the path to a crease adds contact and viscous stabilisation to every step
-//! ([`augmentation`], [`stabilisation`]) and tracks secondary bifurcations ([`secondary`]); a
+//! onset, the path to a crease adds contact to every step ([`augmentation`]), crosses snaps by
+//! minimising the energy ([`snap`]) or, as an option, by viscous stabilisation
+//! ([`stabilisation`]), and tracks secondary bifurcations ([`secondary`]); a
 //! crease seeded in a homogeneous half-space gives the creasing threshold ([`crease_seed`]).
 
 pub mod augmentation;
@@ -14,6 +15,7 @@ pub mod crease_seed;
 pub mod imperfection;
 pub mod onset;
 pub mod secondary;
+pub mod snap;
 pub mod stabilisation;
 pub mod stages;
 pub mod surface;
@@ -23,6 +25,7 @@ pub use bifurcation::{find_bifurcation, Bifurcation, BifurcationSettings};
 pub use continuation::{Continuation, Cut, Event, StepControl, StepRecord};
 pub use imperfection::{mode_number, wavenumber_of_waves, Imperfection};
 pub use onset::OnsetEstimates;
+pub use snap::{SnapRecord, SnapSettings};
 pub use stabilisation::{Stabilisation, StabilisationSettings};
 pub use stages::{Outcome, Protocol, STAGE_ONE_COMPRESSION};
 pub use surface::{amplitude, surface_profile};

@@ -7,6 +7,7 @@ use super::augmentation::Augmentation;
 use super::bifurcation::homogeneous_unknowns;
 use super::continuation::{Continuation, Event, StepControl, StepRecord};
 use super::imperfection::{mode_number, wavenumber_of_waves, Imperfection};
+use super::snap::SnapSettings;
 use super::stabilisation::StabilisationSettings;
 use super::surface::amplitude;
 use crate::error::{Error, Result};
@@ -37,8 +38,10 @@ pub struct Protocol {
     pub newton: NewtonPolicy,
     /// Contact of the top surface with the symmetry planes and with itself in stage 3.
     pub contact: bool,
-    /// Viscous stabilisation of stage 3, if any.
+    /// Viscous stabilisation of stage 3, if any (an option: snaps are the default way across).
     pub stabilisation: Option<StabilisationSettings>,
+    /// Snaps of stage 3 by energy minimisation ([`super::snap`]), if any; not with `stabilisation`.
+    pub snaps: Option<SnapSettings>,
     /// `A_2` of the long-wave imperfection `-A_2 cos(2 pi N_2 X / L)` added in stage 2 (it
     /// lowers the surface at `X = 0` and wherever the cosine is positive, deepening the troughs
     /// there: a seed for a modulated or localised pattern).
@@ -59,6 +62,7 @@ impl Protocol {
             newton: simulation_newton(),
             contact: false,
             stabilisation: None,
+            snaps: None,
             imperfection2: 0.0,
             imperfection2_waves: 0.5,
         }
@@ -70,6 +74,7 @@ impl Protocol {
     pub fn with_crease_path(mut self) -> Self {
         self.contact = true;
         self.stabilisation = Some(StabilisationSettings::default());
+        self.snaps = None;
         self.control.min = 1e-7;
         self.newton.max_iterations = 25;
         self
@@ -97,6 +102,13 @@ impl Protocol {
             if !(value.is_finite() && (0.0..1.0).contains(&value)) {
                 return Err(Error::invalid(name, value, "[0, 1)"));
             }
+        }
+        if let (Some(_), Some(snaps)) = (self.stabilisation, self.snaps) {
+            return Err(Error::invalid(
+                "stabilisation",
+                format!("viscous with snaps below {}", snaps.below),
+                "one way across a snap: viscous or snap",
+            ));
         }
         validate_compression("d-max", self.d_max)?;
         if self.d_max <= STAGE_ONE_COMPRESSION {
@@ -230,7 +242,8 @@ pub fn run(
             .map_err(|e| stage_failure(2, e.into()))?;
     }
     let a = amplitude(system.mesh(), &u);
-    let record = StepRecord::new(d0, d0, a, &report, start.elapsed().as_secs_f64());
+    let state = (a, crate::fem::ellipticity::ellipticity_margins(&system, &u)?);
+    let record = StepRecord::new((d0, d0), state, &report, start.elapsed().as_secs_f64());
     observer(Event::Step {
         record: &record,
         system: &system,
@@ -253,6 +266,9 @@ pub fn run(
         Continuation::new((system, newton, protocol.newton), protocol.control, d0, u)?.with_first_slope(slope);
     if let Some(augmentation) = augmentation {
         continuation = continuation.with_augmentation(augmentation);
+    }
+    if let Some(snaps) = protocol.snaps {
+        continuation = continuation.with_snaps(snaps);
     }
     let stopped = continuation.advance_to(protocol.d_max, observer).err();
     Ok(Outcome { continuation, stopped })

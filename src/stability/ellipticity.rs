@@ -3,9 +3,10 @@
 //! and a wrinkling answer is meaningless.
 
 use super::IncrementalModuli;
+use crate::material::ellipticity::min_over_directions;
 
 /// `min over unit a, n` of `(a x n) : A : (a x n)`: the smallest eigenvalue of the acoustic
-/// tensor `Q_ik(n) = A_iJkL n_J n_L`, minimised over the direction `n` (sampled, then refined).
+/// tensor `Q_ik(n) = A_iJkL n_J n_L`, minimised over the direction `n` ([`min_over_directions`]).
 pub fn ellipticity_margin(m: &IncrementalModuli) -> f64 {
     let smallest = |theta: f64| {
         let (c, s) = (theta.cos(), theta.sin());
@@ -25,27 +26,7 @@ pub fn ellipticity_margin(m: &IncrementalModuli) -> f64 {
             }
         }
     };
-    const SAMPLES: usize = 60;
-    let step = std::f64::consts::PI / SAMPLES as f64;
-    let (mut best_theta, mut best) = (0.0, f64::INFINITY);
-    for i in 0..SAMPLES {
-        let value = smallest(i as f64 * step);
-        if value < best {
-            (best_theta, best) = (i as f64 * step, value);
-        }
-    }
-    // Golden-section refinement around the best sample.
-    let (mut lo, mut hi) = (best_theta - step, best_theta + step);
-    let ratio = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..40 {
-        let (x1, x2) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
-        if smallest(x1) < smallest(x2) {
-            hi = x2;
-        } else {
-            lo = x1;
-        }
-    }
-    best.min(smallest(0.5 * (lo + hi)))
+    min_over_directions(smallest)
 }
 
 #[cfg(test)]

@@ -1,8 +1,9 @@
 //! `simulate`: the paper's loading protocol (section 2.1) on one mesh. Writes, into the output
 //! folder, `amplitude.csv` (a row per converged state, flushed at once), VTU snapshots with
 //! `simulate.pvd`, `surface.csv` (final top surface), `onset.json`, `contact.json`,
-//! `secondary.json` with its modes, Fig. 3, Fig. 7's panels at the compressions it reaches
-//! (when contact is on) and `simulate.json`.
+//! `secondary.json` with its modes, `snaps.json` with the states before and after every snap
+//! (`snap_N_before.vtu`, `snap_N_after.vtu`), Fig. 3, Fig. 7's panels at the compressions it
+//! reaches (when contact is on) and `simulate.json`.
 //! A run that stops early keeps all of this for the path so far and then returns the error.
 
 mod crease;
@@ -18,7 +19,7 @@ pub use crease::{crease_columns, ContactReport, CREASE_COLUMNS};
 pub use fig3::fig3;
 pub use fig4a::{fig4a, Fig4aOptions, Fig4aRow};
 pub use fig7::{fig7, CreaseSnapshots, Fig7Facts, Fig7State, FIG7_D};
-pub use options::SimulateOptions;
+pub use options::{Crossing, SimulateOptions};
 pub use secondary::{SecondaryReport, SecondaryTracker};
 pub use solve::{solve, solve_to_secondary, Solution, StateFields, ToSecondary};
 pub use state_vtu::{cell_arrays, displacement_array, write_state};
@@ -31,7 +32,9 @@ use crate::output::vtu::Collection;
 use crate::output::{write_json, CsvWriter};
 use crate::parameters::Parameters;
 use crate::protocol::onset::A2_FIT_WINDOW;
-use crate::protocol::{mode_number, stages, surface_profile, Cut, Event, OnsetEstimates, Protocol, StepRecord};
+use crate::protocol::{
+    mode_number, stages, surface_profile, Cut, Event, OnsetEstimates, Protocol, SnapRecord, StepRecord,
+};
 use crate::stability::{Method, StabilityAnalysis};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -58,9 +61,18 @@ pub enum Progress<'a> {
     Cut(&'a Cut),
 }
 
-/// Every column of `amplitude.csv`.
+/// The last columns of `amplitude.csv`: `snap` (1 where a snap reached the state) and the
+/// smallest strong-ellipticity margin of each layer over its Gauss points.
+pub const STATE_COLUMNS: [&str; 3] = ["snap", "ellipticity_layer", "ellipticity_substrate"];
+
+/// Every column of `amplitude.csv`: [`AMPLITUDE_HEADER`], [`CREASE_COLUMNS`], [`STATE_COLUMNS`].
 pub fn amplitude_header() -> Vec<&'static str> {
-    AMPLITUDE_HEADER.iter().chain(&CREASE_COLUMNS).copied().collect()
+    AMPLITUDE_HEADER
+        .iter()
+        .chain(&CREASE_COLUMNS)
+        .chain(&STATE_COLUMNS)
+        .copied()
+        .collect()
 }
 
 /// One accepted step as a row of `amplitude.csv` (in the order of [`amplitude_header`]).
@@ -74,7 +86,9 @@ pub fn amplitude_row(record: &StepRecord) -> Vec<f64> {
         record.min_jacobian,
         record.seconds,
     ];
-    [&columns[..], &crease_columns(record)].concat()
+    let snap = if record.snap.is_some() { 1.0 } else { 0.0 };
+    let margins = [record.ellipticity.layer, record.ellipticity.substrate];
+    [&columns[..], &crease_columns(record), &[snap], &margins].concat()
 }
 
 /// Receives [`Progress`] (prints, drives a progress bar, or ignores it); an error it returns
@@ -275,7 +289,35 @@ pub struct SimulationSummary {
     pub onset: OnsetReport,
     pub contact: ContactReport,
     pub secondary: SecondaryReport,
+    /// Every snap of the path ([`crate::protocol::snap`]).
+    pub snaps: Vec<SnapRecord>,
+    /// Where the finite-element states lose strong ellipticity.
+    pub ellipticity: EllipticityReport,
     pub files: Vec<String>,
+}
+
+/// The strong-ellipticity margins along the path ([`crate::fem::ellipticity`]): the first `d`
+/// at which a layer's smallest margin over its Gauss points is negative (beyond it the answer
+/// depends on the mesh), and the smallest margins met.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct EllipticityReport {
+    pub d_loss_layer: Option<f64>,
+    pub d_loss_substrate: Option<f64>,
+    pub smallest_layer: f64,
+    pub smallest_substrate: f64,
+}
+
+impl EllipticityReport {
+    pub fn new(records: &[StepRecord]) -> Self {
+        let first = |margin: fn(&StepRecord) -> f64| records.iter().find(|r| margin(r) < 0.0).map(|r| r.d);
+        let least = |margin: fn(&StepRecord) -> f64| records.iter().map(margin).fold(f64::INFINITY, f64::min);
+        EllipticityReport {
+            d_loss_layer: first(|r| r.ellipticity.layer),
+            d_loss_substrate: first(|r| r.ellipticity.substrate),
+            smallest_layer: least(|r| r.ellipticity.layer),
+            smallest_substrate: least(|r| r.ellipticity.substrate),
+        }
+    }
 }
 
 /// The mesh of a run as written to JSON: its spec and number of unknowns.
@@ -312,10 +354,20 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
         .protocol
         .contact
         .then(|| CreaseSnapshots::new(study.protocol.d_max));
+    let (mut last_state, mut snap_files) = (Vec::new(), Vec::new());
     let mut outcome = stages::run(&materials, study.mesh, &study.protocol, &mut |event| {
         if let Event::Step { record, system, u } = &event {
             table.append(&amplitude_row(record))?;
             snapshots.maybe_write(record, system, &materials, u)?;
+            if record.snap.is_some() {
+                for (when, state) in [("before", &last_state[..]), ("after", u)] {
+                    let path = out.join(format!("snap_{}_{when}.vtu", snap_files.len() / 2));
+                    write_state(&path, system, &materials, state, Vec::new())?;
+                    snap_files.push(path);
+                }
+            }
+            last_state.clear();
+            last_state.extend_from_slice(u);
             secondary.note(record, u);
             if let Some(crease) = &mut crease {
                 crease.note(record, u);
@@ -337,6 +389,8 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
     write_json(&out.join("onset.json"), &onset)?;
     let contact = ContactReport::new(&curve.records);
     write_json(&out.join("contact.json"), &contact)?;
+    let snaps: Vec<SnapRecord> = curve.records.iter().filter_map(|r| r.snap.clone()).collect();
+    write_json(&out.join("snaps.json"), &snaps)?;
     let p = &study.protocol;
     let (secondary, secondary_files) = secondary.finish(
         &curve.records,
@@ -352,11 +406,13 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
         "surface.csv",
         "onset.json",
         "contact.json",
+        "snaps.json",
         "simulate.pvd",
     ]
     .iter()
     .map(|f| out.join(f))
     .collect();
+    files.extend(snap_files);
     files.extend(crate::output::plot::save_panels(&fig3(&curve, &onset), out, "fig3")?);
     files.extend(secondary_files);
     if let Some(crease) = crease {
@@ -379,6 +435,8 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
         onset,
         contact,
         secondary,
+        snaps,
+        ellipticity: EllipticityReport::new(&curve.records),
         files: files.iter().map(|f| f.display().to_string()).collect(),
     };
     write_json(&out.join("simulate.json"), &summary)?;

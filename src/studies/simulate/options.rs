@@ -5,7 +5,7 @@ use super::SimulateStudy;
 use crate::error::{Error, Result};
 use crate::fem::memory::{available_bytes, MemoryEstimate};
 use crate::mesh::{MeshSpec, XRefinement};
-use crate::protocol::{mode_number, wavenumber_of_waves, Protocol, StabilisationSettings, StepControl};
+use crate::protocol::{mode_number, wavenumber_of_waves, Protocol, SnapSettings, StabilisationSettings, StepControl};
 use std::f64::consts::PI;
 
 /// Every option of `fiberfold simulate` (same names, units and defaults; see its `--help`).
@@ -26,13 +26,44 @@ pub struct SimulateOptions {
     pub imperfection2: f64,
     pub imperfection2_waves: f64,
     pub contact: bool,
-    /// Viscous stabilisation `eta` (0: none).
+    /// How stage 3 crosses where the branch it follows has no nearby equilibrium.
+    pub crossing: Crossing,
+    /// `eta` of the viscous stabilisation (with [`Crossing::Viscous`]).
     pub eta: f64,
     /// Track the inertia of the tangent at every accepted state.
     pub inertia: bool,
     pub vtu_every: f64,
     /// Run even when the memory estimate exceeds the memory available.
     pub force: bool,
+}
+
+/// How stage 3 crosses a snap: where the branch it follows has no nearby equilibrium (a limit
+/// point in `d`, a closing trough).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Crossing {
+    /// Minimise the energy at the `d` of the failed step: the stable equilibrium the structure
+    /// snaps to ([`crate::protocol::snap`]). Every recorded state is an exact equilibrium; a
+    /// snap onto a closing trough (contact) is not yet found reliably, and the path then stops
+    /// there with its reason.
+    Snap,
+    /// Viscous damping of the cut steps, as ABAQUS's `*STATIC, STABILIZE`: the recorded
+    /// states carry damping forces ([`crate::protocol::stabilisation`]).
+    #[default]
+    Viscous,
+    /// Neither: the path stops where Newton's method cannot follow it.
+    None,
+}
+
+impl Crossing {
+    /// The crossing named `snap`, `viscous` or `none`.
+    pub fn from_name(name: &str) -> Result<Self> {
+        match name {
+            "snap" => Ok(Crossing::Snap),
+            "viscous" => Ok(Crossing::Viscous),
+            "none" => Ok(Crossing::None),
+            other => Err(Error::invalid("stabilisation", other, "snap, viscous or none")),
+        }
+    }
 }
 
 impl Default for SimulateOptions {
@@ -52,6 +83,7 @@ impl Default for SimulateOptions {
             imperfection2: 0.0,
             imperfection2_waves: 0.5,
             contact: true,
+            crossing: Crossing::Viscous,
             eta: 1e-6,
             inertia: true,
             vtu_every: 0.01,
@@ -99,13 +131,20 @@ impl SimulateOptions {
         protocol.imperfection2 = self.imperfection2;
         protocol.imperfection2_waves = self.imperfection2_waves;
         protocol.contact = self.contact;
-        if !(self.eta.is_finite() && self.eta >= 0.0) {
-            return Err(Error::invalid("eta", self.eta, "[0, inf)"));
+        if !(self.eta.is_finite() && self.eta > 0.0) {
+            return Err(Error::invalid("eta", self.eta, "(0, inf)"));
         }
-        protocol.stabilisation = (self.eta > 0.0).then(|| StabilisationSettings {
-            eta: self.eta,
-            ..StabilisationSettings::default()
-        });
+        (protocol.snaps, protocol.stabilisation) = match self.crossing {
+            Crossing::Snap => (Some(SnapSettings::default()), None),
+            Crossing::Viscous => (
+                None,
+                Some(StabilisationSettings {
+                    eta: self.eta,
+                    ..StabilisationSettings::default()
+                }),
+            ),
+            Crossing::None => (None, None),
+        };
         let study = SimulateStudy {
             mesh,
             protocol,

@@ -1,0 +1,417 @@
+//! Minimisation of the total potential energy at fixed prescribed displacements by a
+//! trust-region Newton method, for the equilibrium a structure snaps to where the followed
+//! branch has no nearby equilibrium (a limit point in `d`, a closing trough).
+//!
+//! Each step solves `(K + sigma D) p = -r` with `D` the diagonal of the reference stiffness
+//! ([`crate::fem::System::reference_stiffness_diagonal`], relative to its mean) and the shift
+//! `sigma >= 0` the smallest of the tried ones whose `L D L^T` factor has no negative pivot
+//! (Levenberg and Marquardt's form of the trust region: `|p|_D` shrinks as `sigma` grows). No
+//! nodal move exceeds [`MAX_MOVE`] (the step is scaled down), so that no surface passes another
+//! between two contact searches. The step is taken by the ratio `rho` of the actual decrease of
+//! the energy `E` to the decrease `-(r.p + p.K.p / 2)` of its quadratic model: accepted if
+//! `rho > RHO_ACCEPT`; `sigma` is raised fourfold if `rho < 1/4` and lowered fourfold if
+//! `rho > 3/4` (to zero, pure Newton, below `SIGMA_MIN`).
+//!
+//! Where the unshifted tangent has negative pivots and the shifted step would lower `E` by
+//! almost nothing (the start lies on an unstable branch, whose residual is small), or the
+//! residual is already within Newton's tolerance (a saddle), the step follows the direction of
+//! negative curvature instead: the lowest mode of `K v = lambda D v` (inverse iteration with the
+//! factor of `K + sigma D` for a shift that makes it definite), whose curvature is negative, along the
+//! sign that lowers `E`, as far as `E` keeps falling. It ends at a residual within Newton's
+//! tolerance with an unshifted factor without negative pivots: a local minimum. The energy never
+//! increases from step to step.
+
+use super::{Equations, Newton, NewtonError, NewtonPolicy, NewtonReport, Timings, Updates};
+use crate::error::Error;
+use crate::fem::added::{AddedEnergy, Block, Diagonal, Sum};
+use crate::fem::assembly::{Assembled, System};
+use crate::fem::boundary::Dirichlet;
+
+/// Smallest non-zero shift; below it the step is Newton's.
+const SIGMA_MIN: f64 = 1e-6;
+
+/// Largest shift: a step that needs more is too short to make progress.
+const SIGMA_MAX: f64 = 1e8;
+
+/// Smallest ratio of actual to predicted decrease for which a step is taken.
+const RHO_ACCEPT: f64 = 1e-4;
+
+/// Largest number of steps of one minimisation.
+const MAX_STEPS: usize = 400;
+
+/// Largest nodal move of one step, in units of the layer thickness: below the contact search
+/// distance (`H / 2`), so that a surface cannot pass through another unseen.
+const MAX_MOVE: f64 = 0.1;
+
+/// First nodal move of a step along negative curvature, in units of the layer thickness.
+const CURVATURE_STEP: f64 = 0.02;
+
+/// A shifted step whose predicted decrease is below this fraction of `|E|` makes no progress
+/// where negative curvature is at hand.
+const NEGLIGIBLE_PROGRESS: f64 = 1e-7;
+
+/// Steps of the inverse iteration for the lowest mode.
+const MODE_ITERATIONS: usize = 200;
+
+/// The lowest mode of `K v = lambda D v` by inverse iteration with the factor of the definite
+/// `K + shift D` held in `solver` (whose tangent is `shifted`): `x <- (K + shift D)^-1 D x`,
+/// normalised in `D`, converges to the eigenvector of the smallest `lambda` (the one nearest
+/// `-shift`, all lying above it). Returns the mode (unit in `D`), its curvature
+/// `x.K.x = x.(K + shift D).x - shift` (negative where `K` is indefinite) and the solves made.
+fn lowest_generalised_mode(
+    solver: &mut crate::fem::SparseLdlt,
+    shifted: faer::sparse::SparseColMatRef<'_, usize, f64>,
+    d: &[f64],
+    shift: f64,
+) -> crate::Result<(Vec<f64>, f64, usize)> {
+    let d_norm = |x: &[f64]| x.iter().zip(d).map(|(a, w)| w * a * a).sum::<f64>().sqrt();
+    let mut x: Vec<f64> = (0..d.len())
+        .map(|i| ((i as f64 + 1.0) * 0.754_877_666).fract() - 0.5)
+        .collect();
+    let (mut curvature, mut solves) = (f64::INFINITY, 0);
+    for _ in 0..MODE_ITERATIONS {
+        let norm = d_norm(&x);
+        x.iter_mut().for_each(|a| *a /= norm);
+        let kx = crate::fem::linear_solver::multiply(shifted, &x);
+        let next = x.iter().zip(&kx).map(|(a, b)| a * b).sum::<f64>() - shift;
+        let converged = (next - curvature).abs() <= 1e-8 * next.abs().max(shift);
+        curvature = next;
+        if converged {
+            break;
+        }
+        let mut y: Vec<f64> = x.iter().zip(d).map(|(a, w)| a * w).collect();
+        solver.solve_in_place(&mut y)?;
+        solves += 1;
+        x = y;
+    }
+    let norm = d_norm(&x);
+    x.iter_mut().for_each(|a| *a /= norm);
+    Ok((x, curvature, solves))
+}
+
+/// `sigma D (u - centre)^2 / 2`: its curvature shifts the tangent by `sigma D`; at the centre
+/// it adds neither energy nor force.
+struct Shift<'a> {
+    scale: &'a [f64],
+    sigma: f64,
+    centre: &'a [f64],
+}
+
+impl AddedEnergy for Shift<'_> {
+    fn groups(&self) -> &[Vec<usize>] {
+        &[]
+    }
+
+    fn block(&self, g: usize, _: &[f64], _: bool) -> Block {
+        unreachable!("a shift has no group {g}, only diagonal terms")
+    }
+
+    fn diagonal(&self, u: &[f64]) -> Option<Diagonal> {
+        let curvature: Vec<f64> = self.scale.iter().map(|d| self.sigma * d).collect();
+        let gradient: Vec<f64> = (0..self.centre.len())
+            .map(|i| curvature[i] * (u[i] - self.centre[i]))
+            .collect();
+        let energy = 0.5
+            * (0..self.centre.len())
+                .map(|i| gradient[i] * (u[i] - self.centre[i]))
+                .sum::<f64>();
+        Some(Diagonal {
+            energy,
+            gradient,
+            curvature,
+        })
+    }
+}
+
+/// The energy being minimised and what a step needs of it.
+struct Landscape<'a> {
+    system: &'a mut System,
+    bc: &'a Dirichlet,
+    added: &'a dyn AddedEnergy,
+    penalty_scale: f64,
+    free: Vec<usize>,
+    /// `D`, relative to its mean over the free unknowns (all unknowns; zero off the mesh's).
+    scale: Vec<f64>,
+    timings: Timings,
+}
+
+impl Landscape<'_> {
+    /// Energy, residual and (if `with_tangent`) tangent at `u`, shifted by `sigma D` if
+    /// `sigma > 0`.
+    fn assemble(&mut self, u: &[f64], sigma: f64, with_tangent: bool) -> crate::Result<Assembled> {
+        let shift = Shift {
+            scale: &self.scale,
+            sigma,
+            centre: u,
+        };
+        let sum;
+        let added: &dyn AddedEnergy = match sigma > 0.0 {
+            true => {
+                sum = Sum::new(vec![self.added, &shift]);
+                &sum
+            }
+            false => self.added,
+        };
+        let assembled = self
+            .system
+            .assemble_penalised(u, self.bc, None, with_tangent, added, self.penalty_scale)?;
+        self.timings.assembly += assembled.elapsed;
+        self.timings.assemblies += 1;
+        Ok(assembled)
+    }
+
+    /// `u` moved by `t p` on the free unknowns.
+    fn moved(&self, u: &[f64], p: &[f64], t: f64) -> Vec<f64> {
+        let mut next = u.to_vec();
+        for (&dof, &x) in self.free.iter().zip(p) {
+            next[dof] += t * x;
+        }
+        next
+    }
+
+    /// `p . D p` over the free unknowns.
+    fn d_norm(&self, p: &[f64]) -> f64 {
+        self.free.iter().zip(p).map(|(&dof, x)| self.scale[dof] * x * x).sum()
+    }
+}
+
+/// The total energy (strain plus added) of an assembly.
+fn total(a: &Assembled) -> f64 {
+    a.energy + a.added_energy
+}
+
+/// Largest absolute entry.
+fn largest(v: &[f64]) -> f64 {
+    v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
+}
+
+impl Newton {
+    /// A local minimum of the energy of `equations` from `u` (whose prescribed unknowns must
+    /// hold their values): on success `u` holds it, and the report its unshifted inertia (no
+    /// negative pivot); on failure `u` is the last accepted iterate. `policy` gives the
+    /// tolerances (Newton's), not the step rules.
+    pub fn minimise(
+        &mut self,
+        equations: Equations,
+        u: &mut [f64],
+        policy: &NewtonPolicy,
+    ) -> Result<NewtonReport, NewtonError> {
+        let Equations {
+            system,
+            bc,
+            added,
+            penalty_scale,
+        } = equations;
+        let free = system.free_dofs(bc)?.to_vec();
+        let mut scale = system.reference_stiffness_diagonal()?;
+        scale.resize(system.num_dofs(), 0.0);
+        let mean = free.iter().map(|&dof| scale[dof].abs()).sum::<f64>() / free.len().max(1) as f64;
+        scale
+            .iter_mut()
+            .for_each(|d| *d = d.abs() / mean.max(f64::MIN_POSITIVE));
+        let mut land = Landscape {
+            system,
+            bc,
+            added,
+            penalty_scale,
+            free,
+            scale,
+            timings: Timings::default(),
+        };
+        let mut current = land.assemble(u, 0.0, true).map_err(|e| super::inverted(e, 0))?;
+        let mut history = vec![current.residual_norm()];
+        let (mut sigma, mut rejected, mut factorisations) = (0.0f64, 0, 0);
+        let tolerance_at =
+            |a: &Assembled| (policy.residual_tolerance * a.force_norm() + policy.absolute_tolerance) * penalty_scale;
+        for iteration in 0..MAX_STEPS {
+            let residual = current.residual_norm();
+            let tolerance = tolerance_at(&current);
+            factorisations += 1;
+            let negative = self.factorize(&current, &mut land.timings).negative_pivots();
+            if negative == Some(0) && residual <= tolerance {
+                self.forget_factorisation();
+                return Ok(NewtonReport {
+                    iterations: iteration,
+                    tangent_steps: factorisations,
+                    residual_history: history,
+                    force_norm: current.force_norm(),
+                    energy: current.energy,
+                    min_jacobian: current.min_jacobian,
+                    reactions: current.reactions,
+                    negative_pivots: Some(0),
+                    start_negative_pivots: None,
+                    backtracks: rejected,
+                    updates: Updates::default(),
+                    timings: land.timings,
+                });
+            }
+            let indefinite = negative != Some(0);
+            let next = match indefinite && residual <= tolerance {
+                true => None,
+                false => self.shifted_step(&mut land, u, &current, &mut sigma, (&mut rejected, &mut factorisations))?,
+            };
+            let (trial, assembled) = match next {
+                Some((trial, assembled, predicted))
+                    if !indefinite || predicted > NEGLIGIBLE_PROGRESS * total(&current).abs().max(1.0) =>
+                {
+                    (trial, assembled)
+                }
+                None if !indefinite => break,
+                _ => {
+                    let step = self.curvature_step(&mut land, u, &current, sigma, &mut factorisations)?;
+                    sigma = sigma.max(SIGMA_MIN);
+                    step.ok_or(NewtonError::LineSearch { iteration, residual })?
+                }
+            };
+            u.copy_from_slice(&trial);
+            current = assembled;
+            history.push(current.residual_norm());
+            if sigma > SIGMA_MAX {
+                break;
+            }
+        }
+        Err(NewtonError::NotConverged {
+            iterations: history.len() - 1,
+            residual: current.residual_norm(),
+            tolerance: tolerance_at(&current),
+            residual_history: history,
+        })
+    }
+
+    /// A step of the shifted Newton method from `u` (with `current` its assembly), its shift
+    /// raised until the factor is positive definite and the step lowers the energy as its
+    /// model predicts: the new state, its assembly and the predicted decrease; `None` if the
+    /// shift exceeds [`SIGMA_MAX`]. Leaves the factor of the last shifted tangent held.
+    fn shifted_step(
+        &mut self,
+        land: &mut Landscape,
+        u: &[f64],
+        current: &Assembled,
+        sigma: &mut f64,
+        (rejected, factorisations): (&mut usize, &mut usize),
+    ) -> Result<Option<(Vec<f64>, Assembled, f64)>, NewtonError> {
+        let energy = total(current);
+        let residual = current.residual_norm();
+        while *sigma <= SIGMA_MAX {
+            if *sigma > 0.0 {
+                let shifted = land.assemble(u, *sigma, true)?;
+                *factorisations += 1;
+                if self.factorize(&shifted, &mut land.timings).negative_pivots() != Some(0) {
+                    *sigma = (4.0 * *sigma).max(SIGMA_MIN);
+                    continue;
+                }
+            } else if self.solver.as_ref().and_then(|h| h.solver.negative_pivots()) != Some(0) {
+                // The unshifted factor (held) is indefinite.
+                *sigma = SIGMA_MIN;
+                continue;
+            }
+            let mut p: Vec<f64> = current.residual.iter().map(|r| -r).collect();
+            let solver = &mut self.solver.as_mut().expect("factorised above").solver;
+            solver.solve_in_place(&mut p)?;
+            land.timings.solve += solver.solve_time();
+            land.timings.solves += 1;
+            // The model m(t p) = t r.p + t^2 p.K.p / 2, with p.K.p = -r.p - sigma p.D.p.
+            let r_dot_p: f64 = current.residual.iter().zip(&p).map(|(r, x)| r * x).sum();
+            let p_k_p = -r_dot_p - *sigma * land.d_norm(&p);
+            let t = (MAX_MOVE / largest(&p)).min(1.0);
+            let predicted = -(t * r_dot_p + 0.5 * t * t * p_k_p);
+            let trial = land.moved(u, &p, t);
+            let (rho, assembled) = match land.assemble(&trial, 0.0, true) {
+                Ok(a) => {
+                    let actual = energy - total(&a);
+                    // Within round-off of the energy, the residual decides.
+                    let rho = match predicted <= 1e-13 * energy.abs().max(1.0) {
+                        true if a.residual_norm() < residual => 1.0,
+                        true => 0.0,
+                        false => actual / predicted,
+                    };
+                    (rho, Some(a))
+                }
+                Err(Error::NonPositiveJacobian { .. }) => (f64::NEG_INFINITY, None),
+                Err(e) => return Err(e.into()),
+            };
+            if rho < 0.25 {
+                *sigma = (4.0 * *sigma).max(SIGMA_MIN);
+            } else if rho > 0.75 {
+                *sigma = if *sigma / 4.0 < SIGMA_MIN { 0.0 } else { *sigma / 4.0 };
+            }
+            match assembled {
+                Some(a) if rho > RHO_ACCEPT => return Ok(Some((trial, a, predicted))),
+                _ => *rejected += 1,
+            }
+        }
+        Ok(None)
+    }
+
+    /// A step along the direction of negative curvature from `u`: the lowest mode of
+    /// `K v = lambda D v`, by inverse iteration with the factor of `K + s D` for the smallest
+    /// `s >= sigma` (from `SIGMA_MIN`, fourfold) that makes it definite, along the sign that lowers `E`, lengthened (doubled) while `E` keeps falling
+    /// and shortened (halved) until it falls. `None` if no length lowers `E`.
+    fn curvature_step(
+        &mut self,
+        land: &mut Landscape,
+        u: &[f64],
+        current: &Assembled,
+        sigma: f64,
+        factorisations: &mut usize,
+    ) -> Result<Option<(Vec<f64>, Assembled)>, NewtonError> {
+        let mut shift = sigma.max(SIGMA_MIN);
+        let shifted = loop {
+            let shifted = land.assemble(u, shift, true)?;
+            *factorisations += 1;
+            if self.factorize(&shifted, &mut land.timings).negative_pivots() == Some(0) {
+                break shifted;
+            }
+            shift *= 4.0;
+            if shift > SIGMA_MAX {
+                return Err(Error::Solver(format!(
+                    "energy minimisation: no shift up to {SIGMA_MAX:.0e} makes the tangent definite"
+                ))
+                .into());
+            }
+        };
+        let k = shifted.tangent.as_ref().expect("assembled with the tangent");
+        let solver = &mut self.solver.as_mut().expect("factorised above").solver;
+        let d: Vec<f64> = land.free.iter().map(|&dof| land.scale[dof]).collect();
+        let (mut mode, curvature, solves) = lowest_generalised_mode(solver, k.as_ref(), &d, shift)?;
+        land.timings.solves += solves;
+        if curvature >= 0.0 {
+            return Err(Error::Solver(format!(
+                "energy minimisation: the tangent is indefinite but its lowest mode has a positive curvature \
+                 ({curvature:.3e})"
+            ))
+            .into());
+        }
+        // Downhill along the mode: r.v <= 0.
+        if current.residual.iter().zip(&mode).map(|(r, v)| r * v).sum::<f64>() > 0.0 {
+            mode.iter_mut().for_each(|v| *v = -*v);
+        }
+        let energy = |land: &mut Landscape, t: f64| -> Option<(Vec<f64>, Assembled)> {
+            let trial = land.moved(u, &mode, t);
+            land.assemble(&trial, 0.0, true).ok().map(|a| (trial, a))
+        };
+        let mut length = CURVATURE_STEP / largest(&mode);
+        let mut best: Option<(Vec<f64>, Assembled)> = None;
+        let start = total(current);
+        for _ in 0..40 {
+            let candidate = energy(land, length);
+            let lower = candidate.as_ref().is_some_and(|(_, a)| {
+                total(a) < best.as_ref().map_or(start, |(_, b)| total(b)) && length * largest(&mode) <= 1.0
+            });
+            match (lower, best.is_some()) {
+                (true, _) => {
+                    best = candidate;
+                    length *= 2.0;
+                }
+                (false, true) => break,
+                (false, false) => {
+                    length *= 0.5;
+                    if length * largest(&mode) < 1e-12 {
+                        break;
+                    }
+                }
+            }
+        }
+        Ok(best)
+    }
+}

@@ -1,0 +1,241 @@
+//! A snap with a known answer, by the machinery of the snaps of a simulation: a bistable
+//! element `(x^2 - 1)^2 / 4` on one unknown `x` in series with a linear spring of stiffness `k`
+//! to a prescribed unknown `g`, `E(x; g) = (x^2 - 1)^2 / 4 + k (x - g)^2 / 2`, added to the
+//! strain energy of a mesh whose boundary is held and whose moduli are negligible (`1e-9`, so
+//! that the elastic energy of the moves below is below `1e-8`).
+//!
+//! Equilibrium is `x^3 - x + k (x - g) = 0`. The branch through `x = -1` at `g = -1` ends at
+//! the limit point where also `3 x^2 - 1 + k = 0`: `x* = -sqrt((1 - k) / 3)`,
+//! `g* = x* + (x*^3 - x*) / k`. Beyond `g*` the only equilibrium is on the far branch, the
+//! largest root of the cubic; the structure snaps there, releasing `E(x*; g) - E(x_far; g)`.
+
+use fiberfold::fem::added::{AddedEnergy, Block};
+use fiberfold::fem::{dof, equilibrium, Dirichlet, Newton, NewtonPolicy, System};
+use fiberfold::material::Bilayer;
+use fiberfold::mesh::{Mesh, MeshSpec};
+use fiberfold::Parameters;
+
+/// The bistable element and its spring: one group, `[x, g]`.
+struct BistableChain {
+    groups: Vec<Vec<usize>>,
+    k: f64,
+}
+
+impl BistableChain {
+    fn energy(&self, x: f64, g: f64) -> f64 {
+        (x * x - 1.0).powi(2) / 4.0 + self.k * (x - g).powi(2) / 2.0
+    }
+}
+
+impl AddedEnergy for BistableChain {
+    fn groups(&self) -> &[Vec<usize>] {
+        &self.groups
+    }
+
+    fn block(&self, _: usize, u: &[f64], with_tangent: bool) -> Block {
+        let (x, g, k) = (u[self.groups[0][0]], u[self.groups[0][1]], self.k);
+        Block {
+            energy: self.energy(x, g),
+            gradient: vec![x * x * x - x + k * (x - g), -k * (x - g)],
+            hessian: if with_tangent {
+                vec![3.0 * x * x - 1.0 + k, -k, -k, k]
+            } else {
+                Vec::new()
+            },
+        }
+    }
+}
+
+/// The largest root of `x^3 - x + k (x - g)` by bisection (an independent scalar solve).
+fn far_root(k: f64, g: f64) -> f64 {
+    let f = |x: f64| x * x * x - x + k * (x - g);
+    let (mut a, mut b) = (0.0, 10.0);
+    assert!(f(a) < 0.0 && f(b) > 0.0);
+    for _ in 0..200 {
+        let m = 0.5 * (a + b);
+        if f(m) > 0.0 {
+            b = m
+        } else {
+            a = m
+        }
+    }
+    0.5 * (a + b)
+}
+
+/// A mesh of negligible stiffness, large enough that moving its middle node by up to 2 keeps
+/// every Jacobian positive: `x` is that node's `u_x`, and the spring's prescribed end `g` is
+/// the `u_x` of a corner node.
+fn chain(k: f64) -> (System, BistableChain, usize, usize) {
+    let soft = Parameters {
+        mu_l: 1e-9,
+        K_l: 1e-9,
+        mu_s: 1e-9,
+        K_s: 1e-9,
+        mu_f: 0.0,
+        ..Parameters::default()
+    };
+    let mesh = Mesh::new(MeshSpec::new(4, 1, 4, 25.0, 100.0, 100.0)).unwrap();
+    let centre = (0..mesh.coordinates().len())
+        .min_by(|&a, &b| {
+            let distance = |n: usize| (mesh.coordinates()[n][0] - 50.0).hypot(mesh.coordinates()[n][1] + 50.0);
+            distance(a).total_cmp(&distance(b))
+        })
+        .unwrap();
+    let corner = mesh.top()[0];
+    let (x, g) = (dof(centre, 0), dof(corner, 0));
+    let system = System::new(mesh, &Bilayer::new(&soft)).unwrap();
+    let added = BistableChain {
+        groups: vec![vec![x, g]],
+        k,
+    };
+    (system, added, x, g)
+}
+
+/// The boundary held at zero, `g` at its value; the interior (with `x`) free.
+fn held(system: &System, g: (usize, f64)) -> Dirichlet {
+    let on_boundary = |[x, y]: [f64; 2]| x == 0.0 || x == 100.0 || y == -100.0 || y == 1.0;
+    let pairs = (0..system.num_dofs())
+        .filter(|&d| on_boundary(system.mesh().coordinates()[d / 2]))
+        .map(|d| (d, if d == g.0 { g.1 } else { 0.0 }))
+        .collect();
+    Dirichlet::new(pairs).unwrap()
+}
+
+#[test]
+fn a_bistable_chain_snaps_past_its_limit_point_to_the_far_branch_releasing_the_closed_form_energy() {
+    let k = 0.2;
+    let x_star = -((1.0 - k) / 3.0f64).sqrt();
+    let g_star = x_star + (x_star.powi(3) - x_star) / k;
+    let (mut system, added, x, g) = chain(k);
+    let mut u = vec![0.0; system.num_dofs()];
+    u[x] = -1.0;
+    let mut newton = Newton::new();
+    let policy = NewtonPolicy::default();
+    // Along the near branch by Newton's method, to just short of the limit point: stable.
+    let mut load = -1.0;
+    while load < g_star - 1e-3 {
+        load = (load + 0.05).min(g_star - 1e-3);
+        u[g] = load;
+        let bc = held(&system, (g, load));
+        let report = equilibrium::solve_with(&mut newton, &mut system, &mut u, &bc, &added, &policy).unwrap();
+        assert_eq!(report.negative_pivots, Some(0), "near branch at g = {load}");
+        assert!(u[x] < x_star, "still on the near branch at g = {load}: x = {}", u[x]);
+    }
+    // Past it, the minimisation from the last state lands on the far branch.
+    let beyond = g_star + 1e-3;
+    let before = u[x];
+    u[g] = beyond;
+    let bc = held(&system, (g, beyond));
+    let start_energy = added.energy(before, beyond);
+    let report = equilibrium::minimise(&mut newton, (&mut system, &mut u, &bc), None, &added, &policy).unwrap();
+    let far = far_root(k, beyond);
+    println!(
+        "g* = {g_star:.6}: x {before:.6} -> {:.9} (far root {far:.9}), {} steps",
+        u[x], report.iterations
+    );
+    assert!((u[x] - far).abs() < 1e-6, "x = {} against the far root {far}", u[x]);
+    assert_eq!(report.negative_pivots, Some(0), "a stable state");
+    let released = start_energy - added.energy(u[x], beyond);
+    let exact = added.energy(before, beyond) - added.energy(far, beyond);
+    assert!(released > 0.1, "a snap releases energy: {released}");
+    assert!(
+        (released - exact).abs() < 1e-6,
+        "released {released} against the closed form {exact}"
+    );
+    // The energy never rose along the minimisation: its residual history ends within
+    // tolerance and the state is the far branch's, whose energy is below the start's.
+    assert!(added.energy(u[x], beyond) < start_energy);
+}
+
+/// From a saddle (the maximum of the bistable element between its wells, `x = 0` at `g = 0`,
+/// where the residual is zero), the minimisation leaves along the negative curvature and
+/// ends in a well: a minimum with the closed-form energy `E(x_well; 0)`.
+#[test]
+fn the_minimisation_leaves_a_saddle_along_its_negative_curvature() {
+    let k = 0.2;
+    let (mut system, added, x, g) = chain(k);
+    let mut u = vec![0.0; system.num_dofs()];
+    let bc = held(&system, (g, 0.0));
+    let report = equilibrium::minimise(
+        &mut Newton::new(),
+        (&mut system, &mut u, &bc),
+        None,
+        &added,
+        &NewtonPolicy::default(),
+    )
+    .unwrap();
+    // Wells of x^3 - x + k x = 0: x = +-sqrt(1 - k).
+    let well = (1.0 - k).sqrt();
+    assert!((u[x].abs() - well).abs() < 1e-6, "x = {} against +-{well}", u[x]);
+    assert_eq!(report.negative_pivots, Some(0));
+    assert!(added.energy(u[x], 0.0) < added.energy(0.0, 0.0));
+}
+
+/// The coarse compare case with the mixed element follows the periodic branch to its fold near
+/// d = 0.2402 and snaps there. Every recorded state (none is in contact up to 0.25) is checked
+/// by an independent assembly on a fresh system: its undamped residual is within Newton's
+/// tolerance, and the inertia of a fresh factorisation is the one reported. Every snap
+/// releases energy and ends on a stable state.
+#[test]
+fn every_state_of_a_run_through_a_snap_is_an_undamped_equilibrium_with_the_reported_inertia() {
+    use fiberfold::fem::added::NoAddedEnergy;
+    use fiberfold::fem::model_conditions;
+    use fiberfold::mesh::ElementKind;
+    use fiberfold::protocol::{stages, Event};
+    use fiberfold::studies::simulate::{Crossing, SimulateOptions};
+
+    let params = Parameters {
+        beta: std::f64::consts::FRAC_PI_4,
+        ..Parameters::default()
+    };
+    let study = SimulateOptions {
+        mesh: MeshSpec::coarse().with_element(ElementKind::Mixed),
+        waves: Some(4.5),
+        d_max: 0.25,
+        crossing: Crossing::Snap,
+        ..SimulateOptions::default()
+    }
+    .study()
+    .unwrap();
+    let materials = Bilayer::new(&params);
+    let policy = NewtonPolicy::default();
+    let (mut checked, mut snaps, mut worst) = (0, Vec::new(), 0.0f64);
+    let outcome = stages::run(&materials, study.mesh, &study.protocol, &mut |event| {
+        let Event::Step { record, system, u } = event else {
+            return Ok(());
+        };
+        assert!(
+            record.augmented.as_ref().is_none_or(|a| !a.in_contact),
+            "no contact expected by 0.25"
+        );
+        let mut fresh = System::new(system.mesh().clone(), &materials)?;
+        let bc = model_conditions(system.mesh(), record.d)?;
+        let assembled = fresh.assemble(u, &bc, None, false)?;
+        let tolerance = policy.residual_tolerance * assembled.force_norm() + policy.absolute_tolerance;
+        worst = worst.max(assembled.residual_norm() / tolerance);
+        assert!(
+            assembled.residual_norm() <= tolerance,
+            "d = {}: undamped residual {:.3e} above the tolerance {tolerance:.3e}",
+            record.d,
+            assembled.residual_norm()
+        );
+        if let Some(reported) = record.negative_pivots {
+            let counted = Newton::new().inertia(&mut fresh, u, &bc, &NoAddedEnergy, &mut Default::default())?;
+            assert_eq!(counted, Some(reported), "inertia at d = {}", record.d);
+        }
+        if let Some(snap) = &record.snap {
+            snaps.push(snap.clone());
+        }
+        checked += 1;
+        Ok(())
+    })
+    .unwrap();
+    assert!(outcome.stopped.is_none(), "{:?}", outcome.stopped);
+    println!("{checked} states, largest residual / tolerance {worst:.2}; snaps {snaps:#?}");
+    assert!(!snaps.is_empty(), "the fold is crossed by a snap");
+    for snap in &snaps {
+        assert!(snap.energy_released > 0.0, "{snap:?}");
+        assert_eq!(snap.negative_pivots_after, Some(0));
+        assert!(snap.amplitude_after > snap.amplitude_before);
+    }
+}
