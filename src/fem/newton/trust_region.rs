@@ -21,11 +21,10 @@
 //! tolerance with an unshifted factor without negative pivots: a local minimum. The energy never
 //! increases from step to step.
 
-use super::{Equations, Newton, NewtonError, NewtonPolicy, NewtonReport, Timings, Updates};
+use super::{max_abs, Equations, Newton, NewtonError, NewtonPolicy, NewtonReport, Problem, Updates};
 use crate::error::Error;
 use crate::fem::added::{AddedEnergy, Block, Diagonal, Sum};
-use crate::fem::assembly::{Assembled, System};
-use crate::fem::boundary::Dirichlet;
+use crate::fem::assembly::Assembled;
 
 /// Smallest non-zero shift; below it the step is Newton's.
 const SIGMA_MIN: f64 = 1e-6;
@@ -123,19 +122,27 @@ impl AddedEnergy for Shift<'_> {
     }
 }
 
-/// The energy being minimised and what a step needs of it.
+/// The energy being minimised (Newton's [`Problem`]) and the scale `D` of its shifts.
 struct Landscape<'a> {
-    system: &'a mut System,
-    bc: &'a Dirichlet,
-    added: &'a dyn AddedEnergy,
-    penalty_scale: f64,
-    free: Vec<usize>,
+    problem: Problem<'a>,
     /// `D`, relative to its mean over the free unknowns (all unknowns; zero off the mesh's).
     scale: Vec<f64>,
-    timings: Timings,
 }
 
-impl Landscape<'_> {
+impl<'a> Landscape<'a> {
+    /// The landscape of `equations`, with `D` from the reference stiffness.
+    fn new(equations: Equations<'a>) -> crate::Result<Self> {
+        let problem = Problem::new(equations)?;
+        let mut scale = problem.system.reference_stiffness_diagonal()?;
+        scale.resize(problem.system.num_dofs(), 0.0);
+        let free = &problem.free;
+        let mean = free.iter().map(|&dof| scale[dof].abs()).sum::<f64>() / free.len().max(1) as f64;
+        scale
+            .iter_mut()
+            .for_each(|d| *d = d.abs() / mean.max(f64::MIN_POSITIVE));
+        Ok(Landscape { problem, scale })
+    }
+
     /// Energy, residual and (if `with_tangent`) tangent at `u`, shifted by `sigma D` if
     /// `sigma > 0`.
     fn assemble(&mut self, u: &[f64], sigma: f64, with_tangent: bool) -> crate::Result<Assembled> {
@@ -144,26 +151,28 @@ impl Landscape<'_> {
             sigma,
             centre: u,
         };
+        let problem = &mut self.problem;
         let sum;
         let added: &dyn AddedEnergy = match sigma > 0.0 {
             true => {
-                sum = Sum::new(vec![self.added, &shift]);
+                sum = Sum::new(vec![problem.added, &shift]);
                 &sum
             }
-            false => self.added,
+            false => problem.added,
         };
-        let assembled = self
-            .system
-            .assemble_penalised(u, self.bc, None, with_tangent, added, self.penalty_scale)?;
-        self.timings.assembly += assembled.elapsed;
-        self.timings.assemblies += 1;
+        let assembled =
+            problem
+                .system
+                .assemble_penalised(u, problem.bc, None, with_tangent, added, problem.penalty_scale)?;
+        problem.timings.assembly += assembled.elapsed;
+        problem.timings.assemblies += 1;
         Ok(assembled)
     }
 
     /// `u` moved by `t p` on the free unknowns.
     fn moved(&self, u: &[f64], p: &[f64], t: f64) -> Vec<f64> {
         let mut next = u.to_vec();
-        for (&dof, &x) in self.free.iter().zip(p) {
+        for (&dof, &x) in self.problem.free.iter().zip(p) {
             next[dof] += t * x;
         }
         next
@@ -171,18 +180,18 @@ impl Landscape<'_> {
 
     /// `p . D p` over the free unknowns.
     fn d_norm(&self, p: &[f64]) -> f64 {
-        self.free.iter().zip(p).map(|(&dof, x)| self.scale[dof] * x * x).sum()
+        self.problem
+            .free
+            .iter()
+            .zip(p)
+            .map(|(&dof, x)| self.scale[dof] * x * x)
+            .sum()
     }
 }
 
 /// The total energy (strain plus added) of an assembly.
 fn total(a: &Assembled) -> f64 {
     a.energy + a.added_energy
-}
-
-/// Largest absolute entry.
-fn largest(v: &[f64]) -> f64 {
-    v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
 }
 
 impl Newton {
@@ -196,28 +205,8 @@ impl Newton {
         u: &mut [f64],
         policy: &NewtonPolicy,
     ) -> Result<NewtonReport, NewtonError> {
-        let Equations {
-            system,
-            bc,
-            added,
-            penalty_scale,
-        } = equations;
-        let free = system.free_dofs(bc)?.to_vec();
-        let mut scale = system.reference_stiffness_diagonal()?;
-        scale.resize(system.num_dofs(), 0.0);
-        let mean = free.iter().map(|&dof| scale[dof].abs()).sum::<f64>() / free.len().max(1) as f64;
-        scale
-            .iter_mut()
-            .for_each(|d| *d = d.abs() / mean.max(f64::MIN_POSITIVE));
-        let mut land = Landscape {
-            system,
-            bc,
-            added,
-            penalty_scale,
-            free,
-            scale,
-            timings: Timings::default(),
-        };
+        let penalty_scale = equations.penalty_scale;
+        let mut land = Landscape::new(equations)?;
         let mut current = land.assemble(u, 0.0, true).map_err(|e| super::inverted(e, 0))?;
         let mut history = vec![current.residual_norm()];
         let (mut sigma, mut rejected, mut factorisations) = (0.0f64, 0, 0);
@@ -227,7 +216,7 @@ impl Newton {
             let residual = current.residual_norm();
             let tolerance = tolerance_at(&current);
             factorisations += 1;
-            let negative = self.factorize(&current, &mut land.timings).negative_pivots();
+            let negative = self.factorize(&current, &mut land.problem.timings).negative_pivots();
             if negative == Some(0) && residual <= tolerance {
                 self.forget_factorisation();
                 return Ok(NewtonReport {
@@ -242,7 +231,7 @@ impl Newton {
                     start_negative_pivots: None,
                     backtracks: rejected,
                     updates: Updates::default(),
-                    timings: land.timings,
+                    timings: land.problem.timings,
                 });
             }
             let indefinite = negative != Some(0);
@@ -296,7 +285,7 @@ impl Newton {
             if *sigma > 0.0 {
                 let shifted = land.assemble(u, *sigma, true)?;
                 *factorisations += 1;
-                if self.factorize(&shifted, &mut land.timings).negative_pivots() != Some(0) {
+                if self.factorize(&shifted, &mut land.problem.timings).negative_pivots() != Some(0) {
                     *sigma = (4.0 * *sigma).max(SIGMA_MIN);
                     continue;
                 }
@@ -308,12 +297,12 @@ impl Newton {
             let mut p: Vec<f64> = current.residual.iter().map(|r| -r).collect();
             let solver = &mut self.solver.as_mut().expect("factorised above").solver;
             solver.solve_in_place(&mut p)?;
-            land.timings.solve += solver.solve_time();
-            land.timings.solves += 1;
+            land.problem.timings.solve += solver.solve_time();
+            land.problem.timings.solves += 1;
             // The model m(t p) = t r.p + t^2 p.K.p / 2, with p.K.p = -r.p - sigma p.D.p.
             let r_dot_p: f64 = current.residual.iter().zip(&p).map(|(r, x)| r * x).sum();
             let p_k_p = -r_dot_p - *sigma * land.d_norm(&p);
-            let t = (MAX_MOVE / largest(&p)).min(1.0);
+            let t = (MAX_MOVE / max_abs(&p)).min(1.0);
             let predicted = -(t * r_dot_p + 0.5 * t * t * p_k_p);
             let trial = land.moved(u, &p, t);
             let (rho, assembled) = match land.assemble(&trial, 0.0, true) {
@@ -359,7 +348,7 @@ impl Newton {
         let shifted = loop {
             let shifted = land.assemble(u, shift, true)?;
             *factorisations += 1;
-            if self.factorize(&shifted, &mut land.timings).negative_pivots() == Some(0) {
+            if self.factorize(&shifted, &mut land.problem.timings).negative_pivots() == Some(0) {
                 break shifted;
             }
             shift *= 4.0;
@@ -372,9 +361,9 @@ impl Newton {
         };
         let k = shifted.tangent.as_ref().expect("assembled with the tangent");
         let solver = &mut self.solver.as_mut().expect("factorised above").solver;
-        let d: Vec<f64> = land.free.iter().map(|&dof| land.scale[dof]).collect();
+        let d: Vec<f64> = land.problem.free.iter().map(|&dof| land.scale[dof]).collect();
         let (mut mode, curvature, solves) = lowest_generalised_mode(solver, k.as_ref(), &d, shift)?;
-        land.timings.solves += solves;
+        land.problem.timings.solves += solves;
         if curvature >= 0.0 {
             return Err(Error::Solver(format!(
                 "energy minimisation: the tangent is indefinite but its lowest mode has a positive curvature \
@@ -390,13 +379,13 @@ impl Newton {
             let trial = land.moved(u, &mode, t);
             land.assemble(&trial, 0.0, true).ok().map(|a| (trial, a))
         };
-        let mut length = CURVATURE_STEP / largest(&mode);
+        let mut length = CURVATURE_STEP / max_abs(&mode);
         let mut best: Option<(Vec<f64>, Assembled)> = None;
         let start = total(current);
         for _ in 0..40 {
             let candidate = energy(land, length);
             let lower = candidate.as_ref().is_some_and(|(_, a)| {
-                total(a) < best.as_ref().map_or(start, |(_, b)| total(b)) && length * largest(&mode) <= 1.0
+                total(a) < best.as_ref().map_or(start, |(_, b)| total(b)) && length * max_abs(&mode) <= 1.0
             });
             match (lower, best.is_some()) {
                 (true, _) => {
@@ -406,7 +395,7 @@ impl Newton {
                 (false, true) => break,
                 (false, false) => {
                     length *= 0.5;
-                    if length * largest(&mode) < 1e-12 {
+                    if length * max_abs(&mode) < 1e-12 {
                         break;
                     }
                 }
