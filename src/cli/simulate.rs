@@ -379,7 +379,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         if let Some(d) = d {
             println!(
                 "note: the {layer} loses strong ellipticity at a Gauss point first at d = {d:.5} (smallest margin \
-                 {:.3e}); beyond it the continuum admits shear bands and the answer depends on the mesh",
+                 along the path {:.3e}); beyond it the continuum admits shear bands and the answer depends on the mesh",
                 if layer == "layer" {
                     e.smallest_layer
                 } else {

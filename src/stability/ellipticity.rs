@@ -26,7 +26,7 @@ pub fn ellipticity_margin(m: &IncrementalModuli) -> f64 {
             }
         }
     };
-    min_over_directions(smallest)
+    min_over_directions(60, smallest)
 }
 
 #[cfg(test)]
