@@ -282,7 +282,7 @@ fn inverse3(m: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
 }
 
 mod multipliers;
-pub use multipliers::{PressureUpdate, CONSTRAINT_TOLERANCE};
+pub use multipliers::PressureUpdate;
 
 #[cfg(test)]
 mod tests;

@@ -14,6 +14,7 @@ pub mod continuation;
 pub mod crease_seed;
 pub mod imperfection;
 pub mod onset;
+mod predictor;
 pub mod secondary;
 pub mod snap;
 pub mod stabilisation;

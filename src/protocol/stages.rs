@@ -38,9 +38,10 @@ pub struct Protocol {
     pub newton: NewtonPolicy,
     /// Contact of the top surface with the symmetry planes and with itself in stage 3.
     pub contact: bool,
-    /// Viscous stabilisation of stage 3, if any (an option: snaps are the default way across).
+    /// Viscous stabilisation of stage 3, if any (the default way across a snap).
     pub stabilisation: Option<StabilisationSettings>,
-    /// Snaps of stage 3 by energy minimisation ([`super::snap`]), if any; not with `stabilisation`.
+    /// Snaps of stage 3 by energy minimisation ([`super::snap`]), if any (an option); not with
+    /// `stabilisation`.
     pub snaps: Option<SnapSettings>,
     /// `A_2` of the long-wave imperfection `-A_2 cos(2 pi N_2 X / L)` added in stage 2 (it
     /// lowers the surface at `X = 0` and wherever the cosine is positive, deepening the troughs
