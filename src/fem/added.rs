@@ -28,6 +28,27 @@ pub struct Diagonal {
     pub curvature: Vec<f64>,
 }
 
+impl Diagonal {
+    /// The quadratic `sum_i c_i (u_i - r_i)^2 / 2` at `u`, with the curvatures `c` and the
+    /// reference `r` (over the unknowns that `c` covers): a damper's or a shift's.
+    pub fn quadratic(curvature: Vec<f64>, u: &[f64], reference: &[f64]) -> Self {
+        let gradient: Vec<f64> = (0..curvature.len())
+            .map(|i| curvature[i] * (u[i] - reference[i]))
+            .collect();
+        let energy = 0.5
+            * gradient
+                .iter()
+                .zip(u.iter().zip(reference))
+                .map(|(g, (x, r))| g * (x - r))
+                .sum::<f64>();
+        Diagonal {
+            energy,
+            gradient,
+            curvature,
+        }
+    }
+}
+
 /// An energy added to the strain energy.
 pub trait AddedEnergy: Sync {
     /// The global unknowns of every group (fixed until the owner changes them).

@@ -173,20 +173,7 @@ impl AddedEnergy for Damper<'_> {
             return None;
         }
         let curvature: Vec<f64> = self.stiffness.iter().map(|c| self.factor * c).collect();
-        let gradient: Vec<f64> = (0..self.stiffness.len())
-            .map(|i| curvature[i] * (u[i] - self.reference[i]))
-            .collect();
-        let energy = 0.5
-            * gradient
-                .iter()
-                .zip(u.iter().zip(&self.reference))
-                .map(|(g, (x, r))| g * (x - r))
-                .sum::<f64>();
-        Some(Diagonal {
-            energy,
-            gradient,
-            curvature,
-        })
+        Some(Diagonal::quadratic(curvature, u, &self.reference))
     }
 }
 

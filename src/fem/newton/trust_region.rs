@@ -107,18 +107,7 @@ impl AddedEnergy for Shift<'_> {
 
     fn diagonal(&self, u: &[f64]) -> Option<Diagonal> {
         let curvature: Vec<f64> = self.scale.iter().map(|d| self.sigma * d).collect();
-        let gradient: Vec<f64> = (0..self.centre.len())
-            .map(|i| curvature[i] * (u[i] - self.centre[i]))
-            .collect();
-        let energy = 0.5
-            * (0..self.centre.len())
-                .map(|i| gradient[i] * (u[i] - self.centre[i]))
-                .sum::<f64>();
-        Some(Diagonal {
-            energy,
-            gradient,
-            curvature,
-        })
+        Some(Diagonal::quadratic(curvature, u, self.centre))
     }
 }
 
