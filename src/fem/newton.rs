@@ -166,8 +166,7 @@ impl Newton {
             // A penalty raised by the multiplier updates raises the residual's round-off with it
             // (measured: in proportion), so the tolerance follows; at the largest raise the
             // equilibrium then holds to 1e-7 relative, as the constraint does.
-            let tolerance =
-                (s.residual_tolerance * state.assembled.force_norm() + s.absolute_tolerance) * problem.penalty_scale;
+            let tolerance = s.tolerance(state.assembled.force_norm(), problem.penalty_scale);
             // The displacements' scale (not the multipliers' that may follow them).
             let scale = 1.0 + max_abs(&u[..problem.system.mesh().num_dofs()]);
             if !state.lifting && (residual <= tolerance || last_update <= s.update_tolerance * scale) {

@@ -72,6 +72,14 @@ pub struct Stall {
     pub reduction: f64,
 }
 
+impl NewtonPolicy {
+    /// The residual tolerance `s (rtol |f| + atol)` of a state whose internal-force norm is
+    /// `force_norm`, with `s` the factor on a raised incompressibility penalty (1 otherwise).
+    pub fn tolerance(&self, force_norm: f64, penalty_scale: f64) -> f64 {
+        (self.residual_tolerance * force_norm + self.absolute_tolerance) * penalty_scale
+    }
+}
+
 impl Default for NewtonPolicy {
     /// `rtol = 1e-10`, `atol = 1e-12`, `utol = 1e-13`, 30 steps, 12 halvings, full Newton, the
     /// inertia at the solution.

@@ -199,8 +199,7 @@ impl Newton {
         let mut current = land.assemble(u, 0.0, true).map_err(|e| super::inverted(e, 0))?;
         let mut history = vec![current.residual_norm()];
         let (mut sigma, mut rejected, mut factorisations) = (0.0f64, 0, 0);
-        let tolerance_at =
-            |a: &Assembled| (policy.residual_tolerance * a.force_norm() + policy.absolute_tolerance) * penalty_scale;
+        let tolerance_at = |a: &Assembled| policy.tolerance(a.force_norm(), penalty_scale);
         for iteration in 0..MAX_STEPS {
             let residual = current.residual_norm();
             let tolerance = tolerance_at(&current);
