@@ -18,6 +18,18 @@ pub enum Error {
     #[error("unknown parameter `{name}`; known parameters are: {known}")]
     UnknownParameter { name: String, known: String },
 
+    /// A law constant that the law in use needs and that was not given (user input).
+    #[error("`{name}` is missing: the {law} law needs it ({allowed})")]
+    MissingConstant { name: String, law: String, allowed: String },
+
+    /// A law constant given for a law that does not have it (user input).
+    #[error("`{name}` is not a constant of the {law} law in use (its constants: {constants}); set the law first")]
+    NotAConstant {
+        name: String,
+        law: String,
+        constants: String,
+    },
+
     /// A parameter file or `--set` value that cannot be parsed (user input).
     #[error("cannot read parameters: {0}")]
     ParameterSyntax(String),
@@ -25,6 +37,10 @@ pub enum Error {
     /// A deformation with `J = det F <= 0`: the material is inverted or crushed.
     #[error("deformation gradient with J = det F = {jacobian:.6e} <= 0 (inverted material)")]
     NonPositiveJacobian { jacobian: f64 },
+
+    /// A deformation beyond a Gent law's limiting extensibility, where its energy is infinite.
+    #[error("deformation beyond the limiting extensibility of a Gent law ((Ibar1 - 3) / Jm = {ratio:.6} >= 1)")]
+    BeyondExtensibility { ratio: f64 },
 
     /// A scalar equation without a root in the searched interval.
     #[error("no root of {what} in [{}, {}]", short(*.lower), short(*.upper))]
@@ -60,7 +76,11 @@ impl Error {
     pub fn is_user_input(&self) -> bool {
         matches!(
             self,
-            Error::InvalidParameter { .. } | Error::UnknownParameter { .. } | Error::ParameterSyntax(_)
+            Error::InvalidParameter { .. }
+                | Error::UnknownParameter { .. }
+                | Error::ParameterSyntax(_)
+                | Error::MissingConstant { .. }
+                | Error::NotAConstant { .. }
         )
     }
 

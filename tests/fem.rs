@@ -380,7 +380,7 @@ fn inverting_load_is_an_error_and_leaves_the_state_unchanged() {
     println!("{error}");
     assert!(matches!(
         error,
-        NewtonError::Inverted { .. } | NewtonError::NotConverged { .. } | NewtonError::LineSearch { .. }
+        NewtonError::Inadmissible { .. } | NewtonError::NotConverged { .. } | NewtonError::LineSearch { .. }
     ));
     assert!(!error.to_string().contains("NaN"));
     assert!(u.iter().all(|&v| v == 0.0));

@@ -11,8 +11,10 @@ class SolverError(RuntimeError):
 
 class Parameters:
     """Table 1's parameters (lengths in H, moduli in mu_s, beta in radians); keyword overrides
-    are validated (``ValueError`` naming the parameter and range, ``TypeError`` for a
-    non-number)."""
+    are validated (``ValueError`` naming the parameter and range, ``TypeError`` for a wrong
+    type). Laws by dotted keys, ``Parameters(**{"layer.law": "ogden", "layer.alpha": -25})``,
+    or a table, ``Parameters(layer={"law": "ogden", "alpha": -25})``; ``to_dict()`` lists
+    them as dotted keys."""
 
     mu_l: float
     K_l: float
@@ -24,12 +26,13 @@ class Parameters:
     lambda_f: float
     beta: float
     tension_only: bool
-    def __init__(self, **overrides: Union[float, int, bool]) -> None: ...
+    incompressible: bool
+    def __init__(self, **overrides: Union[float, int, bool, str, List[float], Dict[str, Any]]) -> None: ...
     @staticmethod
     def from_toml(path: Union[str, PathLike[str]]) -> Parameters: ...
     def to_toml(self) -> str: ...
-    def replace(self, **overrides: Union[float, int, bool]) -> Parameters: ...
-    def to_dict(self) -> Dict[str, Union[float, bool]]: ...
+    def replace(self, **overrides: Union[float, int, bool, str, List[float], Dict[str, Any]]) -> Parameters: ...
+    def to_dict(self) -> Dict[str, Union[float, bool, str, List[float]]]: ...
 
 class State:
     @property

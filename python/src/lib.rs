@@ -7,7 +7,7 @@ use fiberfold::homogeneous::HomogeneousRow;
 use fiberfold::material::Bilayer;
 use fiberfold::mesh::{ElementKind, MeshSpec};
 use fiberfold::output::vtu::{vtk_cell, write_vtu, DataArray};
-use fiberfold::parameters::{is_boolean, validate_compression, Parameters, PARAMETER_NAMES};
+use fiberfold::parameters::{is_boolean, validate_compression, Parameters, LAW_TABLES};
 use fiberfold::stability::discrete::DiscreteOptions;
 use fiberfold::stability::{Method, StabilityAnalysis, K_MAX};
 use fiberfold::studies::homogeneous::{columns, CSV_HEADER};
@@ -50,31 +50,81 @@ struct PyParameters {
     inner: Parameters,
 }
 
-/// Sets `key` of `p` from a Python value: a number (not a bool) for the moduli, fractions and
-/// angle, a bool for `tension_only` and `incompressible`.
+/// Sets `key` of `p` from a Python value: a number (not a bool) for the moduli, fractions,
+/// angle and law constants, a bool for `tension_only` and `incompressible`, a string for a law
+/// (`"layer.law": "ogden"`), a list of numbers for an N-term Ogden law, or a dict for a whole
+/// law table (`layer={"law": "ogden", "alpha": -25}`).
 fn set_parameter(p: &mut Parameters, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
-    if is_boolean(key) {
-        if !value.is_instance_of::<PyBool>() {
-            return Err(PyTypeError::new_err(format!(
-                "`{key}` must be a bool, not {}",
-                value.get_type().name()?
-            )));
-        }
-        *p.flag_mut(key).map_err(to_py)? = value.extract()?;
-        return Ok(());
-    }
-    let numeric =
-        (value.is_instance_of::<PyFloat>() || value.is_instance_of::<PyInt>()) && !value.is_instance_of::<PyBool>();
-    if !numeric {
+    let is_bool = value.is_instance_of::<PyBool>();
+    let is_number = (value.is_instance_of::<PyFloat>() || value.is_instance_of::<PyInt>()) && !is_bool;
+    let is_list = value.is_instance_of::<pyo3::types::PyList>() || value.is_instance_of::<pyo3::types::PyTuple>();
+    let (accepted, expected) = if is_boolean(key) {
+        (is_bool, "a bool")
+    } else if key.ends_with(".law") {
+        (value.is_instance_of::<pyo3::types::PyString>(), "a law name (str)")
+    } else if LAW_TABLES.contains(&key) {
+        (value.is_instance_of::<PyDict>(), "a dict of law constants")
+    } else if key.ends_with(".mu") || key.ends_with(".alpha") {
+        (is_number || is_list, "a number or a list of numbers")
+    } else {
+        (is_number, "a number (float or int)")
+    };
+    if !accepted {
         // Unknown names are a ValueError naming the known ones, whatever the value.
-        p.number(key).map_err(to_py)?;
+        if let Err(e @ Error::UnknownParameter { .. }) = p.clone().set_value(key, &toml::Value::Float(1.0)) {
+            return Err(to_py(e));
+        }
         return Err(PyTypeError::new_err(format!(
-            "`{key}` must be a number (float or int), not {}",
+            "`{key}` must be {expected}, not {}",
             value.get_type().name()?
         )));
     }
-    *p.number_mut(key).map_err(to_py)? = value.extract()?;
-    Ok(())
+    p.set_value(key, &toml_value(key, value)?).map_err(to_py)
+}
+
+/// A Python value as the TOML value a parameters file would hold.
+fn toml_value(key: &str, value: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
+    if value.is_instance_of::<PyBool>() {
+        return Ok(toml::Value::Boolean(value.extract()?));
+    }
+    if value.is_instance_of::<PyFloat>() || value.is_instance_of::<PyInt>() {
+        return Ok(toml::Value::Float(value.extract()?));
+    }
+    if let Ok(text) = value.extract::<String>() {
+        return Ok(toml::Value::String(text));
+    }
+    if let Ok(dict) = value.downcast::<PyDict>() {
+        let mut table = toml::Table::new();
+        for (k, v) in dict.iter() {
+            let name: String = k.extract()?;
+            table.insert(name.clone(), toml_value(&format!("{key}.{name}"), &v)?);
+        }
+        return Ok(toml::Value::Table(table));
+    }
+    if let Ok(items) = value.extract::<Vec<Bound<'_, PyAny>>>() {
+        return Ok(toml::Value::Array(
+            items.iter().map(|v| toml_value(key, v)).collect::<PyResult<_>>()?,
+        ));
+    }
+    Err(PyTypeError::new_err(format!(
+        "`{key}` must be a number, bool, string, list or dict, not {}",
+        value.get_type().name()?
+    )))
+}
+
+/// A TOML value as Python.
+fn py_value<'py>(py: Python<'py>, value: &toml::Value) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match value {
+        toml::Value::Boolean(b) => PyBool::new(py, *b).to_owned().into_any(),
+        toml::Value::Float(x) => PyFloat::new(py, *x).into_any(),
+        toml::Value::Integer(i) => PyFloat::new(py, *i as f64).into_any(),
+        toml::Value::String(text) => text.into_pyobject(py)?.into_any(),
+        toml::Value::Array(items) => {
+            let list: Vec<Bound<'py, PyAny>> = items.iter().map(|v| py_value(py, v)).collect::<PyResult<_>>()?;
+            pyo3::types::PyList::new(py, list)?.into_any()
+        }
+        other => other.to_string().into_pyobject(py)?.into_any(),
+    })
 }
 
 #[pymethods]
@@ -116,26 +166,20 @@ impl PyParameters {
         Ok(PyParameters { inner })
     }
 
+    /// Every parameter: the flat keys, then each law table's `law` and constants as dotted
+    /// keys (`"layer.alpha"`); `Parameters(**p.to_dict())` gives `p` back.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let dict = PyDict::new(py);
-        for name in PARAMETER_NAMES {
-            if is_boolean(name) {
-                dict.set_item(name, self.inner.flag(name).map_err(to_py)?)?;
-            } else {
-                dict.set_item(name, self.inner.number(name).map_err(to_py)?)?;
-            }
+        for (key, value) in self.inner.entries() {
+            dict.set_item(key, py_value(py, &value)?)?;
         }
         Ok(dict)
     }
 
     fn __getattr__<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
-        if is_boolean(name) {
-            let flag = self.inner.flag(name).map_err(to_py)?;
-            return Ok(PyBool::new(py, flag).to_owned().into_any());
-        }
-        match self.inner.number(name) {
-            Ok(v) => Ok(PyFloat::new(py, v).into_any()),
-            Err(_) => Err(pyo3::exceptions::PyAttributeError::new_err(format!(
+        match self.inner.entries().into_iter().find(|(key, _)| key == name) {
+            Some((_, value)) => py_value(py, &value),
+            None => Err(pyo3::exceptions::PyAttributeError::new_err(format!(
                 "Parameters has no attribute `{name}`"
             ))),
         }
@@ -146,11 +190,14 @@ impl PyParameters {
     }
 
     fn __repr__(&self) -> String {
-        let fields: Vec<String> = PARAMETER_NAMES
-            .iter()
-            .map(|&name| match self.inner.flag(name) {
-                Ok(flag) => format!("{name}={}", if flag { "True" } else { "False" }),
-                Err(_) => format!("{name}={}", self.inner.number(name).unwrap_or(f64::NAN)),
+        let fields: Vec<String> = self
+            .inner
+            .entries()
+            .into_iter()
+            .map(|(key, value)| match value {
+                toml::Value::Boolean(flag) => format!("{key}={}", if flag { "True" } else { "False" }),
+                toml::Value::String(text) => format!("{key}='{text}'"),
+                other => format!("{key}={other}"),
             })
             .collect();
         format!("Parameters({})", fields.join(", "))

@@ -235,3 +235,22 @@ def test_crease_onset_of_a_soft_layer():
     assert 0.2 < r["d_crease"] < 0.3 and r["fold_length"] == 1.0
     with pytest.raises(ValueError, match="fold"):
         fiberfold.crease(p, [0.0])
+
+
+def test_laws_by_dotted_keys_or_tables_round_trip_and_give_their_onset():
+    ogden = fiberfold.Parameters(**{"layer.law": "ogden", "layer.alpha": -25.0})
+    same = fiberfold.Parameters(layer={"law": "ogden", "alpha": [-25]})
+    assert ogden == same
+    d = ogden.to_dict()
+    assert d["layer.law"] == "ogden" and d["layer.alpha"] == [-25.0] and d["layer.mu"] == [10.0]
+    assert fiberfold.Parameters(**d) == ogden
+    assert getattr(ogden, "layer.law") == "ogden"
+    # Mooney-Rivlin with c2 = 0 and c1 = mu_l / 2 is Table 1's neo-Hookean layer.
+    mooney = fiberfold.Parameters(**{"layer.law": "mooney_rivlin", "layer.c1": 5.0, "layer.c2": 0.0})
+    assert abs(fiberfold.onset(mooney).d_c - fiberfold.onset(fiberfold.Parameters()).d_c) < 1e-9
+    with pytest.raises(ValueError, match="layer.alpha"):
+        fiberfold.Parameters(**{"layer.law": "ogden"})
+    with pytest.raises(ValueError, match=r"fibres.kappa.*\[0, 1/3\]"):
+        fiberfold.Parameters(fibres={"law": "hgo", "k1": 1.0, "k2": 1.0, "kappa": 0.5})
+    with pytest.raises(TypeError):
+        fiberfold.Parameters(**{"layer.law": 3})

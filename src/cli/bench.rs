@@ -5,7 +5,7 @@ use super::common::{prepare_out, report_files, ParamArgs};
 use clap::{Args, ValueEnum};
 use fiberfold::output::atomic::write_file;
 use fiberfold::output::write_json;
-use fiberfold::studies::bench_fe::{self, default_meshes, FeBench, FeBenchSetup, Kernels};
+use fiberfold::studies::bench_fe::{self, default_meshes, FeBench, FeBenchSetup, Kernels, LawKernels};
 use fiberfold::Result;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -43,6 +43,7 @@ pub struct BenchArgs {
 struct FeTimings<'a> {
     curves: &'a FeBench,
     kernels: &'a Kernels,
+    laws: &'a LawKernels,
 }
 
 pub fn run(args: &BenchArgs) -> Result<()> {
@@ -86,13 +87,21 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             println!("{heading}");
             let kernels = bench_fe::kernels(&setup.params, &meshes)?;
             print!("{kernels}");
+            let law_heading = "one Newton iteration with each tissue law (displacement element, d = 0.1):";
+            println!("{law_heading}");
+            let laws = bench_fe::laws(&setup.params, &meshes)?;
+            print!("{laws}");
             let (table, json) = (args.out.join("bench_fe.md"), args.out.join("bench_fe.json"));
-            write_file(&table, format!("{bench}\n{heading}\n\n{kernels}"))?;
+            write_file(
+                &table,
+                format!("{bench}\n{heading}\n\n{kernels}\n{law_heading}\n\n{laws}"),
+            )?;
             write_json(
                 &json,
                 &FeTimings {
                     curves: &bench,
                     kernels: &kernels,
+                    laws: &laws,
                 },
             )?;
             vec![table, json]

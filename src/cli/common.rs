@@ -19,6 +19,12 @@ pub struct ParamArgs {
     /// text says 0.05 per family), mu_f (10), lambda_f (1), beta (0, radians), tension_only
     /// (false), incompressible (false: exactly incompressible layers, J = 1, K_l and K_s unused;
     /// finite-element commands then need --element mixed). Moduli in units of mu_s.
+    /// Laws, by dotted keys (see README, "Tissue laws"): layer.law and substrate.law =
+    /// neo_hookean (default) | mooney_rivlin (layer.c1, layer.c2) | ogden (layer.mu, layer.alpha:
+    /// numbers or lists [..] of 1 to 3 terms) | gent (layer.jm); mu_l, mu_s stay each law's shear
+    /// modulus and K_l, K_s its bulk modulus. fibres.law = quadratic (default: mu_f, lambda_f) |
+    /// hgo (fibres.k1, fibres.k2, fibres.kappa in [0, 1/3], default 0). Set a law before its
+    /// constants, e.g. `--set layer.law=ogden --set layer.alpha=-25`.
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
 }

@@ -3,7 +3,7 @@
 
 use super::assembly::System;
 use crate::error::Result;
-use crate::material::{jacobian, von_mises, Bilayer, FibreFamily, Hyperelastic, Tensor2};
+use crate::material::{jacobian, von_mises, Bilayer, Fibre, Hyperelastic, Tensor2};
 use crate::mesh::Region;
 
 /// The Gauss point at the element centre: index 4 of the 3x3 rule.
@@ -30,7 +30,7 @@ pub struct CellFields {
 
 /// Evaluates [`CellFields`] of the displacement `u` (full vector) on every element of `system`.
 pub fn cell_fields(system: &System, materials: &Bilayer, u: &[f64]) -> Result<CellFields> {
-    let fibres: &[FibreFamily; 2] = &materials.substrate.fibres;
+    let fibres: &[Fibre; 2] = &materials.substrate.fibres;
     let mut fields = CellFields::default();
     for (e, (geometry, material)) in system.geometry().iter().zip(system.materials()).enumerate() {
         let u_e = system.element_displacements(e, u);

@@ -285,7 +285,7 @@ impl Newton {
                 };
                 Ok(Some((next, trial_u, max_abs(&du), ratio)))
             }
-            Ok(_) | Err(Error::NonPositiveJacobian { .. }) => Ok(None),
+            Ok(_) | Err(Error::NonPositiveJacobian { .. } | Error::BeyondExtensibility { .. }) => Ok(None),
             Err(e) => Err(e.into()),
         }
     }
@@ -382,7 +382,12 @@ fn line_search(
                 return Ok((next, trial_u, alpha, halvings));
             }
             Ok(_) => NewtonError::LineSearch { iteration, residual },
-            Err(Error::NonPositiveJacobian { jacobian }) => NewtonError::Inverted { iteration, jacobian },
+            Err(e @ (Error::NonPositiveJacobian { .. } | Error::BeyondExtensibility { .. })) => {
+                NewtonError::Inadmissible {
+                    iteration,
+                    reason: e.to_string(),
+                }
+            }
             Err(e) => return Err(e.into()),
         };
         if halvings == s.max_backtracks {
@@ -470,10 +475,14 @@ impl<'a> Problem<'a> {
     }
 }
 
-/// The starting state's `J <= 0` as a Newton failure.
+/// A starting state where the energy is not finite (`J <= 0`, or beyond a law's domain) as a
+/// Newton failure.
 fn inverted(e: Error, iteration: usize) -> NewtonError {
     match e {
-        Error::NonPositiveJacobian { jacobian } => NewtonError::Inverted { iteration, jacobian },
+        e @ (Error::NonPositiveJacobian { .. } | Error::BeyondExtensibility { .. }) => NewtonError::Inadmissible {
+            iteration,
+            reason: e.to_string(),
+        },
         other => NewtonError::Model(other),
     }
 }

@@ -1,5 +1,5 @@
-//! Hyperelastic materials in plane strain: one strain-energy function per law, written once and
-//! generic over dual numbers. The first Piola-Kirchhoff stress `P = dW/dF` and the tangent
+//! Hyperelastic materials in plane strain: one strain-energy function per law (one file each),
+//! written once and generic over dual numbers. The first Piola-Kirchhoff stress `P = dW/dF` and the tangent
 //! `A = d2W/dF dF` of each law are closed forms derived from that energy
 //! ([`StrainEnergy::plane_response`]); automatic differentiation (`num-dual`) of the same energy
 //! is the default for a law without them and the independent check of them in the tests. The
@@ -10,11 +10,22 @@
 
 pub mod ellipticity;
 mod fibre;
+mod gent;
+mod hgo;
+pub mod isotropic;
+mod laws;
+mod mooney_rivlin;
 mod neo_hookean;
+mod ogden;
 mod tissue;
 
 pub use fibre::FibreFamily;
+pub use gent::Gent;
+pub use hgo::HgoFamily;
+pub use laws::{Fibre, Matrix};
+pub use mooney_rivlin::MooneyRivlin;
 pub use neo_hookean::NeoHookean;
+pub use ogden::{Ogden, MAX_TERMS as OGDEN_MAX_TERMS};
 pub use tissue::{Bilayer, FibreReinforced, Tissue};
 
 use crate::error::{Error, Result};
@@ -41,6 +52,12 @@ pub trait StrainEnergy: Send + Sync {
     /// `W` and `P` in plane strain (`F33 = 1`) at a gradient with `J > 0`, without the tangent.
     fn plane_stress(&self, f: &Tensor2) -> (f64, Tensor2) {
         differentiated_stress(self, f)
+    }
+
+    /// An error at a gradient (with `J > 0`) outside the law's domain, where its energy is
+    /// infinite; every gradient is admissible unless a law says otherwise.
+    fn admissible(&self, _f: &Tensor2) -> Result<()> {
+        Ok(())
     }
 }
 
@@ -135,20 +152,22 @@ pub fn jacobian(f: &Tensor2) -> f64 {
     f[0] * f[3] - f[1] * f[2]
 }
 
-fn check_jacobian(f: &Tensor2) -> Result<f64> {
+/// `J`, or an error where the law has no finite energy (`J <= 0`, or outside its domain).
+fn check_state<M: StrainEnergy + ?Sized>(m: &M, f: &Tensor2) -> Result<f64> {
     let j = jacobian(f);
-    if j > 0.0 && j.is_finite() {
-        Ok(j)
-    } else {
-        Err(Error::NonPositiveJacobian { jacobian: j })
+    if !(j > 0.0 && j.is_finite()) {
+        return Err(Error::NonPositiveJacobian { jacobian: j });
     }
+    m.admissible(f)?;
+    Ok(j)
 }
 
-/// Energy, stress and tangent of any strain energy; `J <= 0` is an error, never a NaN.
+/// Energy, stress and tangent of any strain energy; `J <= 0`, or a gradient outside the law's
+/// domain, is an error, never a NaN.
 pub trait Hyperelastic: StrainEnergy {
     /// `W(F)`.
     fn energy(&self, f: &Tensor2) -> Result<f64> {
-        check_jacobian(f)?;
+        check_state(self, f)?;
         Ok(self.density(f, 1.0))
     }
 
@@ -159,19 +178,19 @@ pub trait Hyperelastic: StrainEnergy {
 
     /// `W` and `P = dW/dF` in one pass.
     fn energy_and_stress(&self, f: &Tensor2) -> Result<(f64, Tensor2)> {
-        check_jacobian(f)?;
+        check_state(self, f)?;
         Ok(self.plane_stress(f))
     }
 
     /// Energy, `P` and the tangent `A = d2W/dF dF` in one pass.
     fn response(&self, f: &Tensor2) -> Result<Response> {
-        check_jacobian(f)?;
+        check_state(self, f)?;
         Ok(self.plane_response(f))
     }
 
     /// Cauchy stress `sigma = P F^T / J`, with `sigma_33 = P_33 / J` from `dW/dF33`.
     fn cauchy(&self, f: &Tensor2) -> Result<CauchyStress> {
-        let j = check_jacobian(f)?;
+        let j = check_state(self, f)?;
         let (_, p) = gradient(
             |x: SVector<DualSVec64<5>, 5>| self.density(&[x[0], x[1], x[2], x[3]], x[4]),
             &SVector::from([f[0], f[1], f[2], f[3], 1.0]),
@@ -193,5 +212,7 @@ pub fn von_mises(s: &CauchyStress) -> f64 {
     (0.5 * ((s11 - s22).powi(2) + (s22 - s33).powi(2) + (s33 - s11).powi(2)) + 3.0 * s12 * s12).sqrt()
 }
 
+#[cfg(test)]
+mod law_tests;
 #[cfg(test)]
 mod tests;

@@ -17,7 +17,19 @@ impl Rng {
 /// Random deformation gradients with J > 0, including strong compression.
 fn sample_gradients() -> Vec<Tensor2> {
     let mut rng = Rng(0x9e3779b97f4a7c15);
-    let mut out = vec![[0.55, 0.0, 0.0, 1.6], [0.5, 0.3, -0.2, 1.9], [1.0, 0.0, 0.0, 1.0]];
+    let (c, s) = (0.3f64.cos(), 0.3f64.sin());
+    let rotated = |a: f64, b: f64| [c * a, -s * b, s * a, c * b];
+    let mut out = vec![
+        [0.55, 0.0, 0.0, 1.6],
+        [0.5, 0.3, -0.2, 1.9],
+        [1.0, 0.0, 0.0, 1.0],
+        // In-plane stretches equal, nearly equal, and either side of the series' threshold.
+        [0.7, 0.0, 0.0, 0.7],
+        [1.0 + 1e-6, 0.0, 0.0, 1.0],
+        rotated(1.01, 1.0),
+        rotated(1.0, 1.05),
+        [0.8, 1e-4, 0.0, 0.8],
+    ];
     while out.len() < 40 {
         let f = [
             rng.uniform(0.4, 1.4),
@@ -32,7 +44,7 @@ fn sample_gradients() -> Vec<Tensor2> {
     out
 }
 
-fn materials() -> Vec<(String, Tissue)> {
+pub(super) fn materials() -> Vec<(String, Tissue)> {
     let mut list = Vec::new();
     for beta in [0.0, std::f64::consts::FRAC_PI_4, std::f64::consts::FRAC_PI_2, 1.1] {
         for (lambda_f, tension_only) in [(1.0, false), (0.9, false), (1.0, true)] {
@@ -50,16 +62,91 @@ fn materials() -> Vec<(String, Tissue)> {
             list.push(("layer".into(), b.layer_tissue()));
         }
     }
+    for (name, settings) in other_laws() {
+        let mut p = Parameters {
+            beta: 0.6,
+            ..Parameters::default()
+        };
+        for s in settings {
+            p.set(s).unwrap();
+        }
+        p.validate().unwrap();
+        let b = Bilayer::new(&p);
+        list.push((format!("{name} substrate"), b.substrate_tissue()));
+        list.push((format!("{name} layer"), b.layer_tissue()));
+    }
     list
+}
+
+/// Laws besides the paper's, as `--set` would give them (to layer and substrate alike).
+pub(super) fn other_laws() -> Vec<(&'static str, Vec<&'static str>)> {
+    vec![
+        (
+            "Mooney-Rivlin",
+            vec![
+                "layer.law=mooney_rivlin",
+                "layer.c1=3",
+                "layer.c2=2",
+                "substrate.law=mooney_rivlin",
+                "substrate.c1=0.3",
+                "substrate.c2=0.2",
+            ],
+        ),
+        (
+            "Ogden alpha=-25",
+            vec![
+                "layer.law=ogden",
+                "layer.alpha=-25",
+                "substrate.law=ogden",
+                "substrate.alpha=-25",
+            ],
+        ),
+        (
+            "Ogden alpha=5",
+            vec![
+                "layer.law=ogden",
+                "layer.alpha=5",
+                "substrate.law=ogden",
+                "substrate.alpha=5",
+            ],
+        ),
+        (
+            "Ogden 3 terms",
+            vec![
+                "layer.law=ogden",
+                "layer.mu=[6, 3, 1]",
+                "layer.alpha=[1.3, 5, -2]",
+                "substrate.law=ogden",
+                "substrate.mu=[0.5,0.5]",
+                "substrate.alpha=[-20, 3]",
+            ],
+        ),
+        (
+            "Gent",
+            vec!["layer.law=gent", "layer.jm=20", "substrate.law=gent", "substrate.jm=20"],
+        ),
+        (
+            "HGO",
+            vec!["fibres.law=hgo", "fibres.k1=5", "fibres.k2=2", "fibres.kappa=0.1"],
+        ),
+        (
+            "HGO tension-only",
+            vec![
+                "fibres.law=hgo",
+                "fibres.k1=5",
+                "fibres.k2=0.5",
+                "fibres.kappa=0.05",
+                "tension_only=true",
+            ],
+        ),
+        ("HGO k2=0", vec!["fibres.law=hgo", "fibres.k1=5", "fibres.k2=0"]),
+    ]
 }
 
 /// Whether a tension-only fibre sits at its kink `I4 = lambda_f^2`, where `A` jumps.
 fn at_fibre_kink(m: &Tissue, f: &Tensor2) -> bool {
     match m {
-        Tissue::Substrate(s) => s
-            .fibres
-            .iter()
-            .any(|fam| fam.tension_only && (fam.stretch_invariant(f) - fam.prestretch.powi(2)).abs() < 1e-4),
+        Tissue::Substrate(s) => s.fibres.iter().any(|fam| fam.near_kink(f, 1e-4)),
         Tissue::Layer(_) => false,
     }
 }
@@ -193,7 +280,9 @@ fn tension_only_fibres_are_unloaded_in_compression() {
         mu_f: 50.0,
         ..Parameters::default()
     };
-    let fibres = Bilayer::new(&p).substrate.fibres[0];
+    let Fibre::Quadratic(fibres) = Bilayer::new(&p).substrate.fibres[0] else {
+        panic!("the paper's fibres are quadratic")
+    };
     assert_eq!(fibres.energy(&[0.8, 0.0, 0.0, 1.2]).unwrap(), 0.0);
     assert!(fibres.energy(&[1.1, 0.0, 0.0, 0.9]).unwrap() > 0.0);
 }

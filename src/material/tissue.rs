@@ -1,17 +1,20 @@
-//! The two tissues of the model: the layer (cortex, neo-Hookean) and the fibre-reinforced
-//! substrate (white matter, eq. 3 mixture `phi_m W_m + phi_f (f1 + f2)`), built from `Parameters`.
+//! The two tissues of the model: the layer (cortex; neo-Hookean in the paper, any matrix law
+//! here) and the fibre-reinforced substrate (white matter, eq. 3 mixture
+//! `phi_m W_m + phi_f (f1 + f2)`), built from `Parameters`.
 
-use super::{FibreFamily, NeoHookean, Response, StrainEnergy, Tensor2};
-use crate::parameters::Parameters;
+use super::laws::{Fibre, Matrix};
+use super::{FibreFamily, Gent, HgoFamily, MooneyRivlin, NeoHookean, Ogden, Response, StrainEnergy, Tensor2};
+use crate::error::Result;
+use crate::parameters::{FibreLaw, MatrixLaw, Parameters};
 use num_dual::DualNum;
 
-/// Substrate: neo-Hookean matrix plus two fibre families at `+-beta`.
+/// Substrate: a matrix plus two fibre families at `+-beta`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FibreReinforced {
-    pub matrix: NeoHookean,
+    pub matrix: Matrix,
     pub matrix_fraction: f64,
     pub fibre_fraction: f64,
-    pub fibres: [FibreFamily; 2],
+    pub fibres: [Fibre; 2],
 }
 
 impl StrainEnergy for FibreReinforced {
@@ -40,12 +43,16 @@ impl StrainEnergy for FibreReinforced {
             std::array::from_fn(|a| m * pm[a] + c * (p1[a] + p2[a])),
         )
     }
+
+    fn admissible(&self, f: &Tensor2) -> Result<()> {
+        self.matrix.admissible(f)
+    }
 }
 
 /// Either tissue, so that code looping over elements of both layers needs one type.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Tissue {
-    Layer(NeoHookean),
+    Layer(Matrix),
     Substrate(FibreReinforced),
 }
 
@@ -70,12 +77,19 @@ impl StrainEnergy for Tissue {
             Tissue::Substrate(m) => m.plane_stress(f),
         }
     }
+
+    fn admissible(&self, f: &Tensor2) -> Result<()> {
+        match self {
+            Tissue::Layer(m) => m.admissible(f),
+            Tissue::Substrate(m) => m.admissible(f),
+        }
+    }
 }
 
 /// The materials of both layers, from the parameters.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Bilayer {
-    pub layer: NeoHookean,
+    pub layer: Matrix,
     pub substrate: FibreReinforced,
     /// Both layers exactly incompressible: `J = 1` is a constraint, and the energies above are
     /// the parts without bulk term (their bulk moduli are zero).
@@ -84,26 +98,14 @@ pub struct Bilayer {
 
 impl Bilayer {
     pub fn new(p: &Parameters) -> Self {
-        let family = |sign: f64| FibreFamily {
-            stiffness: p.mu_f,
-            prestretch: p.lambda_f,
-            direction: [p.beta.cos(), sign * p.beta.sin()],
-            tension_only: p.tension_only,
-        };
         let bulk = |k: f64| if p.incompressible { 0.0 } else { k };
         Bilayer {
-            layer: NeoHookean {
-                mu: p.mu_l,
-                bulk: bulk(p.K_l),
-            },
+            layer: matrix_law(&p.layer, p.mu_l, bulk(p.K_l)),
             substrate: FibreReinforced {
-                matrix: NeoHookean {
-                    mu: p.mu_s,
-                    bulk: bulk(p.K_s),
-                },
+                matrix: matrix_law(&p.substrate, p.mu_s, bulk(p.K_s)),
                 matrix_fraction: p.phi_m,
                 fibre_fraction: p.phi_f,
-                fibres: [family(1.0), family(-1.0)],
+                fibres: [fibre_law(p, 1.0), fibre_law(p, -1.0)],
             },
             incompressible: p.incompressible,
         }
@@ -125,14 +127,58 @@ impl Tissue {
     /// `J`-term is `K/2 (ln J)^2`.
     pub fn volumetric_split(&self) -> (Tissue, f64) {
         match *self {
-            Tissue::Layer(m) => (Tissue::Layer(NeoHookean { bulk: 0.0, ..m }), m.bulk),
+            Tissue::Layer(m) => (Tissue::Layer(m.with_bulk_modulus(0.0)), m.bulk_modulus()),
             Tissue::Substrate(s) => {
                 let rest = FibreReinforced {
-                    matrix: NeoHookean { bulk: 0.0, ..s.matrix },
+                    matrix: s.matrix.with_bulk_modulus(0.0),
                     ..s
                 };
-                (Tissue::Substrate(rest), s.matrix_fraction * s.matrix.bulk)
+                (Tissue::Substrate(rest), s.matrix_fraction * s.matrix.bulk_modulus())
             }
         }
     }
 }
+
+/// A matrix law of shear modulus `mu` and bulk modulus `bulk`. The parameters are validated
+/// ([`Parameters::validate`] requires every constant a law needs), so a missing one here is a bug.
+fn matrix_law(law: &MatrixLaw, mu: f64, bulk: f64) -> Matrix {
+    match law {
+        MatrixLaw::NeoHookean => Matrix::NeoHookean(NeoHookean { mu, bulk }),
+        MatrixLaw::MooneyRivlin { c1, c2 } => Matrix::MooneyRivlin(MooneyRivlin {
+            c1: c1.expect(VALIDATED),
+            c2: c2.expect(VALIDATED),
+            bulk,
+        }),
+        MatrixLaw::Ogden { mu, alpha } => {
+            let pairs: Vec<(f64, f64)> = mu.iter().copied().zip(alpha.iter().copied()).collect();
+            Matrix::Ogden(Ogden::new(&pairs, bulk))
+        }
+        MatrixLaw::Gent { jm } => Matrix::Gent(Gent {
+            mu,
+            jm: jm.expect(VALIDATED),
+            bulk,
+        }),
+    }
+}
+
+/// The fibre family along `(cos beta, sign sin beta)`.
+fn fibre_law(p: &Parameters, sign: f64) -> Fibre {
+    let direction = [p.beta.cos(), sign * p.beta.sin()];
+    match p.fibres {
+        FibreLaw::Quadratic => Fibre::Quadratic(FibreFamily {
+            stiffness: p.mu_f,
+            prestretch: p.lambda_f,
+            direction,
+            tension_only: p.tension_only,
+        }),
+        FibreLaw::Hgo { k1, k2, kappa } => Fibre::Hgo(HgoFamily {
+            k1: k1.expect(VALIDATED),
+            k2: k2.expect(VALIDATED),
+            kappa,
+            direction,
+            tension_only: p.tension_only,
+        }),
+    }
+}
+
+const VALIDATED: &str = "validated parameters hold every constant of their laws";

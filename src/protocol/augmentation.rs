@@ -75,7 +75,10 @@ impl Augmentation {
         stabilisation: Option<StabilisationSettings>,
     ) -> Result<Self> {
         let mesh = system.mesh();
-        let mu = materials.layer.mu.max(materials.substrate.matrix.mu);
+        let mu = materials
+            .layer
+            .shear_modulus()
+            .max(materials.substrate.matrix.shear_modulus());
         let planes = vec![Plane::left(0.0), Plane::right(mesh.spec().length)];
         Ok(Augmentation {
             contact: contact.then(|| Contact::new(mesh, planes, ContactSettings::for_mesh(mesh, mu))),

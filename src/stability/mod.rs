@@ -38,4 +38,6 @@ pub enum Method {
 }
 
 #[cfg(test)]
+mod law_tests;
+#[cfg(test)]
 mod tests;

@@ -285,3 +285,105 @@ impl fmt::Display for Kernels {
         Ok(())
     }
 }
+
+/// The cost of one Newton iteration (tangent assembly, factorisation, solve) with each tissue
+/// law, at the homogeneous state of `d = 0.1` with the displacement element: the laws side by
+/// side, each against neo-Hookean.
+#[derive(Clone, Debug, Serialize)]
+pub struct LawRow {
+    pub law: String,
+    pub mesh: String,
+    pub tangent_assembly_ms: f64,
+    pub newton_iteration_ms: f64,
+    pub relative_to_neo_hookean: f64,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct LawKernels {
+    pub rows: Vec<LawRow>,
+}
+
+/// The laws timed: Table 1, then each other law given to both layers (or to the fibres).
+pub const BENCH_LAWS: [(&str, &[&str]); 5] = [
+    ("neo-Hookean (Table 1)", &[]),
+    (
+        "Mooney-Rivlin",
+        &[
+            "layer.law=mooney_rivlin",
+            "layer.c1=3",
+            "layer.c2=2",
+            "substrate.law=mooney_rivlin",
+            "substrate.c1=0.3",
+            "substrate.c2=0.2",
+        ],
+    ),
+    (
+        "Ogden alpha = -25",
+        &[
+            "layer.law=ogden",
+            "layer.alpha=-25",
+            "substrate.law=ogden",
+            "substrate.alpha=-25",
+        ],
+    ),
+    (
+        "Gent Jm = 5",
+        &["layer.law=gent", "layer.jm=5", "substrate.law=gent", "substrate.jm=5"],
+    ),
+    (
+        "HGO fibres",
+        &["fibres.law=hgo", "fibres.k1=5", "fibres.k2=1", "fibres.kappa=0.1"],
+    ),
+];
+
+/// Times one Newton iteration with each of [`BENCH_LAWS`] on the meshes given.
+pub fn laws(base: &Parameters, meshes: &[(&str, MeshSpec)]) -> Result<LawKernels> {
+    let mut rows: Vec<LawRow> = Vec::new();
+    for (law, settings) in BENCH_LAWS {
+        let mut params = base.clone();
+        for s in settings {
+            params.set(s)?;
+        }
+        params.validate()?;
+        let kernels = kernels(
+            &Parameters {
+                incompressible: false,
+                ..params
+            },
+            meshes,
+        )?;
+        for row in kernels.rows.iter().filter(|r| r.element == ElementKind::Displacement) {
+            let newton_iteration_ms = row.tangent_assembly_ms + row.factorisation_ms + row.solve_ms;
+            let reference = rows
+                .iter()
+                .find(|r| r.mesh == row.mesh)
+                .map_or(newton_iteration_ms, |r| r.newton_iteration_ms);
+            rows.push(LawRow {
+                law: law.to_string(),
+                mesh: row.mesh.clone(),
+                tangent_assembly_ms: row.tangent_assembly_ms,
+                newton_iteration_ms,
+                relative_to_neo_hookean: newton_iteration_ms / reference,
+            });
+        }
+    }
+    Ok(LawKernels { rows })
+}
+
+impl fmt::Display for LawKernels {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "| law | mesh | tangent assembly ms | Newton iteration ms | vs neo-Hookean |"
+        )?;
+        writeln!(f, "|---|---|---|---|---|")?;
+        for r in &self.rows {
+            writeln!(
+                f,
+                "| {} | {} | {:.1} | {:.1} | {:.2}x |",
+                r.law, r.mesh, r.tangent_assembly_ms, r.newton_iteration_ms, r.relative_to_neo_hookean
+            )?;
+        }
+        Ok(())
+    }
+}

@@ -4,7 +4,7 @@ use super::{linspace, validate_points, Tick};
 use crate::error::{Error, Result};
 use crate::output::table::{variant_name, Cell};
 use crate::output::{ensure_dir, plot::save_panels, write_json, CsvWriter, Figure, LineStyle, Series};
-use crate::parameters::{Parameters, PARAMETER_NAMES};
+use crate::parameters::Parameters;
 use crate::stability::{Method, Minimum, Onset, StabilityAnalysis, K_MAX};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -214,16 +214,16 @@ pub struct SweepPoint {
 impl SweepStudy {
     /// Parameter sets for every point, all validated before any work starts.
     fn parameter_sets(&self, base: &Parameters) -> Result<Vec<(Option<f64>, f64, Parameters)>> {
-        let numeric = |key: &str| {
-            if crate::parameters::is_boolean(key) || !PARAMETER_NAMES.contains(&key) {
-                Err(Error::invalid(
-                    "param",
-                    key,
-                    &format!("a numeric parameter: {}", PARAMETER_NAMES[..9].join(", ")),
-                ))
-            } else {
-                Ok(())
-            }
+        let numeric = |key: &str| match base.number(key) {
+            Ok(_) => Ok(()),
+            Err(_) => Err(Error::invalid(
+                "param",
+                key,
+                &format!(
+                    "a numeric parameter of the laws in use: {}",
+                    base.numeric_keys().join(", ")
+                ),
+            )),
         };
         numeric(&self.param)?;
         let values = match &self.values {
@@ -255,9 +255,9 @@ impl SweepStudy {
             for &value in &values {
                 let mut p = base.clone();
                 if let (Some(v), Some((key, _))) = (s, &self.series) {
-                    *p.number_mut(key)? = v;
+                    p.set_number(key, v)?;
                 }
-                *p.number_mut(&self.param)? = value;
+                p.set_number(&self.param, value)?;
                 p.validate()?;
                 sets.push((s, value, p));
             }

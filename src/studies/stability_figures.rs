@@ -243,7 +243,7 @@ pub fn fig6(params: &Parameters, resolution: &Resolution, out: &Path, tick: Tick
         let mut upper = Vec::new();
         for value in linspace(from, to, resolution.fig6_values) {
             let mut p = params.clone();
-            *p.number_mut(key)? = value;
+            p.set_number(key, value)?;
             let points = onset_against_angle(&p, &[p.mu_f], resolution.angles, tick)?;
             let ks: Vec<f64> = points.iter().filter_map(|q| q.onset.as_ref().map(|o| o.k0)).collect();
             if ks.is_empty() {

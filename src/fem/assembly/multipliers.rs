@@ -28,7 +28,10 @@ const STABILITY_PENALTY: f64 = 1e4;
 /// incompressibility and for bulk moduli above [`AUGMENTED_BULK`] times the largest shear
 /// modulus; `None` (condensed exactly) otherwise.
 pub(super) fn augmentation(materials: &Bilayer, tissue: &Tissue) -> Option<Volumetric> {
-    let shear = materials.layer.mu.max(materials.substrate.matrix.mu);
+    let shear = materials
+        .layer
+        .shear_modulus()
+        .max(materials.substrate.matrix.shear_modulus());
     let (_, bulk) = tissue.volumetric_split();
     let bulk = if materials.incompressible { f64::INFINITY } else { bulk };
     (bulk > AUGMENTED_BULK * shear).then_some(Volumetric::Augmented {

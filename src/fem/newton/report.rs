@@ -104,9 +104,10 @@ impl NewtonReport {
 /// Why Newton's method failed; the displacement is then left as it was.
 #[derive(Debug, thiserror::Error)]
 pub enum NewtonError {
-    /// The state, or every step tried, inverts an element (`J <= 0`).
-    #[error("Newton iteration {iteration}: element inverted (J = {jacobian:.3e} <= 0)")]
-    Inverted { iteration: usize, jacobian: f64 },
+    /// The state, or every step tried, has no finite energy: an element inverted (`J <= 0`)
+    /// or a law beyond its domain.
+    #[error("Newton iteration {iteration}: {reason}")]
+    Inadmissible { iteration: usize, reason: String },
     /// No step length down to `2^-max_backtracks` decreases the residual.
     #[error("Newton iteration {iteration}: line search found no decrease of the residual {residual:.3e}")]
     LineSearch { iteration: usize, residual: f64 },

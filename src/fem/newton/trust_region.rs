@@ -304,7 +304,7 @@ impl Newton {
                     };
                     (rho, Some(a))
                 }
-                Err(Error::NonPositiveJacobian { .. }) => (f64::NEG_INFINITY, None),
+                Err(Error::NonPositiveJacobian { .. } | Error::BeyondExtensibility { .. }) => (f64::NEG_INFINITY, None),
                 Err(e) => return Err(e.into()),
             };
             if rho < 0.25 {

@@ -51,12 +51,15 @@ impl Axis {
 
     /// Checks the name (a numeric parameter), the range and the number of points; `flag` is the
     /// CLI's prefix (`x` or `y`).
-    fn validate(&self, flag: &str) -> Result<()> {
-        if crate::parameters::is_boolean(&self.name) || Parameters::default().number(&self.name).is_err() {
+    fn validate(&self, flag: &str, base: &Parameters) -> Result<()> {
+        if base.number(&self.name).is_err() {
             return Err(Error::invalid(
                 flag,
                 &self.name,
-                "a numeric parameter: mu_l, K_l, mu_s, K_s, phi_m, phi_f, mu_f, lambda_f or beta",
+                &format!(
+                    "a numeric parameter of the laws in use: {}",
+                    base.numeric_keys().join(", ")
+                ),
             ));
         }
         validate_points(&format!("{flag}-points"), self.points, 1)?;
@@ -226,8 +229,8 @@ impl Shard {
 
 impl MapStudy {
     pub fn validate(&self) -> Result<()> {
-        self.x.validate("x")?;
-        self.y.validate("y")?;
+        self.x.validate("x", &self.base)?;
+        self.y.validate("y", &self.base)?;
         if self.x.name == self.y.name {
             return Err(Error::invalid("y", &self.y.name, "a parameter other than --x"));
         }
@@ -273,11 +276,11 @@ impl MapStudy {
             };
             if let Some((key, ratio)) = bulk {
                 if key != self.x.name && key != self.y.name {
-                    *p.number_mut(key)? = ratio * value;
+                    p.set_number(key, ratio * value)?;
                 }
             }
         }
-        *p.number_mut(name)? = value;
+        p.set_number(name, value)?;
         Ok(())
     }
 }
@@ -506,7 +509,7 @@ mod tests {
     fn axes_are_spaced_as_asked_and_bad_ones_name_their_flag() {
         assert_eq!(axis("mu_l", 1.0, 100.0, true).values(), vec![1.0, 10.0, 100.0]);
         assert_eq!(axis("beta", 0.0, 1.0, false).values(), vec![0.0, 0.5, 1.0]);
-        let message = |a: Axis| a.validate("x").unwrap_err().to_string();
+        let message = |a: Axis| a.validate("x", &Parameters::default()).unwrap_err().to_string();
         assert!(message(axis("tension_only", 0.0, 1.0, false)).contains("`x`: allowed range is a numeric parameter"));
         assert!(message(axis("mu_l", f64::NAN, 1.0, false)).contains("`x-from`"));
         assert!(message(axis("mu_l", 2.0, 1.0, false)).contains("`x-to`"));

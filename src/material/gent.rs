@@ -1,0 +1,62 @@
+//! Compressible Gent solid: `W = -mu Jm/2 ln(1 - (Ibar1 - 3)/Jm) + K/2 (ln J)^2`, with
+//! `Ibar1 = J^(-2/3) I1`; `mu` is the shear modulus and `Jm` bounds `Ibar1 - 3` (the chains'
+//! limiting extensibility). It tends to neo-Hookean as `Jm -> inf`.
+
+use super::isotropic::{invariant_response, invariant_stress, plane_invariants, PlaneInvariantEnergy};
+use super::{Response, StrainEnergy, Tensor2};
+use crate::error::{Error, Result};
+use num_dual::DualNum;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Gent {
+    pub mu: f64,
+    pub jm: f64,
+    pub bulk: f64,
+}
+
+impl Gent {
+    /// `(Ibar1 - 3) / Jm`, which must stay below 1.
+    fn extension<D: DualNum<Primitive = f64> + Copy>(&self, t: D, q: D, f33: D) -> D {
+        let i1 = t + f33 * f33;
+        let j = q * f33;
+        (i1 * (j.ln() * (-2.0 / 3.0)).exp() - 3.0) / self.jm
+    }
+
+    /// An error at a deformation beyond the limiting extensibility (where `W` is infinite).
+    fn check_extensibility(&self, f: &Tensor2) -> Result<()> {
+        let (t, q) = plane_invariants(f);
+        let x = self.extension(t, q, 1.0);
+        if x < 1.0 {
+            Ok(())
+        } else {
+            Err(Error::BeyondExtensibility { ratio: x })
+        }
+    }
+}
+
+impl PlaneInvariantEnergy for Gent {
+    fn invariant_density<D: DualNum<Primitive = f64> + Copy>(&self, t: D, q: D, f33: D) -> D {
+        let ln_j = (q * f33).ln();
+        let x = self.extension(t, q, f33);
+        (-x).ln_1p() * (-0.5 * self.mu * self.jm) + ln_j * ln_j * (0.5 * self.bulk)
+    }
+}
+
+impl StrainEnergy for Gent {
+    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 4], f33: D) -> D {
+        let (t, q) = plane_invariants(f);
+        self.invariant_density(t, q, f33)
+    }
+
+    fn plane_response(&self, f: &Tensor2) -> Response {
+        invariant_response(self, f)
+    }
+
+    fn plane_stress(&self, f: &Tensor2) -> (f64, Tensor2) {
+        invariant_stress(self, f)
+    }
+
+    fn admissible(&self, f: &Tensor2) -> Result<()> {
+        self.check_extensibility(f)
+    }
+}

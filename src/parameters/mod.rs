@@ -1,0 +1,534 @@
+//! Model parameters: one typed, validated struct with the paper's Table 1 as `Default`,
+//! loadable from TOML and overridable key by key (`--set KEY=VALUE`).
+//!
+//! Units are the paper's: lengths by the layer thickness H, moduli by the substrate shear
+//! modulus (so `mu_s = 1` by default).
+
+mod laws;
+
+pub use laws::{FibreLaw, MatrixLaw, FIBRE_LAWS, MATRIX_LAWS};
+
+use crate::error::{Error, Result};
+use laws::{number, MODULUS_MAX, MODULUS_MIN};
+use serde::{Deserialize, Deserializer, Serialize};
+use std::path::Path;
+
+/// Material parameters of the bilayer (the paper's Table 1 and eqs. 1-3; `docs/model.md`, "Parameters").
+#[allow(non_snake_case)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Parameters {
+    /// Shear modulus of the layer (cortex), whatever its law.
+    pub mu_l: f64,
+    /// Bulk modulus of the layer.
+    pub K_l: f64,
+    /// Shear modulus of the substrate matrix (the unit of stress), whatever its law.
+    pub mu_s: f64,
+    /// Bulk modulus of the substrate matrix.
+    pub K_s: f64,
+    /// Volume fraction of the substrate matrix.
+    pub phi_m: f64,
+    /// Volume fraction of *each* fibre family: eq. 3 (and eq. 4a, which it reproduces) weights
+    /// both `f(I4)` terms by `phi_f`. The paper reads both ways: Table 1 lists `phi_f = 0.1`
+    /// beside `phi_m = 0.9` as if it were the total, while the text says each family has 0.05
+    /// (`reproduce` sets the claims of Figs. 4b-6 under both readings side by side).
+    pub phi_f: f64,
+    /// Fibre stiffness in `f(I4) = mu_f/4 (I4 - lambda_f^2)^2`.
+    pub mu_f: f64,
+    /// Fibre pre-stretch parameter (`lambda_f < 1`: fibres in tension in the reference state).
+    pub lambda_f: f64,
+    /// Fibre angle in radians: families along `(cos beta, +-sin beta)`.
+    pub beta: f64,
+    /// When true, fibres carry no load while `I4 < lambda_f^2`.
+    pub tension_only: bool,
+    /// When true, both layers are exactly incompressible (`J = 1`, enforced by a pressure
+    /// multiplier) and `K_l`, `K_s` are not used.
+    pub incompressible: bool,
+    /// The layer's law (`[layer]`; neo-Hookean by default).
+    pub layer: MatrixLaw,
+    /// The substrate matrix's law (`[substrate]`).
+    pub substrate: MatrixLaw,
+    /// The fibres' law (`[fibres]`; the paper's quadratic one by default).
+    pub fibres: FibreLaw,
+}
+
+impl Default for Parameters {
+    /// The paper's Table 1 (benchmark values) with horizontal fibres.
+    fn default() -> Self {
+        Parameters {
+            mu_l: 10.0,
+            K_l: 30.0,
+            mu_s: 1.0,
+            K_s: 3.0,
+            phi_m: 0.9,
+            phi_f: 0.1,
+            mu_f: 10.0,
+            lambda_f: 1.0,
+            beta: 0.0,
+            tension_only: false,
+            incompressible: false,
+            layer: MatrixLaw::NeoHookean,
+            substrate: MatrixLaw::NeoHookean,
+            fibres: FibreLaw::Quadratic,
+        }
+    }
+}
+
+/// The flat parameter names, in the order they are printed.
+pub const PARAMETER_NAMES: [&str; 11] = [
+    "mu_l",
+    "K_l",
+    "mu_s",
+    "K_s",
+    "phi_m",
+    "phi_f",
+    "mu_f",
+    "lambda_f",
+    "beta",
+    "tension_only",
+    "incompressible",
+];
+
+/// The tables of the laws (`[layer]` in a file, `layer.KEY` with `--set`).
+pub const LAW_TABLES: [&str; 3] = ["layer", "substrate", "fibres"];
+
+/// The parameters that are `true` or `false` (the others are numbers, law names or lists).
+pub fn is_boolean(key: &str) -> bool {
+    matches!(key, "tension_only" | "incompressible" | "fibres.tension_only")
+}
+
+impl Parameters {
+    /// Reads a TOML file; keys not given keep their Table 1 defaults.
+    pub fn from_toml_file(path: &Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| Error::ParameterSyntax(format!("--params {}: {e}", path.display())))?;
+        Self::from_toml_str(&text).map_err(|e| match e {
+            Error::ParameterSyntax(m) => Error::ParameterSyntax(format!("{}: {m}", path.display())),
+            other => other,
+        })
+    }
+
+    /// Parses TOML text; keys not given keep their Table 1 defaults. The flat keys are applied
+    /// first, then the law tables, each with its `law` first, so that the order in the file
+    /// does not matter.
+    pub fn from_toml_str(text: &str) -> Result<Self> {
+        let table: toml::Table = text
+            .parse()
+            .map_err(|e: toml::de::Error| Error::ParameterSyntax(e.message().to_string()))?;
+        Self::from_table(&table)
+    }
+
+    /// The parameters of a table as a file holds them (flat keys and law tables), validated.
+    fn from_table(table: &toml::Table) -> Result<Self> {
+        let mut params = Parameters::default();
+        let (tables, flat): (Vec<_>, Vec<_>) = table.iter().partition(|(_, v)| v.is_table());
+        for (key, value) in flat {
+            params.set_value(key, value)?;
+        }
+        for (key, value) in tables {
+            params.set_value(key, value)?;
+        }
+        params.validate()?;
+        Ok(params)
+    }
+
+    /// Applies one `KEY=VALUE` override (the command line's `--set`); its range, as every
+    /// parameter's, is checked by [`Parameters::validate`] (so `K_s=inf` gets the same message
+    /// as in a file). `VALUE` is read as a TOML value (a number, `true`, a list `[-25, 2]`),
+    /// or else as a bare name (`layer.law=ogden`).
+    pub fn set(&mut self, assignment: &str) -> Result<()> {
+        let (key, value) = assignment
+            .split_once('=')
+            .ok_or_else(|| Error::ParameterSyntax(format!("`--set {assignment}` must have the form KEY=VALUE")))?;
+        let (key, text) = (key.trim(), value.trim());
+        let value = format!("v = {text}")
+            .parse::<toml::Table>()
+            .ok()
+            .and_then(|mut t| t.remove("v"))
+            .unwrap_or_else(|| toml::Value::String(text.to_string()));
+        self.set_value(key, &value)
+    }
+
+    /// Sets the numeric parameter `key` (a flat key or a law constant such as `layer.alpha`).
+    pub fn set_number(&mut self, key: &str, value: f64) -> Result<()> {
+        self.number(key)?;
+        self.set_value(key, &toml::Value::Float(value))
+    }
+
+    /// Sets `key` (flat, dotted or a whole law table) from a TOML value.
+    pub fn set_value(&mut self, key: &str, value: &toml::Value) -> Result<()> {
+        if let Some((table, name)) = key.split_once('.') {
+            return self.set_law_key(table, name, value);
+        }
+        if LAW_TABLES.contains(&key) {
+            let toml::Value::Table(entries) = value else {
+                return Err(Error::invalid(key, value, "a table of law constants"));
+            };
+            if let Some(law) = entries.get("law") {
+                self.set_law_key(key, "law", law)?;
+            }
+            for (name, v) in entries.iter().filter(|(name, _)| *name != "law") {
+                self.set_law_key(key, name, v)?;
+            }
+            return Ok(());
+        }
+        if is_boolean(key) {
+            let flag = match value {
+                toml::Value::Boolean(b) => *b,
+                other => return Err(Error::invalid(key, other, "true or false")),
+            };
+            match key {
+                "tension_only" => self.tension_only = flag,
+                _ => self.incompressible = flag,
+            }
+            return Ok(());
+        }
+        let x = number(key, value)?;
+        match key {
+            "mu_l" => set_shear_modulus(&mut self.mu_l, &mut self.layer, x),
+            "mu_s" => set_shear_modulus(&mut self.mu_s, &mut self.substrate, x),
+            "K_l" => self.K_l = x,
+            "K_s" => self.K_s = x,
+            "phi_m" => self.phi_m = x,
+            "phi_f" => self.phi_f = x,
+            "beta" => self.beta = x,
+            "mu_f" | "lambda_f" => {
+                if self.fibres != FibreLaw::Quadratic {
+                    return Err(law_lacks(key, self.fibres.name(), self.fibres.constants()));
+                }
+                *(if key == "mu_f" {
+                    &mut self.mu_f
+                } else {
+                    &mut self.lambda_f
+                }) = x;
+            }
+            _ => return Err(unknown_parameter(key)),
+        }
+        Ok(())
+    }
+
+    /// Sets `name` under the law table `table`.
+    fn set_law_key(&mut self, table: &str, name: &str, value: &toml::Value) -> Result<()> {
+        let key = format!("{table}.{name}");
+        match table {
+            "layer" | "substrate" => {
+                let (mu_key, k_key) = if table == "layer" {
+                    ("mu_l", "K_l")
+                } else {
+                    ("mu_s", "K_s")
+                };
+                let mu = self.number(mu_key)?;
+                let law = if table == "layer" {
+                    &mut self.layer
+                } else {
+                    &mut self.substrate
+                };
+                match (name, &*law) {
+                    ("law", _) => {
+                        let toml::Value::String(law_name) = value else {
+                            return Err(Error::invalid(&key, value, &MATRIX_LAWS.join(", ")));
+                        };
+                        *law = MatrixLaw::named(&key, law_name, mu)?;
+                    }
+                    ("K", _) => return self.set_value(k_key, value),
+                    ("mu", MatrixLaw::NeoHookean | MatrixLaw::Gent { .. }) => return self.set_value(mu_key, value),
+                    _ => {
+                        law.set_constant(table, name, value)?;
+                        if let Some(implied) = law.implied_shear_modulus() {
+                            *(if table == "layer" {
+                                &mut self.mu_l
+                            } else {
+                                &mut self.mu_s
+                            }) = implied;
+                        }
+                    }
+                }
+                Ok(())
+            }
+            "fibres" => match name {
+                "law" => {
+                    let toml::Value::String(law_name) = value else {
+                        return Err(Error::invalid(&key, value, &FIBRE_LAWS.join(", ")));
+                    };
+                    self.fibres = FibreLaw::named(law_name)?;
+                    Ok(())
+                }
+                "mu_f" | "lambda_f" | "tension_only" => self.set_value(name, value),
+                _ => self.fibres.set_constant(name, value),
+            },
+            _ => Err(unknown_parameter(&key)),
+        }
+    }
+
+    /// The `true`/`false` parameter called `key` ([`is_boolean`]).
+    pub fn flag(&self, key: &str) -> Result<bool> {
+        match key {
+            "tension_only" | "fibres.tension_only" => Ok(self.tension_only),
+            "incompressible" => Ok(self.incompressible),
+            _ => Err(unknown_parameter(key)),
+        }
+    }
+
+    /// The numeric parameter called `key`: a flat one, or a constant of a law in use
+    /// (`layer.alpha` of a one-term Ogden layer, `fibres.k1`, ...).
+    pub fn number(&self, key: &str) -> Result<f64> {
+        Ok(match key {
+            "mu_l" | "layer.mu" if !matches!(self.layer, MatrixLaw::Ogden { .. }) => self.mu_l,
+            "mu_s" | "substrate.mu" if !matches!(self.substrate, MatrixLaw::Ogden { .. }) => self.mu_s,
+            "mu_l" => self.mu_l,
+            "mu_s" => self.mu_s,
+            "K_l" | "layer.K" => self.K_l,
+            "K_s" | "substrate.K" => self.K_s,
+            "phi_m" => self.phi_m,
+            "phi_f" => self.phi_f,
+            "beta" => self.beta,
+            "mu_f" | "lambda_f" | "fibres.mu_f" | "fibres.lambda_f" => {
+                if self.fibres != FibreLaw::Quadratic {
+                    return Err(law_lacks(key, self.fibres.name(), self.fibres.constants()));
+                }
+                if key.ends_with("mu_f") {
+                    self.mu_f
+                } else {
+                    self.lambda_f
+                }
+            }
+            _ => match key.split_once('.') {
+                Some(("layer", name)) if name != "law" => self.layer.number("layer", name)?,
+                Some(("substrate", name)) if name != "law" => self.substrate.number("substrate", name)?,
+                Some(("fibres", name)) if !matches!(name, "law" | "tension_only") => self.fibres.number(name)?,
+                _ => return Err(unknown_parameter(key)),
+            },
+        })
+    }
+
+    /// The numeric keys [`Parameters::number`] accepts for the laws in use.
+    pub fn numeric_keys(&self) -> Vec<String> {
+        let mut keys: Vec<String> = PARAMETER_NAMES.iter().map(|k| k.to_string()).collect();
+        for (key, _) in self.law_entries() {
+            if self.number(&key).is_ok() && !keys.contains(&key) {
+                keys.push(key);
+            }
+        }
+        keys.retain(|k| self.number(k).is_ok());
+        keys
+    }
+
+    /// Every parameter as `(key, value)`: the flat keys, then each law table's `law` and own
+    /// constants as dotted keys. Setting them in this order gives these parameters back.
+    pub fn entries(&self) -> Vec<(String, toml::Value)> {
+        let mut entries: Vec<(String, toml::Value)> = PARAMETER_NAMES
+            .iter()
+            .map(|&key| {
+                let value = match self.flag(key) {
+                    Ok(flag) => toml::Value::Boolean(flag),
+                    Err(_) => toml::Value::Float(self.flat_number(key)),
+                };
+                (key.to_string(), value)
+            })
+            .collect();
+        entries.extend(self.law_entries());
+        entries
+    }
+
+    /// The flat number `key`, whichever law is in use (`mu_f` of HGO fibres is kept, unused).
+    fn flat_number(&self, key: &str) -> f64 {
+        match key {
+            "mu_f" => self.mu_f,
+            "lambda_f" => self.lambda_f,
+            _ => self.number(key).expect("a flat numeric key"),
+        }
+    }
+
+    /// `law` and the own constants of each law table, as dotted keys.
+    fn law_entries(&self) -> Vec<(String, toml::Value)> {
+        let mut entries = Vec::new();
+        let laws = [
+            ("layer", self.layer.name(), self.layer.entries()),
+            ("substrate", self.substrate.name(), self.substrate.entries()),
+            ("fibres", self.fibres.name(), self.fibres.entries()),
+        ];
+        for (table, law, constants) in laws {
+            entries.push((format!("{table}.law"), toml::Value::String(law.to_string())));
+            entries.extend(constants.into_iter().map(|(name, v)| (format!("{table}.{name}"), v)));
+        }
+        entries
+    }
+
+    /// Checks every range; the message names the parameter and its allowed range.
+    pub fn validate(&self) -> Result<()> {
+        // Moduli within 12 orders of magnitude of the unit mu_s = 1 (K/mu = 1e6 is nearly
+        // incompressible tissue; beyond 1e12 the energy's derivatives lose all precision).
+        let moduli = [
+            ("mu_l", self.mu_l),
+            ("K_l", self.K_l),
+            ("mu_s", self.mu_s),
+            ("K_s", self.K_s),
+        ];
+        for (name, value) in moduli {
+            if !(value.is_finite() && (MODULUS_MIN..=MODULUS_MAX).contains(&value)) {
+                return Err(Error::invalid_number(name, value, modulus_range(name)));
+            }
+        }
+        if !(self.mu_f.is_finite() && (0.0..=MODULUS_MAX).contains(&self.mu_f)) {
+            return Err(Error::invalid_number("mu_f", self.mu_f, "[0, 1e12] (in units of mu_s)"));
+        }
+        if !(self.lambda_f.is_finite() && self.lambda_f > 0.0 && self.lambda_f <= 10.0) {
+            return Err(Error::invalid_number("lambda_f", self.lambda_f, "(0, 10]"));
+        }
+        for (name, value) in [("phi_m", self.phi_m), ("phi_f", self.phi_f)] {
+            if !(value.is_finite() && (0.0..=1.0).contains(&value)) {
+                return Err(Error::invalid(name, value, "[0, 1]"));
+            }
+        }
+        if !self.beta.is_finite() {
+            return Err(Error::invalid("beta", self.beta, "a finite angle in radians"));
+        }
+        self.layer.validate("layer", "mu_l", self.mu_l)?;
+        self.substrate.validate("substrate", "mu_s", self.mu_s)?;
+        self.fibres.validate()
+    }
+
+    /// The resolved set as TOML that `--params` reads back.
+    pub fn to_toml(&self) -> String {
+        let mut text = format!("{PHI_F_NOTE}\n");
+        let mut current_table = String::new();
+        for (key, value) in self.entries() {
+            let name = match key.split_once('.') {
+                Some((table, name)) => {
+                    if table != current_table {
+                        text.push_str(&format!("\n[{table}]\n"));
+                        current_table = table.to_string();
+                    }
+                    name.to_string()
+                }
+                None => key,
+            };
+            text.push_str(&format!("{name} = {value}\n"));
+        }
+        text
+    }
+}
+
+/// Read back from the summaries that serialise it (a map's restart file): the same keys and
+/// tables as a parameters file, validated.
+impl<'de> Deserialize<'de> for Parameters {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> std::result::Result<Self, D::Error> {
+        let table = toml::Table::deserialize(deserializer)?;
+        Parameters::from_table(&table).map_err(serde::de::Error::custom)
+    }
+}
+
+/// Sets a shear modulus; a law whose constants fix it has them scaled to match.
+fn set_shear_modulus(modulus: &mut f64, law: &mut MatrixLaw, value: f64) {
+    if let Some(implied) = law.implied_shear_modulus().filter(|m| *m > 0.0) {
+        law.scale_moduli(value / implied);
+    }
+    *modulus = value;
+}
+
+fn law_lacks(key: &str, law: &str, constants: &[&str]) -> Error {
+    laws::not_a_constant(key, law, constants)
+}
+
+/// What `phi_f` means, written at the top of every parameter file (a TOML comment).
+pub const PHI_F_NOTE: &str = "# phi_f is the volume fraction of EACH of the two fibre families (eq. 3 weights both \
+    f(I4) terms by it).\n# The paper reads both ways: Table 1 gives phi_f = 0.1 next to phi_m = 0.9, the text \
+    'phi_f = 0.05 for each family'.";
+
+fn unknown_parameter(key: &str) -> Error {
+    Error::UnknownParameter {
+        name: key.to_string(),
+        known: format!(
+            "{}, and the law tables {} (e.g. layer.law = {}; fibres.law = {})",
+            PARAMETER_NAMES.join(", "),
+            LAW_TABLES.join(", "),
+            MATRIX_LAWS.join(" | "),
+            FIBRE_LAWS.join(" | ")
+        ),
+    }
+}
+
+/// Validates an end-shortening `d = 1 - lambda_1`.
+pub fn validate_compression(name: &str, d: f64) -> Result<()> {
+    if d.is_finite() && (0.0..1.0).contains(&d) {
+        Ok(())
+    } else {
+        Err(Error::invalid(name, d, "[0, 1)"))
+    }
+}
+
+/// The allowed range of the modulus `name`; a bulk modulus beyond it (e.g. `K_s = inf`) is
+/// pointed to exact incompressibility.
+fn modulus_range(name: &str) -> &'static str {
+    if name.starts_with('K') {
+        "a finite number in [1e-12, 1e12] (moduli in units of mu_s; for exactly incompressible layers set incompressible = true)"
+    } else {
+        "a finite number in [1e-12, 1e12] (moduli in units of mu_s)"
+    }
+}
+
+/// Parses a finite number given for `name`.
+pub fn parse_number(name: &str, text: &str) -> Result<f64> {
+    match text.parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        _ => Err(Error::invalid(name, text, "a finite number")),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_table_1_and_round_trip_through_toml() {
+        let p = Parameters::default();
+        p.validate().unwrap();
+        assert_eq!(Parameters::from_toml_str(&p.to_toml()).unwrap(), p);
+    }
+
+    #[test]
+    fn set_overrides_and_rejects() {
+        let mut p = Parameters::default();
+        p.set("beta=0.5").unwrap();
+        p.set("tension_only=true").unwrap();
+        assert_eq!(p.beta, 0.5);
+        assert!(p.tension_only);
+        let unknown = p.set("gamma=1").unwrap_err().to_string();
+        assert!(unknown.contains("gamma") && unknown.contains("mu_f"), "{unknown}");
+        assert!(p.set("mu_l=abc").is_err());
+        assert!(p.set("mu_l").is_err());
+    }
+
+    #[test]
+    fn integers_in_toml_are_numbers() {
+        let p = Parameters::from_toml_str("mu_f = 20\nbeta = 0.25").unwrap();
+        assert_eq!(p.mu_f, 20.0);
+        assert_eq!(p.beta, 0.25);
+    }
+
+    #[test]
+    fn validation_names_parameter_and_range() {
+        let p = Parameters {
+            phi_f: 1.5,
+            ..Parameters::default()
+        };
+        let msg = p.validate().unwrap_err().to_string();
+        assert!(msg.contains("phi_f") && msg.contains("[0, 1]"), "{msg}");
+        let p = Parameters {
+            mu_l: -1.0,
+            ..Parameters::default()
+        };
+        assert!(p.validate().unwrap_err().to_string().contains("mu_l"));
+        // An infinite bulk modulus, in a file or after --set, is pointed to incompressible = true.
+        let file = Parameters::from_toml_str("K_s = inf");
+        let set = |assignment: &str| {
+            let mut p = Parameters::default();
+            p.set(assignment).and_then(|_| p.validate()).unwrap_err().to_string()
+        };
+        for msg in [file.unwrap_err().to_string(), set("K_l=inf")] {
+            assert!(msg.contains("incompressible = true") && msg.contains("1e12"), "{msg}");
+        }
+        assert!(!set("mu_l=inf").contains("incompressible"));
+        assert!(validate_compression("d", 1.0).is_err());
+        assert!(validate_compression("d", f64::NAN).is_err());
+    }
+}
