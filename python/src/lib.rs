@@ -93,7 +93,7 @@ fn toml_value(key: &str, value: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
     if let Ok(text) = value.extract::<String>() {
         return Ok(toml::Value::String(text));
     }
-    if let Ok(dict) = value.downcast::<PyDict>() {
+    if let Ok(dict) = value.cast::<PyDict>() {
         let mut table = toml::Table::new();
         for (k, v) in dict.iter() {
             let name: String = k.extract()?;
