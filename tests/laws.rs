@@ -172,3 +172,29 @@ fn onset_runs_with_every_law() {
         assert!(d_c > 0.0 && d_c < 1.0, "{law:?}: {summary}");
     }
 }
+
+/// The exact bifurcation of the discretised perfect bilayer with Ogden layers (mixed element,
+/// fine mesh) against the linear theory at the mode's wavenumber, as for neo-Hookean.
+#[test]
+fn ogden_fe_bifurcation_agrees_with_the_linear_theory_on_the_fine_mesh() {
+    let summary = common::mixed_bifurcation(
+        "laws-ogden-bifurcation",
+        &[
+            "--mesh",
+            "fine",
+            "--set",
+            "beta=0.785398",
+            "--set",
+            "layer.law=ogden",
+            "--set",
+            "layer.alpha=-25",
+            "--set",
+            "substrate.law=ogden",
+            "--set",
+            "substrate.alpha=-25",
+        ],
+    );
+    let difference = summary["relative_difference"].as_f64().unwrap();
+    println!("Ogden alpha = -25, fine mesh: FE vs theory {difference:e}");
+    assert!(difference.abs() < 1e-4, "FE vs theory {difference:e}");
+}

@@ -86,6 +86,14 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                 let k0 = json(dir.join("onset.json"))["k0"].as_f64().unwrap();
                 assert!((k0 / (3.0f64 / 1000.0).cbrt() - 1.0).abs() < 0.02, "k0 {k0}");
             }
+            "onset" if command.contains("law=ogden") => {
+                // An Ogden bilayer: the discrete solver, from the same moduli, agrees.
+                // (Both runs share one scratch folder: read each before the next.)
+                let d_c = |dir: PathBuf| json(dir.join("onset.json"))["d_c"].as_f64().unwrap();
+                let exact = d_c(run(command, &[]).0);
+                let discrete = d_c(run(command, &[("--method", "discrete")]).0);
+                assert!((exact - discrete).abs() < 1e-4, "{exact} vs {discrete}");
+            }
             "onset" => {
                 // Paper, section 3.1: unloaded fibres (mu_f = 0) give k0 = 0.5515.
                 let (dir, _) = run(command, &[]);

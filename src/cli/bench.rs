@@ -16,7 +16,8 @@ pub enum BenchTarget {
     Stability,
     /// Finite elements: the beta = pi/4, N = 4.5 curve to d = 0.25 on coarse and fine meshes,
     /// split per Newton iteration into assembly / factorisation / solve, with peak memory; then
-    /// per-call kernel times (tangent and residual assembly, LDLT, solve).
+    /// per-call kernel times (tangent and residual assembly, LDLT, solve); then one Newton
+    /// iteration with each tissue law (neo-Hookean, Mooney-Rivlin, Ogden, Gent, HGO) side by side.
     Fe,
 }
 
