@@ -14,7 +14,7 @@ pub struct FibreFamily {
 }
 
 impl FibreFamily {
-    /// `I4 = |F N|^2` for a plain `F`.
+    /// `I4 = |F N|^2` for a plane `F`.
     pub fn stretch_invariant(&self, f: &[f64; 4]) -> f64 {
         let [c, s] = self.direction;
         let (a, b) = (f[0] * c + f[1] * s, f[2] * c + f[3] * s);
@@ -23,10 +23,8 @@ impl FibreFamily {
 }
 
 impl StrainEnergy for FibreFamily {
-    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 4], _f33: D) -> D {
-        let [c, s] = self.direction;
-        let (a, b) = (f[0] * c + f[1] * s, f[2] * c + f[3] * s);
-        let i4 = a * a + b * b;
+    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 9]) -> D {
+        let i4 = super::stretch_invariant(f, self.direction);
         let lf2 = self.prestretch * self.prestretch;
         if self.tension_only && i4.re() < lf2 {
             return D::from(0.0);

@@ -2,7 +2,7 @@
 //! `Ibar1 = J^(-2/3) I1`; `mu` is the shear modulus and `Jm` bounds `Ibar1 - 3` (the chains'
 //! limiting extensibility). It tends to neo-Hookean as `Jm -> inf`.
 
-use super::isotropic::{invariant_response, invariant_stress, plane_invariants, PlaneInvariantEnergy};
+use super::isotropic::{invariant_response, invariant_stress, plane_invariants, Invariants, IsotropicEnergy};
 use super::{Response, StrainEnergy, Tensor2};
 use crate::error::{Error, Result};
 use num_dual::DualNum;
@@ -16,16 +16,14 @@ pub struct Gent {
 
 impl Gent {
     /// `(Ibar1 - 3) / Jm`, which must stay below 1.
-    fn extension<D: DualNum<Primitive = f64> + Copy>(&self, t: D, q: D, f33: D) -> D {
-        let i1 = t + f33 * f33;
-        let j = q * f33;
-        (i1 * (j.ln() * (-2.0 / 3.0)).exp() - 3.0) / self.jm
+    fn extension<D: DualNum<Primitive = f64> + Copy>(&self, inv: &Invariants<D>) -> D {
+        (inv.i1 * (inv.j.ln() * (-2.0 / 3.0)).exp() - 3.0) / self.jm
     }
 
     /// An error at a deformation beyond the limiting extensibility (where `W` is infinite).
     fn check_extensibility(&self, f: &Tensor2) -> Result<()> {
         let (t, q) = plane_invariants(f);
-        let x = self.extension(t, q, 1.0);
+        let x = self.extension(&Invariants::plane(t, q, 1.0));
         if x < 1.0 {
             Ok(())
         } else {
@@ -34,18 +32,17 @@ impl Gent {
     }
 }
 
-impl PlaneInvariantEnergy for Gent {
-    fn invariant_density<D: DualNum<Primitive = f64> + Copy>(&self, t: D, q: D, f33: D) -> D {
-        let ln_j = (q * f33).ln();
-        let x = self.extension(t, q, f33);
+impl IsotropicEnergy for Gent {
+    fn isotropic_density<D: DualNum<Primitive = f64> + Copy>(&self, inv: &Invariants<D>) -> D {
+        let ln_j = inv.j.ln();
+        let x = self.extension(inv);
         (-x).ln_1p() * (-0.5 * self.mu * self.jm) + ln_j * ln_j * (0.5 * self.bulk)
     }
 }
 
 impl StrainEnergy for Gent {
-    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 4], f33: D) -> D {
-        let (t, q) = plane_invariants(f);
-        self.invariant_density(t, q, f33)
+    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 9]) -> D {
+        self.isotropic_density(&Invariants::of_gradient(f))
     }
 
     fn plane_response(&self, f: &Tensor2) -> Response {

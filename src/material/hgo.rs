@@ -16,19 +16,22 @@ pub struct HgoFamily {
 }
 
 impl HgoFamily {
-    /// The strain-like invariant `E` (generic over dual numbers).
-    pub fn strain<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 4], f33: D) -> D {
-        let [c, s] = self.direction;
-        let (a, b) = (f[0] * c + f[1] * s, f[2] * c + f[3] * s);
-        let i4 = a * a + b * b;
-        let i1 = f[0] * f[0] + f[1] * f[1] + f[2] * f[2] + f[3] * f[3] + f33 * f33;
+    /// The strain-like invariant `E` of a full `F` (generic over dual numbers).
+    pub fn strain<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 9]) -> D {
+        let i4 = super::stretch_invariant(f, self.direction);
+        let i1 = f.iter().fold(D::zero(), |s, x| s + *x * *x);
         (i1 - 3.0) * self.kappa + (i4 - 1.0) * (1.0 - 3.0 * self.kappa)
+    }
+
+    /// `E` of a plane `F` (`F33 = 1`).
+    pub fn plane_strain(&self, f: &Tensor2) -> f64 {
+        self.strain(&super::plane_gradient(f, 1.0))
     }
 }
 
 impl StrainEnergy for HgoFamily {
-    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 4], f33: D) -> D {
-        let e = self.strain(f, f33);
+    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 9]) -> D {
+        let e = self.strain(f);
         if self.tension_only && e.re() < 0.0 {
             return D::from(0.0);
         }
@@ -53,7 +56,7 @@ impl HgoFamily {
     /// With `g = dE/dF = 2 kappa F + 2 (1 - 3 kappa) F N (x) N` and `s = k1 E exp(k2 E^2)`:
     /// `P = s g` and `A = k1 exp(k2 E^2) (1 + 2 k2 E^2) g (x) g + s dg/dF`.
     fn closed_response(&self, f: &Tensor2) -> Response {
-        let e = self.strain(f, 1.0);
+        let e = self.plane_strain(f);
         if self.tension_only && e < 0.0 {
             return Response {
                 energy: 0.0,

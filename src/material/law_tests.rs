@@ -204,3 +204,90 @@ fn ogden_stretch_sum_is_smooth_across_the_switch_to_its_series() {
         }
     }
 }
+
+/// Full 3x3 gradients: general, equibiaxial (two stretches equal), isotropic (three equal),
+/// nearly isotropic, each rotated so that no principal axis is a coordinate axis.
+fn full_gradients() -> Vec<[f64; 9]> {
+    let rotation = |a: f64, b: f64| {
+        let (ca, sa, cb, sb) = (a.cos(), a.sin(), b.cos(), b.sin());
+        // R_z(a) R_x(b).
+        [ca, -sa * cb, sa * sb, sa, ca * cb, -ca * sb, 0.0, sb, cb]
+    };
+    let times = |p: &[f64; 9], q: &[f64; 9]| -> [f64; 9] {
+        std::array::from_fn(|k| (0..3).map(|l| p[3 * (k / 3) + l] * q[3 * l + k % 3]).sum())
+    };
+    let diagonal = |a: f64, b: f64, c: f64| [a, 0.0, 0.0, 0.0, b, 0.0, 0.0, 0.0, c];
+    let r = rotation(0.4, 1.1);
+    let r2 = rotation(-0.7, 0.3);
+    let mut list = vec![
+        times(&r, &times(&diagonal(0.7, 1.3, 1.05), &r2)),
+        times(&r, &times(&diagonal(0.8, 1.45, 0.8), &r2)),
+        times(&r, &diagonal(0.9, 0.9, 0.9)),
+        times(&r, &times(&diagonal(1.0, 1.0 + 1e-4, 1.0 - 2e-4), &r2)),
+        times(&r, &times(&diagonal(1.0, 1.0 + 3e-3, 1.0 - 1e-3), &r2)),
+        [0.9, 0.2, -0.1, 0.05, 1.2, 0.15, -0.2, 0.1, 0.85],
+    ];
+    list.push(diagonal(0.6, 1.5, 0.6));
+    list
+}
+
+/// Every law on the full 3x3 gradient: its hyper-dual stress and tangent against central
+/// differences of its energy and stress, frame indifference, and plane strain as its
+/// restriction (the plane fast path against the full tangent's in-plane block).
+#[test]
+fn every_law_on_the_full_gradient_is_differentiable_objective_and_restricts_to_plane_strain() {
+    let h = 1e-6;
+    for (name, m) in super::tests::materials() {
+        for f in full_gradients() {
+            let r = full_response(&m, &f).unwrap();
+            let scale = r.tangent.iter().flatten().fold(1.0f64, |s, x| s.max(x.abs()));
+            for b in 0..9 {
+                let (mut fp, mut fm) = (f, f);
+                fp[b] += h;
+                fm[b] -= h;
+                let (rp, rm) = (full_response(&m, &fp).unwrap(), full_response(&m, &fm).unwrap());
+                let fd = (rp.energy - rm.energy) / (2.0 * h);
+                assert!(
+                    (r.stress[b] - fd).abs() < 1e-6 * scale,
+                    "{name} F={f:?}: P[{b}] {} vs {fd}",
+                    r.stress[b]
+                );
+                for a in 0..9 {
+                    let fd = (rp.stress[a] - rm.stress[a]) / (2.0 * h);
+                    assert!(
+                        (r.tangent[a][b] - fd).abs() < 1e-6 * scale,
+                        "{name} F={f:?}: A[{a}][{b}] {} vs {fd}",
+                        r.tangent[a][b]
+                    );
+                }
+            }
+            // W(Q F) = W(F) for a rotation about a skew axis.
+            let (c, s) = (0.8f64.cos(), 0.8f64.sin());
+            let q = [c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c];
+            let qf: [f64; 9] = std::array::from_fn(|k| (0..3).map(|l| q[3 * (k / 3) + l] * f[3 * l + k % 3]).sum());
+            let w = full_response(&m, &qf).unwrap().energy;
+            assert!(
+                (w - r.energy).abs() <= 1e-12 * r.energy.abs().max(1.0),
+                "{name}: W(QF) {w} vs {}",
+                r.energy
+            );
+        }
+        for f in [[1.0, 0.0, 0.0, 1.0], [0.8, 0.0, 0.0, 0.8], [0.7, 0.2, -0.1, 1.3]] {
+            let plane = m.response(&f).unwrap();
+            let full = full_response(&m, &plane_gradient(&f, 1.0)).unwrap();
+            let index = [0, 1, 3, 4];
+            let scale = plane.tangent.iter().flatten().fold(1.0f64, |s, x| s.max(x.abs()));
+            assert!((plane.energy - full.energy).abs() < 1e-13 * scale, "{name}: W");
+            for a in 0..4 {
+                assert!(
+                    (plane.stress[a] - full.stress[index[a]]).abs() < 1e-12 * scale,
+                    "{name}: P[{a}]"
+                );
+                for b in 0..4 {
+                    let (x, y) = (plane.tangent[a][b], full.tangent[index[a]][index[b]]);
+                    assert!((x - y).abs() < 1e-12 * scale, "{name} F={f:?}: A[{a}][{b}] {x} vs {y}");
+                }
+            }
+        }
+    }
+}

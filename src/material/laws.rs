@@ -43,8 +43,8 @@ macro_rules! fibre {
 }
 
 impl StrainEnergy for Matrix {
-    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 4], f33: D) -> D {
-        matrix!(self, m => m.density(f, f33))
+    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 9]) -> D {
+        matrix!(self, m => m.density(f))
     }
 
     fn plane_response(&self, f: &Tensor2) -> Response {
@@ -88,8 +88,8 @@ impl Matrix {
 }
 
 impl StrainEnergy for Fibre {
-    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 4], f33: D) -> D {
-        fibre!(self, m => m.density(f, f33))
+    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 9]) -> D {
+        fibre!(self, m => m.density(f))
     }
 
     fn plane_response(&self, f: &Tensor2) -> Response {
@@ -117,7 +117,7 @@ impl Fibre {
     pub fn near_kink(&self, f: &Tensor2, tolerance: f64) -> bool {
         match self {
             Fibre::Quadratic(q) => q.tension_only && (q.stretch_invariant(f) - q.prestretch.powi(2)).abs() < tolerance,
-            Fibre::Hgo(h) => h.tension_only && h.strain(f, 1.0).abs() < tolerance,
+            Fibre::Hgo(h) => h.tension_only && h.plane_strain(f).abs() < tolerance,
         }
     }
 }

@@ -5,8 +5,11 @@
 //! is the default for a law without them and the independent check of them in the tests. The
 //! homogeneous state, the stability analysis and the finite elements all call this one code path.
 //!
-//! Conventions: `F` is stored row-major as `[F11, F12, F21, F22]` (index `2 i + J` for `F_iJ`),
-//! with `F33 = 1`; invariants are the 3D ones (`J = det F`, `I1 = tr C + 1`).
+//! Conventions: every energy is written on the full 3x3 `F` (row-major, index `3 i + J` for
+//! `F_iJ`); plane strain is its restriction `F = [[F2, 0], [0, 1]]`, with `F2` stored row-major
+//! as `[F11, F12, F21, F22]` (index `2 i + J`) and the 3D invariants (`J = det F`,
+//! `I1 = tr C + 1`). The plane stress and tangent, which the finite elements call, have their
+//! own fast evaluations; [`full_response`] gives the 3D ones.
 
 pub mod ellipticity;
 mod fibre;
@@ -37,10 +40,9 @@ pub type Tensor2 = [f64; 4];
 /// A fourth-order tensor in plane strain, `A[2i+J][2k+L] = d2W / dF_iJ dF_kL`.
 pub type Tensor4 = [[f64; 4]; 4];
 
-/// A strain-energy density. `f33` is the out-of-plane stretch: 1 in plane strain; it is a
-/// variable only so that the out-of-plane stress `sigma_33` follows by differentiation too.
+/// A strain-energy density on the full 3x3 deformation gradient.
 pub trait StrainEnergy: Send + Sync {
-    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 4], f33: D) -> D;
+    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 9]) -> D;
 
     /// `W`, `P` and `A` in plane strain (`F33 = 1`) at a gradient with `J > 0`: by second-order
     /// automatic differentiation of [`StrainEnergy::density`] unless a law overrides it with
@@ -64,7 +66,9 @@ pub trait StrainEnergy: Send + Sync {
 /// `W`, `P = dW/dF` and `A = d2W/dF dF` of `density` by hyper-dual numbers (`F33 = 1`).
 pub fn differentiated_response<M: StrainEnergy + ?Sized>(m: &M, f: &Tensor2) -> Response {
     let (w, g, h) = hessian(
-        |x: SVector<Dual2SVec64<4>, 4>| m.density(&[x[0], x[1], x[2], x[3]], Dual2SVec64::from_re(1.0)),
+        |x: SVector<Dual2SVec64<4>, 4>| {
+            m.density(&plane_gradient(&[x[0], x[1], x[2], x[3]], Dual2SVec64::from_re(1.0)))
+        },
         &SVector::from(*f),
     );
     Response {
@@ -77,10 +81,60 @@ pub fn differentiated_response<M: StrainEnergy + ?Sized>(m: &M, f: &Tensor2) -> 
 /// `W` and `P = dW/dF` of `density` by dual numbers (`F33 = 1`).
 pub fn differentiated_stress<M: StrainEnergy + ?Sized>(m: &M, f: &Tensor2) -> (f64, Tensor2) {
     let (w, g) = gradient(
-        |x: SVector<DualSVec64<4>, 4>| m.density(&[x[0], x[1], x[2], x[3]], DualSVec64::from_re(1.0)),
+        |x: SVector<DualSVec64<4>, 4>| m.density(&plane_gradient(&[x[0], x[1], x[2], x[3]], DualSVec64::from_re(1.0))),
         &SVector::from(*f),
     );
     (w, [g[0], g[1], g[2], g[3]])
+}
+
+/// The full gradient `[[F2, 0], [0, F33]]` of a plane one.
+pub fn plane_gradient<D: DualNum<Primitive = f64> + Copy>(f: &[D; 4], f33: D) -> [D; 9] {
+    let zero = D::zero();
+    [f[0], f[1], zero, f[2], f[3], zero, zero, zero, f33]
+}
+
+/// `det F` of a full gradient.
+pub fn determinant<D: DualNum<Primitive = f64> + Copy>(f: &[D; 9]) -> D {
+    f[0] * (f[4] * f[8] - f[5] * f[7]) - f[1] * (f[3] * f[8] - f[5] * f[6]) + f[2] * (f[3] * f[7] - f[4] * f[6])
+}
+
+/// `I4 = |F N|^2` of a full gradient along the in-plane unit direction `N = (n1, n2, 0)`.
+pub fn stretch_invariant<D: DualNum<Primitive = f64> + Copy>(f: &[D; 9], n: [f64; 2]) -> D {
+    (0..3).fold(D::zero(), |s, i| {
+        let a = f[3 * i] * n[0] + f[3 * i + 1] * n[1];
+        s + a * a
+    })
+}
+
+/// Energy, stress and tangent of a full 3x3 `F`.
+#[derive(Clone, Copy, Debug)]
+pub struct FullResponse {
+    pub energy: f64,
+    /// `P_iJ` at index `3 i + J`.
+    pub stress: [f64; 9],
+    /// `A_iJkL = d2W / dF_iJ dF_kL` at `[3 i + J][3 k + L]`.
+    pub tangent: [[f64; 9]; 9],
+}
+
+/// `W`, `P` and `A` of a full 3x3 `F` (with `J > 0`) by hyper-dual differentiation of the
+/// energy: the moduli of any law at any state, for analyses beyond plane strain.
+pub fn full_response<M: StrainEnergy + ?Sized>(m: &M, f: &[f64; 9]) -> Result<FullResponse> {
+    let j = determinant(f);
+    if !(j > 0.0 && j.is_finite()) {
+        return Err(Error::NonPositiveJacobian { jacobian: j });
+    }
+    let (energy, g, h) = hessian(
+        |x: SVector<Dual2SVec64<9>, 9>| m.density(&std::array::from_fn(|i| x[i])),
+        &SVector::from(*f),
+    );
+    if !energy.is_finite() {
+        return Err(Error::NonFinite("the energy of a full deformation gradient".into()));
+    }
+    Ok(FullResponse {
+        energy,
+        stress: std::array::from_fn(|a| g[a]),
+        tangent: std::array::from_fn(|a| std::array::from_fn(|b| h[(a, b)])),
+    })
 }
 
 /// Adds the terms of a pressure `p` conjugate to `ln J` (an energy `p ln J`, the multiplier of
@@ -168,7 +222,7 @@ pub trait Hyperelastic: StrainEnergy {
     /// `W(F)`.
     fn energy(&self, f: &Tensor2) -> Result<f64> {
         check_state(self, f)?;
-        Ok(self.density(f, 1.0))
+        Ok(self.density(&plane_gradient(f, 1.0)))
     }
 
     /// First Piola-Kirchhoff stress `P = dW/dF`.
@@ -192,7 +246,7 @@ pub trait Hyperelastic: StrainEnergy {
     fn cauchy(&self, f: &Tensor2) -> Result<CauchyStress> {
         let j = check_state(self, f)?;
         let (_, p) = gradient(
-            |x: SVector<DualSVec64<5>, 5>| self.density(&[x[0], x[1], x[2], x[3]], x[4]),
+            |x: SVector<DualSVec64<5>, 5>| self.density(&plane_gradient(&[x[0], x[1], x[2], x[3]], x[4])),
             &SVector::from([f[0], f[1], f[2], f[3], 1.0]),
         );
         Ok([

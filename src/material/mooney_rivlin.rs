@@ -1,7 +1,7 @@
 //! Compressible Mooney-Rivlin solid: `W = C1 (Ibar1 - 3) + C2 (Ibar2 - 3) + K/2 (ln J)^2`, with
 //! `Ibar1 = J^(-2/3) I1`, `Ibar2 = J^(-4/3) I2`; its shear modulus is `2 (C1 + C2)`.
 
-use super::isotropic::{invariant_response, invariant_stress, plane_invariants, PlaneInvariantEnergy};
+use super::isotropic::{invariant_response, invariant_stress, Invariants, IsotropicEnergy};
 use super::{Response, StrainEnergy, Tensor2};
 use num_dual::DualNum;
 
@@ -12,22 +12,17 @@ pub struct MooneyRivlin {
     pub bulk: f64,
 }
 
-impl PlaneInvariantEnergy for MooneyRivlin {
-    fn invariant_density<D: DualNum<Primitive = f64> + Copy>(&self, t: D, q: D, f33: D) -> D {
-        let f33_squared = f33 * f33;
-        let i1 = t + f33_squared;
-        let i2 = q * q + f33_squared * t;
-        let j = q * f33;
-        let ln_j = j.ln();
+impl IsotropicEnergy for MooneyRivlin {
+    fn isotropic_density<D: DualNum<Primitive = f64> + Copy>(&self, inv: &Invariants<D>) -> D {
+        let ln_j = inv.j.ln();
         let a = (ln_j * (-2.0 / 3.0)).exp();
-        (i1 * a - 3.0) * self.c1 + (i2 * a * a - 3.0) * self.c2 + ln_j * ln_j * (0.5 * self.bulk)
+        (inv.i1 * a - 3.0) * self.c1 + (inv.i2 * a * a - 3.0) * self.c2 + ln_j * ln_j * (0.5 * self.bulk)
     }
 }
 
 impl StrainEnergy for MooneyRivlin {
-    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 4], f33: D) -> D {
-        let (t, q) = plane_invariants(f);
-        self.invariant_density(t, q, f33)
+    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 9]) -> D {
+        self.isotropic_density(&Invariants::of_gradient(f))
     }
 
     fn plane_response(&self, f: &Tensor2) -> Response {

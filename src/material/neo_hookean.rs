@@ -12,9 +12,9 @@ pub struct NeoHookean {
 }
 
 impl StrainEnergy for NeoHookean {
-    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 4], f33: D) -> D {
-        let j = (f[0] * f[3] - f[1] * f[2]) * f33;
-        let i1 = f[0] * f[0] + f[1] * f[1] + f[2] * f[2] + f[3] * f[3] + f33 * f33;
+    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 9]) -> D {
+        let j = super::determinant(f);
+        let i1 = f.iter().fold(D::zero(), |s, x| s + *x * *x);
         let isochoric_i1 = i1 * j.powf(-2.0 / 3.0);
         let ln_j = j.ln();
         (isochoric_i1 - 3.0) * (0.5 * self.mu) + ln_j * ln_j * (0.5 * self.bulk)

@@ -2,12 +2,10 @@
 //! `W = sum_p 2 mu_p / alpha_p^2 (Lbar1^alpha_p + Lbar2^alpha_p + Lbar3^alpha_p - 3) + K/2 (ln J)^2`,
 //! with `Lbar_i = J^(-1/3) lambda_i` the isochoric principal stretches. Each `mu_p > 0` and the
 //! shear modulus is `sum_p mu_p`; one term with `alpha = 2` is the neo-Hookean solid.
-//! The in-plane stretches enter only through `lambda_1^a + lambda_2^a`, a symmetric function
-//! evaluated smoothly where they coincide ([`principal_power_sum`]).
+//! The stretches enter only through `lambda_1^a + lambda_2^a + lambda_3^a`, a symmetric function
+//! evaluated smoothly where they coincide ([`Invariants::stretch_power_sum`]).
 
-use super::isotropic::{
-    invariant_response, invariant_stress, plane_invariants, principal_power_sum, PlaneInvariantEnergy,
-};
+use super::isotropic::{invariant_response, invariant_stress, Invariants, IsotropicEnergy};
 use super::{Response, StrainEnergy, Tensor2};
 use num_dual::DualNum;
 
@@ -39,13 +37,12 @@ impl Ogden {
     }
 }
 
-impl PlaneInvariantEnergy for Ogden {
-    fn invariant_density<D: DualNum<Primitive = f64> + Copy>(&self, t: D, q: D, f33: D) -> D {
-        let ln_j = (q * f33).ln();
+impl IsotropicEnergy for Ogden {
+    fn isotropic_density<D: DualNum<Primitive = f64> + Copy>(&self, inv: &Invariants<D>) -> D {
+        let ln_j = inv.j.ln();
         let mut w = ln_j * ln_j * (0.5 * self.bulk);
         for &(mu, alpha) in self.pairs() {
-            // sum_i lambda_i^alpha = (c1^(alpha/2) + c2^(alpha/2)) + F33^alpha.
-            let stretches = principal_power_sum(t, q, 0.5 * alpha) + f33.powf(alpha);
+            let stretches = inv.stretch_power_sum(alpha);
             let isochoric = (ln_j * (-alpha / 3.0)).exp();
             w += (stretches * isochoric - 3.0) * (2.0 * mu / (alpha * alpha));
         }
@@ -54,9 +51,8 @@ impl PlaneInvariantEnergy for Ogden {
 }
 
 impl StrainEnergy for Ogden {
-    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 4], f33: D) -> D {
-        let (t, q) = plane_invariants(f);
-        self.invariant_density(t, q, f33)
+    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 9]) -> D {
+        self.isotropic_density(&Invariants::of_gradient(f))
     }
 
     fn plane_response(&self, f: &Tensor2) -> Response {

@@ -18,9 +18,9 @@ pub struct FibreReinforced {
 }
 
 impl StrainEnergy for FibreReinforced {
-    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 4], f33: D) -> D {
-        let fibres = self.fibres[0].density(f, f33) + self.fibres[1].density(f, f33);
-        self.matrix.density(f, f33) * self.matrix_fraction + fibres * self.fibre_fraction
+    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 9]) -> D {
+        let fibres = self.fibres[0].density(f) + self.fibres[1].density(f);
+        self.matrix.density(f) * self.matrix_fraction + fibres * self.fibre_fraction
     }
 
     fn plane_response(&self, f: &Tensor2) -> Response {
@@ -57,10 +57,10 @@ pub enum Tissue {
 }
 
 impl StrainEnergy for Tissue {
-    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 4], f33: D) -> D {
+    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 9]) -> D {
         match self {
-            Tissue::Layer(m) => m.density(f, f33),
-            Tissue::Substrate(m) => m.density(f, f33),
+            Tissue::Layer(m) => m.density(f),
+            Tissue::Substrate(m) => m.density(f),
         }
     }
 
