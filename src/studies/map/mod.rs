@@ -506,6 +506,28 @@ mod tests {
     }
 
     #[test]
+    fn a_law_constant_is_an_axis_when_its_law_is_in_use() {
+        let mut ogden = Parameters::default();
+        ogden.set("layer.law=ogden").unwrap();
+        ogden.set("layer.alpha=-25").unwrap();
+        axis("layer.alpha", -25.0, -2.0, false).validate("x", &ogden).unwrap();
+        let message = axis("layer.alpha", -25.0, -2.0, false)
+            .validate("x", &Parameters::default())
+            .unwrap_err()
+            .to_string();
+        assert!(message.contains("layer.alpha") && message.contains("mu_l"), "{message}");
+        let mut p = ogden.clone();
+        p.set_number("layer.alpha", -5.0).unwrap();
+        assert_eq!(
+            p.layer,
+            crate::parameters::MatrixLaw::Ogden {
+                mu: vec![10.0],
+                alpha: vec![-5.0]
+            }
+        );
+    }
+
+    #[test]
     fn axes_are_spaced_as_asked_and_bad_ones_name_their_flag() {
         assert_eq!(axis("mu_l", 1.0, 100.0, true).values(), vec![1.0, 10.0, 100.0]);
         assert_eq!(axis("beta", 0.0, 1.0, false).values(), vec![0.0, 0.5, 1.0]);
