@@ -7,7 +7,7 @@
 mod common;
 
 use common::{scratch, Rng};
-use fiberfold::parameters::{is_boolean, Parameters, PARAMETER_NAMES};
+use fiberfold::parameters::{is_boolean, parameter_names, Parameters};
 use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -71,7 +71,13 @@ fn random_toml(rng: &mut Rng) -> String {
         }
         let i = rng.below(lines.len());
         match rng.below(6) {
-            0 => lines[i] = format!("{} = {}", rng.pick(&PARAMETER_NAMES), random_value(rng)),
+            0 => {
+                lines[i] = format!(
+                    "{} = {}",
+                    rng.pick(&parameter_names().collect::<Vec<_>>()),
+                    random_value(rng)
+                )
+            }
             1 => {
                 lines[i] = format!(
                     "{} = {}",
@@ -178,13 +184,17 @@ fn parsers_never_panic_on_generated_input() {
         match parsed.unwrap_or_else(|_| panic!("panic on {text:?}")) {
             Ok(p) => {
                 accepted += 1;
-                for name in PARAMETER_NAMES.iter().filter(|&&n| !is_boolean(n)) {
+                for name in parameter_names().filter(|n| !is_boolean(n)).collect::<Vec<_>>().iter() {
                     assert!(p.number(name).unwrap().is_finite(), "{name} not finite from {text:?}");
                 }
             }
             Err(e) => assert!(e.is_user_input(), "{e} from {text:?}"),
         }
-        let assignment = format!("{}={}", rng.pick(&PARAMETER_NAMES), random_value(&mut rng));
+        let assignment = format!(
+            "{}={}",
+            rng.pick(&parameter_names().collect::<Vec<_>>()),
+            random_value(&mut rng)
+        );
         let mut p = Parameters::default();
         let result = std::panic::catch_unwind(move || p.set(&assignment).and_then(|()| p.validate()));
         if let Ok(Err(e)) = &result {
@@ -220,7 +230,11 @@ fn the_binary_exits_0_1_or_2_on_generated_command_lines() {
                 for _ in 0..1 + rng.below(2) {
                     args.extend([
                         "--set".into(),
-                        format!("{}={}", rng.pick(&PARAMETER_NAMES), random_value(&mut rng)),
+                        format!(
+                            "{}={}",
+                            rng.pick(&parameter_names().collect::<Vec<_>>()),
+                            random_value(&mut rng)
+                        ),
                     ]);
                 }
             }

@@ -3,6 +3,7 @@
 //! `--set`. The shear modulus (`mu_l`, `mu_s`) and the bulk modulus (`K_l`, `K_s`) of a matrix
 //! law stay the flat keys, whatever the law: they fix the units and the contrast.
 
+use super::table::{MODULUS_MAX, MODULUS_MIN};
 use crate::error::{Error, Result};
 use serde::Serialize;
 
@@ -311,9 +312,6 @@ impl FibreLaw {
         Ok(())
     }
 }
-
-pub(super) const MODULUS_MIN: f64 = 1e-12;
-pub(super) const MODULUS_MAX: f64 = 1e12;
 
 pub(super) fn not_a_constant(key: &str, law: &str, constants: &[&str]) -> Error {
     Error::NotAConstant {

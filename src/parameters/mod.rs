@@ -5,11 +5,13 @@
 //! modulus (so `mu_s = 1` by default).
 
 mod laws;
+mod table;
 
 pub use laws::{FibreLaw, MatrixLaw, FIBRE_LAWS, MATRIX_LAWS};
+pub use table::{help as set_help, Kind, Range, Spec, TABLE};
 
 use crate::error::{Error, Result};
-use laws::{number, MODULUS_MAX, MODULUS_MIN};
+use laws::number;
 use serde::{Deserialize, Deserializer, Serialize};
 use std::path::Path;
 
@@ -52,48 +54,45 @@ pub struct Parameters {
 }
 
 impl Default for Parameters {
-    /// The paper's Table 1 (benchmark values) with horizontal fibres.
+    /// The paper's Table 1 (benchmark values) with horizontal fibres: the defaults of [`TABLE`].
     fn default() -> Self {
-        Parameters {
-            mu_l: 10.0,
-            K_l: 30.0,
-            mu_s: 1.0,
-            K_s: 3.0,
-            phi_m: 0.9,
-            phi_f: 0.1,
-            mu_f: 10.0,
-            lambda_f: 1.0,
+        let mut p = Parameters {
+            mu_l: 0.0,
+            K_l: 0.0,
+            mu_s: 0.0,
+            K_s: 0.0,
+            phi_m: 0.0,
+            phi_f: 0.0,
+            mu_f: 0.0,
+            lambda_f: 0.0,
             beta: 0.0,
             tension_only: false,
             incompressible: false,
             layer: MatrixLaw::NeoHookean,
             substrate: MatrixLaw::NeoHookean,
             fibres: FibreLaw::Quadratic,
+        };
+        for s in &TABLE {
+            match s.kind {
+                Kind::Number { default, field, .. } => *field(&mut p) = default,
+                Kind::Flag { default, field } => *field(&mut p) = default,
+            }
         }
+        p
     }
 }
 
 /// The flat parameter names, in the order they are printed.
-pub const PARAMETER_NAMES: [&str; 11] = [
-    "mu_l",
-    "K_l",
-    "mu_s",
-    "K_s",
-    "phi_m",
-    "phi_f",
-    "mu_f",
-    "lambda_f",
-    "beta",
-    "tension_only",
-    "incompressible",
-];
+pub fn parameter_names() -> impl Iterator<Item = &'static str> {
+    TABLE.iter().map(|s| s.name)
+}
 
 /// The tables of the laws (`[layer]` in a file, `layer.KEY` with `--set`).
 pub const LAW_TABLES: [&str; 3] = ["layer", "substrate", "fibres"];
 
 /// The parameters that are `true` or `false` (the others are numbers, law names or lists).
 pub fn is_boolean(key: &str) -> bool {
-    matches!(key, "tension_only" | "incompressible" | "fibres.tension_only")
+    key == "fibres.tension_only" || matches!(table::spec(key).map(|s| &s.kind), Some(Kind::Flag { .. }))
 }
 
 impl Parameters {
@@ -171,37 +170,23 @@ impl Parameters {
             }
             return Ok(());
         }
-        if is_boolean(key) {
-            let flag = match value {
-                toml::Value::Boolean(b) => *b,
+        let spec = table::spec(key).ok_or_else(|| unknown_parameter(key))?;
+        match spec.kind {
+            Kind::Flag { field, .. } => match value {
+                toml::Value::Boolean(b) => *field(self) = *b,
                 other => return Err(Error::invalid(key, other, "true or false")),
-            };
-            match key {
-                "tension_only" => self.tension_only = flag,
-                _ => self.incompressible = flag,
-            }
-            return Ok(());
-        }
-        let x = number(key, value)?;
-        match key {
-            "mu_l" => set_shear_modulus(&mut self.mu_l, &mut self.layer, x),
-            "mu_s" => set_shear_modulus(&mut self.mu_s, &mut self.substrate, x),
-            "K_l" => self.K_l = x,
-            "K_s" => self.K_s = x,
-            "phi_m" => self.phi_m = x,
-            "phi_f" => self.phi_f = x,
-            "beta" => self.beta = x,
-            "mu_f" | "lambda_f" => {
-                if self.fibres != FibreLaw::Quadratic {
-                    return Err(law_lacks(key, self.fibres.name(), self.fibres.constants()));
+            },
+            Kind::Number { field, .. } => {
+                let x = number(key, value)?;
+                match key {
+                    "mu_l" => set_shear_modulus(&mut self.mu_l, &mut self.layer, x),
+                    "mu_s" => set_shear_modulus(&mut self.mu_s, &mut self.substrate, x),
+                    "mu_f" | "lambda_f" if self.fibres != FibreLaw::Quadratic => {
+                        return Err(law_lacks(key, self.fibres.name(), self.fibres.constants()));
+                    }
+                    _ => *field(self) = x,
                 }
-                *(if key == "mu_f" {
-                    &mut self.mu_f
-                } else {
-                    &mut self.lambda_f
-                }) = x;
             }
-            _ => return Err(unknown_parameter(key)),
         }
         Ok(())
     }
@@ -261,9 +246,13 @@ impl Parameters {
 
     /// The `true`/`false` parameter called `key` ([`is_boolean`]).
     pub fn flag(&self, key: &str) -> Result<bool> {
-        match key {
-            "tension_only" | "fibres.tension_only" => Ok(self.tension_only),
-            "incompressible" => Ok(self.incompressible),
+        let key = if key == "fibres.tension_only" {
+            "tension_only"
+        } else {
+            key
+        };
+        match table::spec(key).map(|s| &s.kind) {
+            Some(Kind::Flag { field, .. }) => Ok(*field(&mut self.clone())),
             _ => Err(unknown_parameter(key)),
         }
     }
@@ -271,27 +260,22 @@ impl Parameters {
     /// The numeric parameter called `key`: a flat one, or a constant of a law in use
     /// (`layer.alpha` of a one-term Ogden layer, `fibres.k1`, ...).
     pub fn number(&self, key: &str) -> Result<f64> {
-        Ok(match key {
-            "mu_l" | "layer.mu" if !matches!(self.layer, MatrixLaw::Ogden { .. }) => self.mu_l,
-            "mu_s" | "substrate.mu" if !matches!(self.substrate, MatrixLaw::Ogden { .. }) => self.mu_s,
-            "mu_l" => self.mu_l,
-            "mu_s" => self.mu_s,
-            "K_l" | "layer.K" => self.K_l,
-            "K_s" | "substrate.K" => self.K_s,
-            "phi_m" => self.phi_m,
-            "phi_f" => self.phi_f,
-            "beta" => self.beta,
-            "mu_f" | "lambda_f" | "fibres.mu_f" | "fibres.lambda_f" => {
-                if self.fibres != FibreLaw::Quadratic {
-                    return Err(law_lacks(key, self.fibres.name(), self.fibres.constants()));
-                }
-                if key.ends_with("mu_f") {
-                    self.mu_f
-                } else {
-                    self.lambda_f
-                }
-            }
-            _ => match key.split_once('.') {
+        let flat = match key {
+            "layer.mu" if !matches!(self.layer, MatrixLaw::Ogden { .. }) => "mu_l",
+            "substrate.mu" if !matches!(self.substrate, MatrixLaw::Ogden { .. }) => "mu_s",
+            "layer.K" => "K_l",
+            "substrate.K" => "K_s",
+            "fibres.mu_f" => "mu_f",
+            "fibres.lambda_f" => "lambda_f",
+            other => other,
+        };
+        if matches!(flat, "mu_f" | "lambda_f") && self.fibres != FibreLaw::Quadratic {
+            return Err(law_lacks(key, self.fibres.name(), self.fibres.constants()));
+        }
+        Ok(match table::spec(flat).map(|s| &s.kind) {
+            Some(Kind::Number { field, .. }) => *field(&mut self.clone()),
+            Some(Kind::Flag { .. }) => return Err(unknown_parameter(key)),
+            None => match key.split_once('.') {
                 Some(("layer", name)) if name != "law" => self.layer.number("layer", name)?,
                 Some(("substrate", name)) if name != "law" => self.substrate.number("substrate", name)?,
                 Some(("fibres", name)) if !matches!(name, "law" | "tension_only") => self.fibres.number(name)?,
@@ -302,7 +286,7 @@ impl Parameters {
 
     /// The numeric keys [`Parameters::number`] accepts for the laws in use.
     pub fn numeric_keys(&self) -> Vec<String> {
-        let mut keys: Vec<String> = PARAMETER_NAMES.iter().map(|k| k.to_string()).collect();
+        let mut keys: Vec<String> = parameter_names().map(String::from).collect();
         for (key, _) in self.law_entries() {
             if self.number(&key).is_ok() && !keys.contains(&key) {
                 keys.push(key);
@@ -315,27 +299,19 @@ impl Parameters {
     /// Every parameter as `(key, value)`: the flat keys, then each law table's `law` and own
     /// constants as dotted keys. Setting them in this order gives these parameters back.
     pub fn entries(&self) -> Vec<(String, toml::Value)> {
-        let mut entries: Vec<(String, toml::Value)> = PARAMETER_NAMES
+        let mut copy = self.clone();
+        let mut entries: Vec<(String, toml::Value)> = TABLE
             .iter()
-            .map(|&key| {
-                let value = match self.flag(key) {
-                    Ok(flag) => toml::Value::Boolean(flag),
-                    Err(_) => toml::Value::Float(self.flat_number(key)),
+            .map(|s| {
+                let value = match s.kind {
+                    Kind::Flag { field, .. } => toml::Value::Boolean(*field(&mut copy)),
+                    Kind::Number { field, .. } => toml::Value::Float(*field(&mut copy)),
                 };
-                (key.to_string(), value)
+                (s.name.to_string(), value)
             })
             .collect();
         entries.extend(self.law_entries());
         entries
-    }
-
-    /// The flat number `key`, whichever law is in use (`mu_f` of HGO fibres is kept, unused).
-    fn flat_number(&self, key: &str) -> f64 {
-        match key {
-            "mu_f" => self.mu_f,
-            "lambda_f" => self.lambda_f,
-            _ => self.number(key).expect("a flat numeric key"),
-        }
     }
 
     /// `law` and the own constants of each law table, as dotted keys.
@@ -355,33 +331,7 @@ impl Parameters {
 
     /// Checks every range; the message names the parameter and its allowed range.
     pub fn validate(&self) -> Result<()> {
-        // Moduli within 12 orders of magnitude of the unit mu_s = 1 (K/mu = 1e6 is nearly
-        // incompressible tissue; beyond 1e12 the energy's derivatives lose all precision).
-        let moduli = [
-            ("mu_l", self.mu_l),
-            ("K_l", self.K_l),
-            ("mu_s", self.mu_s),
-            ("K_s", self.K_s),
-        ];
-        for (name, value) in moduli {
-            if !(value.is_finite() && (MODULUS_MIN..=MODULUS_MAX).contains(&value)) {
-                return Err(Error::invalid_number(name, value, modulus_range(name)));
-            }
-        }
-        if !(self.mu_f.is_finite() && (0.0..=MODULUS_MAX).contains(&self.mu_f)) {
-            return Err(Error::invalid_number("mu_f", self.mu_f, "[0, 1e12] (in units of mu_s)"));
-        }
-        if !(self.lambda_f.is_finite() && self.lambda_f > 0.0 && self.lambda_f <= 10.0) {
-            return Err(Error::invalid_number("lambda_f", self.lambda_f, "(0, 10]"));
-        }
-        for (name, value) in [("phi_m", self.phi_m), ("phi_f", self.phi_f)] {
-            if !(value.is_finite() && (0.0..=1.0).contains(&value)) {
-                return Err(Error::invalid(name, value, "[0, 1]"));
-            }
-        }
-        if !self.beta.is_finite() {
-            return Err(Error::invalid("beta", self.beta, "a finite angle in radians"));
-        }
+        table::validate(self)?;
         self.layer.validate("layer", "mu_l", self.mu_l)?;
         self.substrate.validate("substrate", "mu_s", self.mu_s)?;
         self.fibres.validate()
@@ -402,7 +352,10 @@ impl Parameters {
                 }
                 None => key,
             };
-            text.push_str(&format!("{name} = {value}\n"));
+            match table::spec(&name) {
+                Some(spec) => text.push_str(&format!("{name} = {value}  # {}\n", spec.meaning)),
+                None => text.push_str(&format!("{name} = {value}\n")),
+            }
         }
         text
     }
@@ -439,7 +392,7 @@ fn unknown_parameter(key: &str) -> Error {
         name: key.to_string(),
         known: format!(
             "{}, and the law tables {} (e.g. layer.law = {}; fibres.law = {})",
-            PARAMETER_NAMES.join(", "),
+            parameter_names().collect::<Vec<_>>().join(", "),
             LAW_TABLES.join(", "),
             MATRIX_LAWS.join(" | "),
             FIBRE_LAWS.join(" | ")
@@ -453,16 +406,6 @@ pub fn validate_compression(name: &str, d: f64) -> Result<()> {
         Ok(())
     } else {
         Err(Error::invalid(name, d, "[0, 1)"))
-    }
-}
-
-/// The allowed range of the modulus `name`; a bulk modulus beyond it (e.g. `K_s = inf`) is
-/// pointed to exact incompressibility.
-fn modulus_range(name: &str) -> &'static str {
-    if name.starts_with('K') {
-        "a finite number in [1e-12, 1e12] (moduli in units of mu_s; for exactly incompressible layers set incompressible = true)"
-    } else {
-        "a finite number in [1e-12, 1e12] (moduli in units of mu_s)"
     }
 }
 
@@ -483,6 +426,37 @@ mod tests {
         let p = Parameters::default();
         p.validate().unwrap();
         assert_eq!(Parameters::from_toml_str(&p.to_toml()).unwrap(), p);
+    }
+
+    /// Every row of the table: its key is in the help and the parameter file with its default,
+    /// and a value outside its range is refused with that range named.
+    #[test]
+    fn the_table_drives_help_file_and_validation() {
+        let (help, file) = (set_help(), Parameters::default().to_toml());
+        for spec in &TABLE {
+            assert!(
+                file.contains(&format!("{} = ", spec.name)) && file.contains(spec.meaning),
+                "{}",
+                spec.name
+            );
+            if let Kind::Number { default, range, .. } = spec.kind {
+                assert!(
+                    help.contains(&format!("{} ({default}, in {})", spec.name, range.short())),
+                    "{help}"
+                );
+                let outside = match range {
+                    Range::Angle => f64::INFINITY,
+                    _ => -1.0,
+                };
+                let mut p = Parameters::default();
+                p.set_number(spec.name, outside).unwrap();
+                let message = p.validate().unwrap_err().to_string();
+                assert!(
+                    message.contains(spec.name) && message.contains(range.describe()),
+                    "{message}"
+                );
+            }
+        }
     }
 
     #[test]
