@@ -95,7 +95,7 @@ impl Error {
 
     /// [`Error::invalid`] for a number, written shortly (`1e308`, not its 309 digits).
     pub fn invalid_number(name: &str, value: f64, allowed: &str) -> Self {
-        Self::invalid(name, crate::output::table::format_number(value), allowed)
+        Self::invalid(name, crate::format::format_number(value), allowed)
     }
 
     /// Attaches a path to an I/O error.
@@ -111,5 +111,5 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 /// A number as CSV writes it (`2.25e-6`, not `0.0000022500040889396213`).
 fn short(x: f64) -> String {
-    crate::output::table::format_number(x)
+    crate::format::format_number(x)
 }

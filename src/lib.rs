@@ -6,6 +6,7 @@
 
 pub mod error;
 pub mod fem;
+pub mod format;
 pub mod homogeneous;
 pub mod material;
 pub mod mesh;

@@ -10,7 +10,7 @@ use fiberfold::fem::added::NoAddedEnergy;
 use fiberfold::fem::{model_conditions, Newton, System};
 use fiberfold::material::Bilayer;
 use fiberfold::mesh::MeshSpec;
-use fiberfold::protocol::secondary::branch;
+use fiberfold::protocol::secondary::{branch, BranchKind};
 use fiberfold::protocol::{stages, Event, Protocol, StepRecord};
 use fiberfold::Parameters;
 use std::f64::consts::{FRAC_PI_4, PI};
@@ -18,7 +18,7 @@ use std::f64::consts::{FRAC_PI_4, PI};
 /// The records, branch kind and trough depths of a run to `d_max` on `L = D = 40`
 /// (80 x (2 + 12) elements) seeded with four waves, beta = pi/4, and the long-wave imperfection
 /// `(A_2, N_2)`.
-fn four_wave_run(d_max: f64, (a2, n2): (f64, f64)) -> (Vec<StepRecord>, &'static str, Vec<f64>) {
+fn four_wave_run(d_max: f64, (a2, n2): (f64, f64)) -> (Vec<StepRecord>, BranchKind, Vec<f64>) {
     let params = Parameters {
         beta: FRAC_PI_4,
         ..Parameters::default()
@@ -27,11 +27,7 @@ fn four_wave_run(d_max: f64, (a2, n2): (f64, f64)) -> (Vec<StepRecord>, &'static
 }
 
 /// [`four_wave_run`] of the bilayer `params`.
-fn four_wave_run_of(
-    params: &Parameters,
-    d_max: f64,
-    (a2, n2): (f64, f64),
-) -> (Vec<StepRecord>, &'static str, Vec<f64>) {
+fn four_wave_run_of(params: &Parameters, d_max: f64, (a2, n2): (f64, f64)) -> (Vec<StepRecord>, BranchKind, Vec<f64>) {
     let k = 2.0 * PI * 4.0 / 40.0;
     let mut protocol = Protocol::new(k, 0.05, d_max).with_crease_path();
     protocol.newton.inertia_at_solution = true;
@@ -85,16 +81,16 @@ fn a_long_wave_imperfection_leaves_the_unstable_periodic_path_for_a_lower_energy
     let d_max = 0.26;
     let (periodic, kind, depths) = four_wave_run(d_max, (0.0, 0.5));
     let unstable_from = periodic.iter().find(|r| r.negative_pivots.unwrap() > 0).map(|r| r.d);
-    println!("periodic: {kind} {depths:?}, unstable from d = {unstable_from:?}");
-    assert_eq!(kind, "periodic");
+    println!("periodic: {kind:?} {depths:?}, unstable from d = {unstable_from:?}");
+    assert_eq!(kind, BranchKind::Periodic);
     assert!(
         unstable_from.is_some_and(|d| d < d_max - 0.02),
         "the periodic path loses stability"
     );
 
     let (seeded, kind, depths) = four_wave_run(d_max, (0.01, 1.5));
-    println!("seeded: {kind} {depths:?}");
-    assert_eq!(kind, "localised");
+    println!("seeded: {kind:?} {depths:?}");
+    assert_eq!(kind, BranchKind::Localised);
     let (a, b) = (periodic.last().unwrap(), seeded.last().unwrap());
     assert_eq!(a.d, b.d);
     println!(

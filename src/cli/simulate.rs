@@ -5,6 +5,7 @@ use clap::{Args, ValueEnum};
 use fiberfold::fem::memory::{available_bytes, MemoryEstimate};
 use fiberfold::mesh::{ElementKind, MeshSpec};
 use fiberfold::protocol::mode_number;
+use fiberfold::protocol::secondary::BranchKind;
 use fiberfold::studies::simulate::{self, Crossing, Progress, SimulateOptions, SimulateStudy};
 use fiberfold::{Error, Result};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -402,14 +403,14 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         "secondary bifurcations: first at d = {} ({} changes of the inertia); branch followed: {}",
         show(s.d_secondary),
         s.changes.len(),
-        s.branch.kind
+        s.branch.kind.name()
     );
     let first_mode_waves = s
         .changes
         .first()
         .and_then(|c| c.mode_half_waves)
         .map(|m| m as f64 / 2.0);
-    if let (Some(n2), "periodic") = (first_mode_waves, s.branch.kind) {
+    if let (Some(n2), BranchKind::Periodic) = (first_mode_waves, s.branch.kind) {
         if p.imperfection2 == 0.0 {
             println!(
                 "  the first secondary mode has {n2} waves across the domain: to leave the periodic branch, seed it \

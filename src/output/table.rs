@@ -2,6 +2,7 @@
 //! computed. A row with a non-finite number is refused: no NaN ever reaches a file.
 
 use crate::error::{Error, Result};
+use crate::format::format_number;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -100,15 +101,6 @@ pub fn variant_name<T: serde::Serialize>(value: &T) -> String {
         .ok()
         .and_then(|v| v.as_str().map(str::to_string))
         .unwrap_or_default()
-}
-
-/// Shortest round-trip text of a number, scientific when very small or large.
-pub fn format_number(x: f64) -> String {
-    if x == 0.0 || (1e-4..1e6).contains(&x.abs()) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
 }
 
 #[cfg(test)]

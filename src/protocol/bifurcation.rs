@@ -8,13 +8,14 @@
 //! eigenvector of the smallest eigenvalue at the stable end of the bracket, by the Lanczos
 //! method on `K^-1` with the same factor; its wavenumber is the dominant cosine of its top-surface `u_y`.
 
+use super::basic_state::homogeneous_unknowns;
 use crate::error::{Error, Result};
 use crate::fem::added::NoAddedEnergy;
-use crate::fem::boundary::{dof, X, Y};
+use crate::fem::boundary::{dof, Y};
 use crate::fem::lanczos::inverse_lanczos;
 use crate::fem::{model_conditions, Assembled, SparseLdlt, System, Tangent};
-use crate::homogeneous::{constraint_pressure, homogeneous_state, HomogeneousState};
-use crate::material::{jacobian, Bilayer};
+use crate::homogeneous::homogeneous_state;
+use crate::material::Bilayer;
 use crate::mesh::{Mesh, MeshSpec};
 
 use std::f64::consts::PI;
@@ -64,45 +65,6 @@ pub struct Bifurcation {
     pub eigenvalue: f64,
     /// Every `(d, negative pivots)` evaluated, in order.
     pub path: Vec<(f64, usize)>,
-}
-
-/// The homogeneous displacement of `state` on `mesh`: `u_x = -d X`, `u_y = (lambda_2s - 1)(Y + D)`
-/// in the substrate and `(lambda_2s - 1) D + (lambda_2l - 1) Y` in the layer.
-pub fn homogeneous_displacement(mesh: &Mesh, state: &HomogeneousState) -> Vec<f64> {
-    let depth = mesh.spec().depth;
-    let mut u = vec![0.0; mesh.num_dofs()];
-    for (n, &[x, y]) in mesh.coordinates().iter().enumerate() {
-        u[dof(n, X)] = -state.d * x;
-        u[dof(n, Y)] =
-            (state.lambda2_substrate - 1.0) * (y.min(0.0) + depth) + (state.lambda2_layer - 1.0) * y.max(0.0);
-    }
-    u
-}
-
-/// The full unknowns of `system` at the homogeneous `state`: [`homogeneous_displacement`], and
-/// when the system has multipliers each layer's pressure: the one that keeps an incompressible
-/// layer free of `sigma_22`, else `K ln J`.
-pub fn homogeneous_unknowns(system: &System, materials: &Bilayer, state: &HomogeneousState) -> Result<Vec<f64>> {
-    let u = homogeneous_displacement(system.mesh(), state);
-    if !system.has_multipliers() {
-        return Ok(u);
-    }
-    let (layer, substrate) = (state.layer_gradient(), state.substrate_gradient());
-    let (p_layer, p_substrate) = if materials.incompressible {
-        (
-            constraint_pressure(&materials.layer, &layer)?,
-            constraint_pressure(&materials.substrate, &substrate)?,
-        )
-    } else {
-        // K ln J, with the bulk modulus each tissue carries.
-        let (_, layer_bulk) = materials.layer_tissue().volumetric_split();
-        let (_, substrate_bulk) = materials.substrate_tissue().volumetric_split();
-        (
-            layer_bulk * jacobian(&layer).ln(),
-            substrate_bulk * jacobian(&substrate).ln(),
-        )
-    };
-    Ok(system.with_homogeneous_multipliers(u, p_layer, p_substrate))
 }
 
 /// The homogeneous path of one mesh with its (reused) sparse factorisation.

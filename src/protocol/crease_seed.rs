@@ -11,7 +11,7 @@
 //! against the domain and large against the elements): it changes sign at the creasing
 //! threshold, `eps_c ~ 0.35` for an incompressible neo-Hookean solid, far below Biot's 0.456.
 
-use super::bifurcation::homogeneous_unknowns;
+use super::basic_state::homogeneous_unknowns;
 use crate::error::{Error, Result};
 use crate::fem::added::NoAddedEnergy;
 use crate::fem::boundary::{dof, X};

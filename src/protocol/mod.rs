@@ -9,6 +9,7 @@
 //! crease seeded in a homogeneous half-space gives the creasing threshold ([`crease_seed`]).
 
 pub mod augmentation;
+pub mod basic_state;
 pub mod bifurcation;
 pub mod continuation;
 pub mod crease_seed;

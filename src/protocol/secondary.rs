@@ -123,11 +123,33 @@ fn scaled_mode(system: &mut System, bc: &Dirichlet, x: &[f64]) -> Result<Vec<f64
 }
 
 /// The branch a path ended on: the depth below the highest surface point of each trough of the
-/// seeded mode `cos(k X)` (at `X = (2 j + 1) pi / k`), and "periodic", "localised" or "modulated".
+/// seeded mode `cos(k X)` (at `X = (2 j + 1) pi / k`), and its kind.
 #[derive(Clone, Debug, Serialize)]
 pub struct Branch {
     pub trough_depths: Vec<f64>,
-    pub kind: &'static str,
+    pub kind: BranchKind,
+}
+
+/// How the troughs of the seeded mode compare ([`branch_kind`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum BranchKind {
+    /// Every trough as deep as the deepest, within [`LOCALISED_SPREAD`].
+    Periodic,
+    /// One trough deeper than all others.
+    Localised,
+    /// Deep troughs alternating with shallow ones.
+    Modulated,
+}
+
+impl BranchKind {
+    pub fn name(self) -> &'static str {
+        match self {
+            BranchKind::Periodic => "periodic",
+            BranchKind::Localised => "localised",
+            BranchKind::Modulated => "modulated",
+        }
+    }
 }
 
 /// Classifies the final state `u` of `mesh` seeded with wavenumber `k` (module docs).
@@ -160,17 +182,17 @@ pub fn trough_depths(reference: &[f64], profile: &[(f64, f64)], k: f64, length: 
         .collect()
 }
 
-/// "periodic" when every trough is within [`LOCALISED_SPREAD`] of the deepest, "localised"
-/// when the deepest leads the next by more, "modulated" otherwise.
-pub fn branch_kind(trough_depths: &[f64]) -> &'static str {
+/// Periodic when every trough is within [`LOCALISED_SPREAD`] of the deepest, localised when
+/// the deepest leads the next by more, modulated otherwise.
+pub fn branch_kind(trough_depths: &[f64]) -> BranchKind {
     let mut sorted = trough_depths.to_vec();
     sorted.sort_by(|a, b| b.total_cmp(a));
     let spread = |other: f64| sorted[0] - other > LOCALISED_SPREAD * sorted[0];
     match sorted.as_slice() {
-        [] | [_] => "periodic",
-        [_, second, ..] if spread(*second) => "localised",
-        [.., shallowest] if spread(*shallowest) => "modulated",
-        _ => "periodic",
+        [] | [_] => BranchKind::Periodic,
+        [_, second, ..] if spread(*second) => BranchKind::Localised,
+        [.., shallowest] if spread(*shallowest) => BranchKind::Modulated,
+        _ => BranchKind::Periodic,
     }
 }
 

@@ -20,7 +20,7 @@ use crate::fem::added::{AddedEnergy, Block, Diagonal};
 use crate::fem::System;
 use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
-use crate::protocol::bifurcation::homogeneous_displacement;
+use crate::protocol::basic_state::homogeneous_displacement;
 
 /// Damping coefficient and energy budget.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]

@@ -4,7 +4,7 @@
 //! (3) displacement control to `d_max` ([`Continuation`]). `A_init = 0` runs the perfect system.
 
 use super::augmentation::Augmentation;
-use super::bifurcation::homogeneous_unknowns;
+use super::basic_state::homogeneous_unknowns;
 use super::continuation::{Continuation, Event, StepControl, StepRecord};
 use super::imperfection::{mode_number, wavenumber_of_waves, Imperfection};
 use super::snap::SnapSettings;

@@ -203,7 +203,7 @@ pub fn kernels(params: &Parameters, meshes: &[(&str, MeshSpec)]) -> Result<Kerne
     use crate::fem::{model_conditions, SparseLdlt, System};
     use crate::homogeneous::homogeneous_state;
     use crate::material::Bilayer;
-    use crate::protocol::bifurcation::homogeneous_unknowns;
+    use crate::protocol::basic_state::homogeneous_unknowns;
     let materials = Bilayer::new(params);
     let mut rows = Vec::new();
     let elements: &[ElementKind] = match params.incompressible {

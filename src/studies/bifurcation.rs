@@ -13,7 +13,7 @@ use crate::mesh::{Mesh, MeshSpec};
 use crate::output::vtu::DataArray;
 use crate::output::{write_json, CsvWriter, Figure, LineStyle, Series};
 use crate::parameters::Parameters;
-use crate::protocol::bifurcation::homogeneous_unknowns;
+use crate::protocol::basic_state::homogeneous_unknowns;
 use crate::protocol::{find_bifurcation, Bifurcation, BifurcationSettings};
 use crate::stability::{Method, StabilityAnalysis};
 use serde::Serialize;

@@ -5,7 +5,7 @@ use super::MapSettings;
 use crate::error::{Error, Result};
 use crate::mesh::MeshSpec;
 use crate::parameters::Parameters;
-use crate::protocol::secondary::branch_kind;
+use crate::protocol::secondary::{branch_kind, BranchKind};
 use crate::stability::{Method, Minimum, StabilityAnalysis};
 use crate::studies::crease::{crease, CreaseStudy, Scan};
 use crate::studies::simulate::{solve, solve_to_secondary, SimulateOptions, ToSecondary};
@@ -59,9 +59,9 @@ pub const DOUBLING_RATIO: f64 = 0.2;
 /// the change (`d_secondary`: its first change along the run).
 pub fn post_buckling(trough_depths: &[f64], doubling: f64, unstable: bool, self_contact: bool) -> PostBuckling {
     let kind = branch_kind(trough_depths);
-    if kind == "localised" {
+    if kind == BranchKind::Localised {
         PostBuckling::Fold
-    } else if kind == "modulated" || doubling >= DOUBLING_RATIO {
+    } else if kind == BranchKind::Modulated || doubling >= DOUBLING_RATIO {
         PostBuckling::PeriodDoubling
     } else if unstable {
         PostBuckling::Unresolved
