@@ -44,18 +44,26 @@ pub fn transverse_stretch<M: Hyperelastic>(material: &M, lambda1: f64) -> Result
     if start == 0.0 {
         return Ok(1.0);
     }
-    // P22 grows with lambda_2 for a stable material: expand towards the sign change.
-    let expand = if start < 0.0 { 1.5 } else { 1.0 / 1.5 };
+    // P22 grows with lambda_2 for a stable material: expand towards the sign change. A trial
+    // beyond a law's domain (Gent's limiting extensibility, where P22 grows without bound)
+    // shortens the expansion: the root lies before the limit.
+    let mut expand: f64 = if start < 0.0 { 1.5 } else { 1.0 / 1.5 };
     loop {
         let next = if start < 0.0 { upper * expand } else { lower * expand };
-        if !(STRETCH_RANGE.0..=STRETCH_RANGE.1).contains(&next) {
+        if !(STRETCH_RANGE.0..=STRETCH_RANGE.1).contains(&next) || (expand - 1.0).abs() < 1e-12 {
             return Err(Error::NoRoot {
                 what,
                 lower: STRETCH_RANGE.0,
                 upper: STRETCH_RANGE.1,
             });
         }
-        let value = p22(next)?;
+        let value = match p22(next) {
+            Err(Error::BeyondExtensibility { .. }) => {
+                expand = expand.sqrt();
+                continue;
+            }
+            other => other?,
+        };
         if start < 0.0 {
             (lower, upper) = (upper, next);
         } else {

@@ -100,7 +100,13 @@ pub fn onset(args: &OnsetArgs) -> Result<()> {
     println!("  d_c = {:.6}  (lambda1_c = {:.6})", onset.d_c, onset.lambda1_c);
     match onset.d_ellipticity_loss {
         Some(d) => println!("  strong ellipticity is lost at d = {d:.6}; beyond it wrinkling results are meaningless"),
-        None => println!("  both layers stay strongly elliptic up to d = 0.95"),
+        None => match onset.d_domain_end {
+            Some(d) => println!(
+                "  the homogeneous state reaches a Gent law's limiting extensibility at d = {d:.6}, where the search \
+                 ends; both layers stay strongly elliptic up to it"
+            ),
+            None => println!("  both layers stay strongly elliptic up to d = 0.95"),
+        },
     }
     report_files(&[path]);
     Ok(())

@@ -109,3 +109,25 @@ fn incompressible_mooney_rivlin_is_neo_hookean_of_twice_c1_plus_c2() {
         "{a:?} vs {b:?}"
     );
 }
+
+/// A Gent law with a small limiting extensibility: the search ends where the homogeneous
+/// state reaches it, the onset before it is found, and the state just short of it exists.
+#[test]
+fn a_gent_limit_ends_the_search_without_an_error() {
+    let mut p = Parameters::default();
+    for s in [
+        "layer.law=gent",
+        "layer.jm=0.3",
+        "substrate.law=gent",
+        "substrate.jm=0.3",
+    ] {
+        p.set(s).unwrap();
+    }
+    let onset = StabilityAnalysis::new(&p, Method::Exact).unwrap().onset().unwrap();
+    let end = onset.d_domain_end.expect("the limit lies before d = 0.95");
+    assert!(onset.d_c < end, "{onset:?}");
+    let materials = crate::material::Bilayer::new(&p);
+    assert!(crate::homogeneous::homogeneous_state(&materials, end * (1.0 - 1e-6)).is_ok());
+    assert!(crate::homogeneous::homogeneous_state(&materials, end * (1.0 + 1e-6)).is_err());
+    println!("Gent jm = 0.3: onset d_c = {:.6}, limit at d = {end:.6}", onset.d_c);
+}

@@ -64,6 +64,9 @@ pub struct Onset {
     pub lambda1_c: f64,
     /// Compression at which either layer loses strong ellipticity (None if not before 0.95).
     pub d_ellipticity_loss: Option<f64>,
+    /// Compression at which the homogeneous state leaves a law's domain (a Gent law's limiting
+    /// extensibility; None if not before 0.95): the search ends there.
+    pub d_domain_end: Option<f64>,
     /// Whether the minimum is interior or a limit.
     pub minimum: Minimum,
 }
@@ -80,9 +83,12 @@ impl Onset {
 pub struct StabilityAnalysis {
     materials: Bilayer,
     method: Method,
-    /// Searches stop here: 0.95 or the loss of ellipticity, whichever comes first.
+    /// Searches stop here: 0.95, the end of a law's domain or the loss of ellipticity,
+    /// whichever comes first.
     d_limit: f64,
     d_ellipticity_loss: Option<f64>,
+    /// Where the homogeneous state leaves a law's domain (a Gent law's limiting extensibility).
+    d_domain_end: Option<f64>,
     /// Wavenumber range of the onset search.
     pub k_range: (f64, f64),
 }
@@ -96,10 +102,12 @@ impl StabilityAnalysis {
             method,
             d_limit: D_END,
             d_ellipticity_loss: None,
+            d_domain_end: None,
             k_range: (0.02, 5.0),
         };
+        analysis.d_domain_end = analysis.find_domain_end()?;
         analysis.d_ellipticity_loss = analysis.find_ellipticity_loss()?;
-        analysis.d_limit = analysis.d_ellipticity_loss.unwrap_or(D_END);
+        analysis.d_limit = analysis.d_ellipticity_loss.or(analysis.d_domain_end).unwrap_or(D_END);
         Ok(analysis)
     }
 
@@ -125,6 +133,28 @@ impl StabilityAnalysis {
         ))
     }
 
+    /// The first `d` at which the homogeneous state leaves a law's domain (None before 0.95).
+    fn find_domain_end(&self) -> Result<Option<f64>> {
+        let admissible = |d: f64| match homogeneous_state(&self.materials, d).and_then(|_| self.moduli(d)) {
+            Ok(_) => Ok(true),
+            Err(Error::BeyondExtensibility { .. }) => Ok(false),
+            Err(e) => Err(e),
+        };
+        let mut lo = D_START;
+        for hi in scan_points(D_END, 0.025) {
+            if !admissible(hi)? {
+                return bisect(&admissible, lo, hi).map(Some);
+            }
+            lo = hi;
+        }
+        Ok(None)
+    }
+
+    /// The end of the range searched for the loss of ellipticity and for bifurcations.
+    fn admissible_end(&self) -> f64 {
+        self.d_domain_end.map_or(D_END, |d| d * (1.0 - 1e-9))
+    }
+
     fn find_ellipticity_loss(&self) -> Result<Option<f64>> {
         let margin = |d: f64| -> Result<f64> {
             let (layer, substrate) = self.moduli(d)?;
@@ -134,7 +164,7 @@ impl StabilityAnalysis {
         if margin(lo)? <= 0.0 {
             return Ok(Some(0.0));
         }
-        for hi in scan_points(D_END, 0.025) {
+        for hi in scan_points(self.admissible_end(), 0.025) {
             if margin(hi)? <= 0.0 {
                 return brent("loss of ellipticity", margin, lo, hi, D_TOLERANCE).map(Some);
             }
@@ -204,7 +234,7 @@ impl StabilityAnalysis {
     fn search_end(&self) -> f64 {
         match self.d_ellipticity_loss {
             Some(d) => d * (1.0 - 1e-6),
-            None => D_END,
+            None => self.admissible_end(),
         }
     }
 
@@ -214,7 +244,10 @@ impl StabilityAnalysis {
                 "the loss of strong ellipticity at d = {d:.2e}, i.e. at rest (e.g. stiff fibres under compression, or no matrix): no wrinkling answer exists"
             ),
             Some(d) => format!("the loss of ellipticity at d = {d:.6}"),
-            None => format!("d = {D_END}"),
+            None => match self.d_domain_end {
+                Some(d) => format!("the end of a law's domain (a Gent law's limiting extensibility) at d = {d:.6}"),
+                None => format!("d = {D_END}"),
+            },
         }
     }
 
@@ -347,6 +380,7 @@ impl StabilityAnalysis {
             d_c,
             lambda1_c: 1.0 - d_c,
             d_ellipticity_loss: self.d_ellipticity_loss,
+            d_domain_end: self.d_domain_end,
             minimum,
         }
     }

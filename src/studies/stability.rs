@@ -142,6 +142,8 @@ pub struct OnsetSummary {
     pub d_c: f64,
     pub lambda1_c: f64,
     pub d_ellipticity_loss: Option<f64>,
+    /// Where the homogeneous state leaves a law's domain (Gent), if before 0.95.
+    pub d_domain_end: Option<f64>,
     /// `2 pi / k0` of an interior minimum (null for a long- or short-wave limit).
     pub wavelength: Option<f64>,
     /// `interior`, `long_wave` (`k0 = 0`, `d_c` the `k -> 0` limit: the substrate's own surface
@@ -160,6 +162,7 @@ impl OnsetSummary {
             d_c: onset.d_c,
             lambda1_c: onset.lambda1_c,
             d_ellipticity_loss: onset.d_ellipticity_loss,
+            d_domain_end: onset.d_domain_end,
             wavelength: onset.wavelength(),
             minimum: onset.minimum,
             method: format!("{method:?}"),
