@@ -231,6 +231,21 @@ impl MeshSpec {
         self
     }
 
+    /// The same mesh with the top substrate element `h0` set so that consecutive substrate
+    /// elements grow by the ratio `r` in `[1, 2]`: `h0 (r^n - 1) / (r - 1) = D`.
+    pub fn with_grading(mut self, r: f64) -> Result<Self> {
+        if !(1.0..=2.0).contains(&r) {
+            return Err(Error::invalid("grading", r, "[1, 2]"));
+        }
+        let n = self.substrate_elements as i32;
+        self.top_substrate_thickness = if r == 1.0 {
+            self.depth / n as f64
+        } else {
+            self.depth * (r - 1.0) / (r.powi(n) - 1.0)
+        };
+        Ok(self)
+    }
+
     /// 100 / 2 / 25 elements, `h0 = 0.5` (bottom element about 5): 22,110 unknowns.
     pub fn coarse() -> Self {
         Self::new(100, 2, 25, 0.5, 50.0, 50.0)
@@ -464,6 +479,16 @@ impl Mesh {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_grading_ratio_sets_the_top_substrate_element_that_gives_it_back() {
+        for r in [1.0, 1.05, 1.2, 2.0] {
+            let spec = MeshSpec::coarse().with_grading(r).unwrap();
+            assert!((spec.grading_ratio() - r).abs() < 1e-9, "{r}: {}", spec.grading_ratio());
+        }
+        let message = MeshSpec::coarse().with_grading(2.5).unwrap_err().to_string();
+        assert!(message.contains("`grading`") && message.contains("[1, 2]"), "{message}");
+    }
 
     #[test]
     fn the_displacement_element_notes_its_locking_above_k_over_mu_100() {

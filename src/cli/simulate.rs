@@ -7,7 +7,7 @@ use fiberfold::mesh::{ElementKind, MeshSpec};
 use fiberfold::protocol::mode_number;
 use fiberfold::protocol::secondary::BranchKind;
 use fiberfold::studies::simulate::{self, Crossing, Progress, SimulateOptions, SimulateStudy};
-use fiberfold::{Error, Result};
+use fiberfold::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 
@@ -100,16 +100,7 @@ impl MeshArgs {
         .with_overrides(self.nx, self.layer_elements, self.substrate_elements, self.h0)
         .with_element(self.element.into());
         if let Some(r) = self.grading {
-            if !(1.0..=2.0).contains(&r) {
-                return Err(Error::invalid("grading", r, "[1, 2]"));
-            }
-            // h0 (r^n - 1) / (r - 1) = D.
-            let n = spec.substrate_elements as i32;
-            spec.top_substrate_thickness = if r == 1.0 {
-                spec.depth / n as f64
-            } else {
-                spec.depth * (r - 1.0) / (r.powi(n) - 1.0)
-            };
+            spec = spec.with_grading(r)?;
         }
         spec.validate()?;
         Ok(spec)
