@@ -198,3 +198,34 @@ fn ogden_fe_bifurcation_agrees_with_the_linear_theory_on_the_fine_mesh() {
     println!("Ogden alpha = -25, fine mesh: FE vs theory {difference:e}");
     assert!(difference.abs() < 1e-4, "FE vs theory {difference:e}");
 }
+
+/// A Gent substrate that reaches its limiting extensibility before `d_max`: the table ends
+/// there, the rows before it are written, and the summary says where.
+#[test]
+fn the_homogeneous_table_ends_at_a_gent_limit() {
+    let dir = scratch("laws-gent-homogeneous");
+    let out = fiberfold(&[
+        "homogeneous",
+        "--set",
+        "substrate.law=gent",
+        "--set",
+        "substrate.jm=0.2",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("the table ends before d = "), "{stdout}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("homogeneous.json")).unwrap()).unwrap();
+    let stopped = summary["stopped_at"].as_f64().unwrap();
+    let rows = std::fs::read_to_string(dir.join("homogeneous.csv"))
+        .unwrap()
+        .lines()
+        .count()
+        - 1;
+    assert!(
+        stopped < 0.5 && rows == (stopped / 0.005).round() as usize,
+        "{stopped} {rows}"
+    );
+}

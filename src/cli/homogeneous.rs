@@ -36,8 +36,11 @@ pub fn run(args: &HomogeneousArgs) -> Result<()> {
         study.d_max, study.points
     );
     let bar = progress(study.points, "homogeneous");
-    let files = homogeneous::run(&params, &study, &args.out, &|| bar.inc(1))?;
+    let outcome = homogeneous::run(&params, &study, &args.out, &|| bar.inc(1))?;
     bar.finish_and_clear();
-    report_files(&files);
+    if let Some((d, why)) = &outcome.stopped {
+        println!("  the table ends before d = {d:.4}: {why}");
+    }
+    report_files(&outcome.files);
     Ok(())
 }

@@ -1,7 +1,7 @@
 //! The homogeneous-state table and the paper's Fig. 2.
 
 use super::{linspace, validate_points, Tick};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::homogeneous::HomogeneousRow;
 use crate::material::Bilayer;
 use crate::output::{write_json, CsvWriter, Figure, LineStyle, Series};
@@ -34,6 +34,8 @@ struct Summary<'a> {
     d_max: f64,
     points: usize,
     at_d_max: &'a HomogeneousRow,
+    /// The first `d` of the grid whose state lies beyond a law's domain (the table ends before).
+    stopped_at: Option<f64>,
     files: Vec<String>,
 }
 
@@ -79,20 +81,33 @@ pub fn columns(r: &HomogeneousRow) -> [f64; 12] {
     ]
 }
 
+/// What `run` wrote, and where the table stopped short of `d_max` (a Gent law's limiting
+/// extensibility reached at that `d`, with the reason).
+pub struct HomogeneousOutcome {
+    pub files: Vec<PathBuf>,
+    pub stopped: Option<(f64, String)>,
+}
+
 /// Computes the table, writes `homogeneous.csv`, `homogeneous.json`, `fig2.png`, `fig2.svg`.
-pub fn run(params: &Parameters, study: &HomogeneousStudy, out: &Path, tick: Tick) -> Result<Vec<PathBuf>> {
+/// A state beyond a law's domain ends the table there; the rows before it are written.
+pub fn run(params: &Parameters, study: &HomogeneousStudy, out: &Path, tick: Tick) -> Result<HomogeneousOutcome> {
     params.validate()?;
     study.validate()?;
     crate::output::ensure_dir(out)?;
     let materials = Bilayer::new(params);
-    let rows = linspace(0.0, study.d_max, study.points)
-        .into_iter()
-        .map(|d| {
-            let row = HomogeneousRow::new(&materials, d);
-            tick();
-            row
-        })
-        .collect::<Result<Vec<_>>>()?;
+    let mut rows = Vec::new();
+    let mut stopped = None;
+    for d in linspace(0.0, study.d_max, study.points) {
+        match HomogeneousRow::new(&materials, d) {
+            Ok(row) => rows.push(row),
+            Err(e @ Error::BeyondExtensibility { .. }) if rows.len() >= 2 => {
+                stopped = Some((d, e.to_string()));
+                break;
+            }
+            Err(e) => return Err(e),
+        }
+        tick();
+    }
 
     let csv = out.join("homogeneous.csv");
     let mut table = CsvWriter::create(&csv, &CSV_HEADER)?;
@@ -108,11 +123,12 @@ pub fn run(params: &Parameters, study: &HomogeneousStudy, out: &Path, tick: Tick
         d_max: study.d_max,
         points: study.points,
         at_d_max: rows.last().expect("at least two points"),
+        stopped_at: stopped.as_ref().map(|(d, _)| *d),
         files: files.iter().map(|f| f.display().to_string()).collect(),
     };
     write_json(&json, &summary)?;
     files.push(json);
-    Ok(files)
+    Ok(HomogeneousOutcome { files, stopped })
 }
 
 /// Fig. 2: substrate stretch `lambda_2s` against `lambda_1`, compressible (eq. 4a) and
