@@ -50,7 +50,7 @@ def _check_parameters(params: Any) -> Parameters:
 
 class Onset(types.SimpleNamespace):
     """The onset of wrinkling: the keys of ``onset.json`` as attributes (``k0``, ``d_c``,
-    ``lambda1_c``, ``d_ellipticity_loss``, ``wavelength``, ``method``, ``parameters``)."""
+    ``lambda1_c``, ``d_ellipticity_loss``, ``d_domain_end``, ``wavelength``, ``method``, ``parameters``)."""
 
     def as_dict(self) -> Dict[str, Any]:
         return dict(vars(self))
