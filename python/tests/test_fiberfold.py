@@ -254,3 +254,25 @@ def test_laws_by_dotted_keys_or_tables_round_trip_and_give_their_onset():
         fiberfold.Parameters(fibres={"law": "hgo", "k1": 1.0, "k2": 1.0, "kappa": 0.5})
     with pytest.raises(TypeError):
         fiberfold.Parameters(**{"layer.law": 3})
+
+
+def test_the_type_stub_matches_the_native_module():
+    import ast
+    import inspect
+    from pathlib import Path
+
+    import fiberfold._fiberfold as native
+
+    stub = ast.parse((Path(fiberfold.__file__).parent / "_fiberfold.pyi").read_text())
+    functions = {f.name: f for f in stub.body if isinstance(f, ast.FunctionDef)}
+    exported = {n for n in dir(native) if inspect.isbuiltin(getattr(native, n))}
+    assert set(functions) == exported, (set(functions) ^ exported)
+    for name, f in functions.items():
+        stubbed = [a.arg for a in f.args.args]
+        actual = list(inspect.signature(getattr(native, name)).parameters)
+        assert stubbed == actual, (name, stubbed, actual)
+    # The attributes the stub declares on Parameters are the flat keys the library lists.
+    parameters = next(c for c in stub.body if isinstance(c, ast.ClassDef) and c.name == "Parameters")
+    declared = [s.target.id for s in parameters.body if isinstance(s, ast.AnnAssign)]
+    flat = [k for k in fiberfold.Parameters().to_dict() if "." not in k]
+    assert declared == flat, (declared, flat)
