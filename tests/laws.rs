@@ -114,6 +114,18 @@ fn law_tables_round_trip_and_order_does_not_matter_in_a_file() {
     assert_eq!(String::from_utf8(again.stdout).unwrap(), printed);
 }
 
+/// A one-term Ogden law with alpha = -25 (Budday et al.'s brain tissue) for both layers.
+const OGDEN_BOTH: [&str; 8] = [
+    "--set",
+    "layer.law=ogden",
+    "--set",
+    "layer.alpha=-25",
+    "--set",
+    "substrate.law=ogden",
+    "--set",
+    "substrate.alpha=-25",
+];
+
 #[test]
 fn onset_runs_with_every_law() {
     let laws: [&[&str]; 4] = [
@@ -125,16 +137,7 @@ fn onset_runs_with_every_law() {
             "--set",
             "layer.c2=2",
         ],
-        &[
-            "--set",
-            "layer.law=ogden",
-            "--set",
-            "layer.alpha=-25",
-            "--set",
-            "substrate.law=ogden",
-            "--set",
-            "substrate.alpha=-25",
-        ],
+        &OGDEN_BOTH,
         &[
             "--set",
             "layer.law=gent",
@@ -177,23 +180,9 @@ fn onset_runs_with_every_law() {
 /// fine mesh) against the linear theory at the mode's wavenumber, as for neo-Hookean.
 #[test]
 fn ogden_fe_bifurcation_agrees_with_the_linear_theory_on_the_fine_mesh() {
-    let summary = common::mixed_bifurcation(
-        "laws-ogden-bifurcation",
-        &[
-            "--mesh",
-            "fine",
-            "--set",
-            "beta=0.785398",
-            "--set",
-            "layer.law=ogden",
-            "--set",
-            "layer.alpha=-25",
-            "--set",
-            "substrate.law=ogden",
-            "--set",
-            "substrate.alpha=-25",
-        ],
-    );
+    let mut args = vec!["--mesh", "fine", "--set", "beta=0.785398"];
+    args.extend_from_slice(&OGDEN_BOTH);
+    let summary = common::mixed_bifurcation("laws-ogden-bifurcation", &args);
     let difference = summary["relative_difference"].as_f64().unwrap();
     println!("Ogden alpha = -25, fine mesh: FE vs theory {difference:e}");
     assert!(difference.abs() < 1e-4, "FE vs theory {difference:e}");

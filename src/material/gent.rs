@@ -2,8 +2,8 @@
 //! `Ibar1 = J^(-2/3) I1`; `mu` is the shear modulus and `Jm` bounds `Ibar1 - 3` (the chains'
 //! limiting extensibility). It tends to neo-Hookean as `Jm -> inf`.
 
-use super::isotropic::{invariant_response, invariant_stress, plane_invariants, Invariants, IsotropicEnergy};
-use super::{Response, StrainEnergy, Tensor2};
+use super::isotropic::{plane_invariants, Invariants, IsotropicEnergy};
+use super::Tensor2;
 use crate::error::{Error, Result};
 use num_dual::DualNum;
 
@@ -33,6 +33,10 @@ impl Gent {
 }
 
 impl IsotropicEnergy for Gent {
+    fn admissible(&self, f: &Tensor2) -> Result<()> {
+        self.check_extensibility(f)
+    }
+
     fn isotropic_density<D: DualNum<Primitive = f64> + Copy>(&self, inv: &Invariants<D>) -> D {
         let ln_j = inv.j.ln();
         let x = self.extension(inv);
@@ -40,20 +44,4 @@ impl IsotropicEnergy for Gent {
     }
 }
 
-impl StrainEnergy for Gent {
-    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 9]) -> D {
-        self.isotropic_density(&Invariants::of_gradient(f))
-    }
-
-    fn plane_response(&self, f: &Tensor2) -> Response {
-        invariant_response(self, f)
-    }
-
-    fn plane_stress(&self, f: &Tensor2) -> (f64, Tensor2) {
-        invariant_stress(self, f)
-    }
-
-    fn admissible(&self, f: &Tensor2) -> Result<()> {
-        self.check_extensibility(f)
-    }
-}
+super::isotropic::strain_energy_by_invariants!(Gent);

@@ -26,8 +26,8 @@ pub struct Invariants<D> {
 enum Principal<D> {
     /// `F = [[F2, 0], [0, F33]]`: the in-plane pair from `(t, q)`, and `F33`.
     Plane { t: D, q: D, f33: D },
-    /// A full `F`: `C` (symmetric, row-major) and the eigenvalues of its real part.
-    Full { c: [[D; 3]; 3], values: [f64; 3] },
+    /// A full `F`: `C` (symmetric, row-major).
+    Full { c: [[D; 3]; 3] },
 }
 
 impl<D: DualNum<Primitive = f64> + Copy> Invariants<D> {
@@ -51,14 +51,11 @@ impl<D: DualNum<Primitive = f64> + Copy> Invariants<D> {
         let trace_c_squared = (0..3).fold(D::zero(), |s, a| (0..3).fold(s, |s, b| s + c[a][b] * c[b][a]));
         let j = f[0] * (f[4] * f[8] - f[5] * f[7]) - f[1] * (f[3] * f[8] - f[5] * f[6])
             + f[2] * (f[3] * f[7] - f[4] * f[6]);
-        let real = Matrix3::from_fn(|a, b| c[a][b].re());
-        let mut values: [f64; 3] = SymmetricEigen::new(real).eigenvalues.into();
-        values.sort_by(f64::total_cmp);
         Invariants {
             i1,
             i2: (i1 * i1 - trace_c_squared) * 0.5,
             j,
-            principal: Principal::Full { c, values },
+            principal: Principal::Full { c },
         }
     }
 
@@ -66,7 +63,7 @@ impl<D: DualNum<Primitive = f64> + Copy> Invariants<D> {
     pub fn stretch_power_sum(&self, a: f64) -> D {
         match &self.principal {
             Principal::Plane { t, q, f33 } => principal_power_sum(*t, *q, 0.5 * a) + f33.powf(a),
-            Principal::Full { c, values } => full_power_sum(c, values, self, 0.5 * a),
+            Principal::Full { c } => full_power_sum(c, self, 0.5 * a),
         }
     }
 }
@@ -74,7 +71,38 @@ impl<D: DualNum<Primitive = f64> + Copy> Invariants<D> {
 /// An isotropic strain energy written on [`Invariants`].
 pub trait IsotropicEnergy {
     fn isotropic_density<D: DualNum<Primitive = f64> + Copy>(&self, inv: &Invariants<D>) -> D;
+
+    /// An error at a plane gradient outside the law's domain ([`super::StrainEnergy::admissible`]).
+    fn admissible(&self, _f: &Tensor2) -> crate::error::Result<()> {
+        Ok(())
+    }
 }
+
+/// `StrainEnergy` of an [`IsotropicEnergy`]: the density from the full gradient's invariants,
+/// the plane stress and tangent by the chain rule through `(t, q)`.
+macro_rules! strain_energy_by_invariants {
+    ($law:ty) => {
+        impl $crate::material::StrainEnergy for $law {
+            fn density<D: num_dual::DualNum<Primitive = f64> + Copy>(&self, f: &[D; 9]) -> D {
+                use $crate::material::isotropic::{Invariants, IsotropicEnergy};
+                self.isotropic_density(&Invariants::of_gradient(f))
+            }
+
+            fn plane_response(&self, f: &$crate::material::Tensor2) -> $crate::material::Response {
+                $crate::material::isotropic::invariant_response(self, f)
+            }
+
+            fn plane_stress(&self, f: &$crate::material::Tensor2) -> (f64, $crate::material::Tensor2) {
+                $crate::material::isotropic::invariant_stress(self, f)
+            }
+
+            fn admissible(&self, f: &$crate::material::Tensor2) -> $crate::error::Result<()> {
+                $crate::material::isotropic::IsotropicEnergy::admissible(self, f)
+            }
+        }
+    };
+}
+pub(crate) use strain_energy_by_invariants;
 
 /// `t = F2 : F2` and `q = det F2` of a plane gradient, generic over dual numbers.
 pub fn plane_invariants<D: DualNum<Primitive = f64> + Copy>(f: &[D; 4]) -> (D, D) {
@@ -175,12 +203,12 @@ const SERIES_BELOW: f64 = 1e-2;
 ///   characteristic cubic, refined in dual numbers by Newton's method (two steps carry the
 ///   second derivatives), and the other two are the roots of `c^2 - s c + p` with
 ///   `s = I1 - c_apart`, `p = I3 / c_apart`, summed by [`principal_power_sum`].
-fn full_power_sum<D: DualNum<Primitive = f64> + Copy>(
-    c: &[[D; 3]; 3],
-    values: &[f64; 3],
-    inv: &Invariants<D>,
-    b: f64,
-) -> D {
+fn full_power_sum<D: DualNum<Primitive = f64> + Copy>(c: &[[D; 3]; 3], inv: &Invariants<D>, b: f64) -> D {
+    // The eigenvalues of the real part, only to choose the evaluation (only Ogden needs them).
+    let mut values: [f64; 3] = SymmetricEigen::new(Matrix3::from_fn(|a, k| c[a][k].re()))
+        .eigenvalues
+        .into();
+    values.sort_by(f64::total_cmp);
     let mean = values.iter().sum::<f64>() / 3.0;
     let spread = values.iter().fold(0.0f64, |s, v| s.max((v - mean).abs())) / mean;
     let i3 = inv.j * inv.j;

@@ -5,8 +5,7 @@
 //! The stretches enter only through `lambda_1^a + lambda_2^a + lambda_3^a`, a symmetric function
 //! evaluated smoothly where they coincide ([`Invariants::stretch_power_sum`]).
 
-use super::isotropic::{invariant_response, invariant_stress, Invariants, IsotropicEnergy};
-use super::{Response, StrainEnergy, Tensor2};
+use super::isotropic::{Invariants, IsotropicEnergy};
 use num_dual::DualNum;
 
 /// The most terms an Ogden law may have.
@@ -50,16 +49,4 @@ impl IsotropicEnergy for Ogden {
     }
 }
 
-impl StrainEnergy for Ogden {
-    fn density<D: DualNum<Primitive = f64> + Copy>(&self, f: &[D; 9]) -> D {
-        self.isotropic_density(&Invariants::of_gradient(f))
-    }
-
-    fn plane_response(&self, f: &Tensor2) -> Response {
-        invariant_response(self, f)
-    }
-
-    fn plane_stress(&self, f: &Tensor2) -> (f64, Tensor2) {
-        invariant_stress(self, f)
-    }
-}
+super::isotropic::strain_energy_by_invariants!(Ogden);
