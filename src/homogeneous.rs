@@ -3,9 +3,10 @@
 //! layers `lambda_2 = 1 / lambda_1` and the pressure multiplier makes `sigma_22` vanish.
 
 use crate::error::{Error, Result};
-use crate::material::{Bilayer, CauchyStress, Hyperelastic, Tensor2};
+use crate::material::{Bilayer, CauchyStress, Hyperelastic, StrainEnergy, Tensor2};
 use crate::numerics::roots::brent;
 use crate::parameters::validate_compression;
+use num_dual::Dual64;
 use serde::Serialize;
 
 /// Both layers at one end-shortening `d`.
@@ -33,12 +34,15 @@ impl HomogeneousState {
 const STRETCH_RANGE: (f64, f64) = (1e-3, 1e3);
 
 /// Solves `sigma_22(diag(lambda_1, lambda_2)) = 0` for `lambda_2` (eq. 4a or 4b).
-///
-/// Since `sigma_22 = P_22 lambda_2 / J`, the root of `P_22` is sought; it is bracketed by
-/// expanding geometrically from `lambda_2 = 1` and then refined by Brent's method.
 pub fn transverse_stretch<M: Hyperelastic>(material: &M, lambda1: f64) -> Result<f64> {
     let p22 = |lambda2: f64| -> Result<f64> { Ok(material.first_piola(&[lambda1, 0.0, 0.0, lambda2])?[3]) };
-    let what = format!("sigma_22 = 0 at lambda_1 = {lambda1}");
+    transverse_root(&format!("sigma_22 = 0 at lambda_1 = {lambda1}"), p22)
+}
+
+/// Solves `P_22(lambda_2) = 0`, hence `sigma_22 = P_22 lambda_2 / J = 0`: the root is bracketed
+/// by expanding geometrically from `lambda_2 = 1` and then refined by Brent's method.
+fn transverse_root(what: &str, p22: impl Fn(f64) -> Result<f64>) -> Result<f64> {
+    let what = what.to_string();
     let (mut lower, mut upper) = (1.0, 1.0);
     let start = p22(1.0)?;
     if start == 0.0 {
@@ -94,6 +98,69 @@ pub fn homogeneous_state(materials: &Bilayer, d: f64) -> Result<HomogeneousState
         lambda2_layer: transverse_stretch(&materials.layer, lambda1)?,
         lambda2_substrate: transverse_stretch(&materials.substrate, lambda1)?,
     })
+}
+
+/// Both layers under in-plane compression `d` along X and `d_3` along Z: `F = diag(lambda_1,
+/// lambda_2, lambda_3)` with `lambda_1 = 1 - d`, `lambda_3 = 1 - d_3` and each layer's `lambda_2`
+/// such that `sigma_22 = 0` (`1 / (lambda_1 lambda_3)` if incompressible). `d_3 = 0` is plane
+/// strain, `d_3 = d` equibiaxial compression.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct BiaxialState {
+    pub d: f64,
+    pub d3: f64,
+    pub lambda2_layer: f64,
+    pub lambda2_substrate: f64,
+}
+
+impl BiaxialState {
+    /// The principal stretches `(lambda_1, lambda_2, lambda_3)` of the layer.
+    pub fn layer_stretches(&self) -> [f64; 3] {
+        [1.0 - self.d, self.lambda2_layer, 1.0 - self.d3]
+    }
+
+    /// The principal stretches of the substrate.
+    pub fn substrate_stretches(&self) -> [f64; 3] {
+        [1.0 - self.d, self.lambda2_substrate, 1.0 - self.d3]
+    }
+}
+
+/// The biaxial homogeneous state at `(d, d_3)`.
+pub fn biaxial_state(materials: &Bilayer, d: f64, d3: f64) -> Result<BiaxialState> {
+    validate_compression("d", d)?;
+    validate_compression("d_3", d3)?;
+    let (lambda1, lambda3) = (1.0 - d, 1.0 - d3);
+    if materials.incompressible {
+        let lambda2 = 1.0 / (lambda1 * lambda3);
+        return Ok(BiaxialState {
+            d,
+            d3,
+            lambda2_layer: lambda2,
+            lambda2_substrate: lambda2,
+        });
+    }
+    let solve = |material: &dyn Fn(f64) -> Result<f64>| {
+        transverse_root(
+            &format!("sigma_22 = 0 at lambda_1 = {lambda1}, lambda_3 = {lambda3}"),
+            material,
+        )
+    };
+    Ok(BiaxialState {
+        d,
+        d3,
+        lambda2_layer: solve(&|l2| normal_stress(&materials.layer, [lambda1, l2, lambda3]))?,
+        lambda2_substrate: solve(&|l2| normal_stress(&materials.substrate, [lambda1, l2, lambda3]))?,
+    })
+}
+
+/// `P_22 = dW/dF_22` at `diag(stretches)`, by one dual number.
+pub fn normal_stress<M: StrainEnergy + ?Sized>(material: &M, [l1, l2, l3]: [f64; 3]) -> Result<f64> {
+    let x = Dual64::from(l2).derivative();
+    let zero = Dual64::from(0.0);
+    let w = material.density(&[l1.into(), zero, zero, zero, x, zero, zero, zero, l3.into()]);
+    if !(w.re.is_finite() && w.eps.is_finite()) {
+        return Err(Error::NonFinite(format!("the energy at diag({l1}, {l2}, {l3})")));
+    }
+    Ok(w.eps)
 }
 
 /// The pressure `p` (conjugate to `ln J`: `P = P_rest + p F^-T`) that makes `P_22`, hence

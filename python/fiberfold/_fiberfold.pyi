@@ -25,6 +25,7 @@ class Parameters:
     mu_f: float
     lambda_f: float
     beta: float
+    psi: float
     tension_only: bool
     incompressible: bool
     def __init__(self, **overrides: Union[float, int, bool, str, List[float], Dict[str, Any]]) -> None: ...

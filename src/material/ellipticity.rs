@@ -113,7 +113,7 @@ mod tests {
         let fibre = FibreFamily {
             stiffness: 200.0,
             prestretch: 1.0,
-            direction: [1.0, 0.0],
+            direction: [1.0, 0.0, 0.0],
             tension_only: false,
         };
         let matrix = NeoHookean { mu: 1.0, bulk: 3.0 };

@@ -3,12 +3,13 @@
 use super::{Response, StrainEnergy, Tensor2};
 use num_dual::DualNum;
 
-/// A family of fibres along the unit reference direction `direction`.
+/// A family of fibres along the unit reference direction `direction` (`N3` out of the plane of
+/// a plane-strain cut, where `F N = (F11 N1 + F12 N2, F21 N1 + F22 N2, N3)`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FibreFamily {
     pub stiffness: f64,
     pub prestretch: f64,
-    pub direction: [f64; 2],
+    pub direction: [f64; 3],
     /// Fibres carry no load while `I4 < prestretch^2`.
     pub tension_only: bool,
 }
@@ -16,9 +17,9 @@ pub struct FibreFamily {
 impl FibreFamily {
     /// `I4 = |F N|^2` for a plane `F`.
     pub fn stretch_invariant(&self, f: &[f64; 4]) -> f64 {
-        let [c, s] = self.direction;
+        let [c, s, out] = self.direction;
         let (a, b) = (f[0] * c + f[1] * s, f[2] * c + f[3] * s);
-        a * a + b * b
+        a * a + b * b + out * out
     }
 }
 
@@ -61,10 +62,10 @@ impl StrainEnergy for FibreFamily {
 impl FibreFamily {
     /// `W`, `P`, `M = F N (x) N` and `I4 - lambda_f^2` (all zero for a slack tension-only fibre).
     fn closed_stress(&self, f: &Tensor2) -> (f64, Tensor2, Tensor2, f64) {
-        let [c, s] = self.direction;
+        let [c, s, out] = self.direction;
         let (a, b) = (f[0] * c + f[1] * s, f[2] * c + f[3] * s);
         let lf2 = self.prestretch * self.prestretch;
-        let strain = a * a + b * b - lf2;
+        let strain = a * a + b * b + out * out - lf2;
         if self.tension_only && strain < 0.0 {
             return (0.0, [0.0; 4], [0.0; 4], 0.0);
         }

@@ -11,7 +11,7 @@ pub struct HgoFamily {
     pub k1: f64,
     pub k2: f64,
     pub kappa: f64,
-    pub direction: [f64; 2],
+    pub direction: [f64; 3],
     pub tension_only: bool,
 }
 

@@ -63,7 +63,7 @@ fn hgo_fibres_with_kappa_one_third_are_isotropic_and_stiffen_as_4_k1_along_the_f
         k1: 5.0,
         k2: 2.0,
         kappa,
-        direction: [beta.cos(), beta.sin()],
+        direction: [beta.cos(), beta.sin(), 0.0],
         tension_only: false,
     };
     for f in gradients() {

@@ -104,12 +104,12 @@ impl StrainEnergy for Fibre {
 impl Fibre {
     /// `I4 = |F N|^2` along the family's direction `N`.
     pub fn stretch_invariant(&self, f: &Tensor2) -> f64 {
-        let [c, s] = match self {
+        let [c, s, out] = match self {
             Fibre::Quadratic(q) => q.direction,
             Fibre::Hgo(h) => h.direction,
         };
         let (a, b) = (f[0] * c + f[1] * s, f[2] * c + f[3] * s);
-        a * a + b * b
+        a * a + b * b + out * out
     }
 
     /// Whether a tension-only family sits within `tolerance` of its kink at `f`, where the

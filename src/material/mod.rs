@@ -98,10 +98,10 @@ pub fn determinant<D: DualNum<Primitive = f64> + Copy>(f: &[D; 9]) -> D {
     f[0] * (f[4] * f[8] - f[5] * f[7]) - f[1] * (f[3] * f[8] - f[5] * f[6]) + f[2] * (f[3] * f[7] - f[4] * f[6])
 }
 
-/// `I4 = |F N|^2` of a full gradient along the in-plane unit direction `N = (n1, n2, 0)`.
-pub fn stretch_invariant<D: DualNum<Primitive = f64> + Copy>(f: &[D; 9], n: [f64; 2]) -> D {
+/// `I4 = |F N|^2` of a full gradient along the unit direction `N = (n1, n2, n3)`.
+pub fn stretch_invariant<D: DualNum<Primitive = f64> + Copy>(f: &[D; 9], n: [f64; 3]) -> D {
     (0..3).fold(D::zero(), |s, i| {
-        let a = f[3 * i] * n[0] + f[3 * i + 1] * n[1];
+        let a = f[3 * i] * n[0] + f[3 * i + 1] * n[1] + f[3 * i + 2] * n[2];
         s + a * a
     })
 }

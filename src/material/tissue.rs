@@ -161,9 +161,14 @@ fn matrix_law(law: &MatrixLaw, mu: f64, bulk: f64) -> Matrix {
     }
 }
 
-/// The fibre family along `(cos beta, sign sin beta)`.
+/// The fibre family along `(cos beta cos psi, sign sin beta, cos beta sin psi)`: inclined by
+/// `beta` from the surface, at the azimuth `psi` from `X` in the surface plane.
 fn fibre_law(p: &Parameters, sign: f64) -> Fibre {
-    let direction = [p.beta.cos(), sign * p.beta.sin()];
+    let direction = [
+        p.beta.cos() * p.psi.cos(),
+        sign * p.beta.sin(),
+        p.beta.cos() * p.psi.sin(),
+    ];
     match p.fibres {
         FibreLaw::Quadratic => Fibre::Quadratic(FibreFamily {
             stiffness: p.mu_f,

@@ -38,8 +38,12 @@ pub struct Parameters {
     pub mu_f: f64,
     /// Fibre pre-stretch parameter (`lambda_f < 1`: fibres in tension in the reference state).
     pub lambda_f: f64,
-    /// Fibre angle in radians: families along `(cos beta, +-sin beta)`.
+    /// Fibre inclination from the surface in radians: families along `(cos beta, +-sin beta)` in
+    /// the X-Y plane of the paper.
     pub beta: f64,
+    /// Fibre azimuth in the surface plane in radians (from X towards Z): families along
+    /// `(cos beta cos psi, +-sin beta, cos beta sin psi)`; 0 is the paper's case.
+    pub psi: f64,
     /// When true, fibres carry no load while `I4 < lambda_f^2`.
     pub tension_only: bool,
     /// When true, both layers are exactly incompressible (`J = 1`, enforced by a pressure
@@ -66,6 +70,7 @@ impl Default for Parameters {
             mu_f: 0.0,
             lambda_f: 0.0,
             beta: 0.0,
+            psi: 0.0,
             tension_only: false,
             incompressible: false,
             layer: MatrixLaw::NeoHookean,

@@ -113,7 +113,7 @@ const fn flag(
 }
 
 /// The flat parameters in the order they are printed, with the paper's Table 1 as defaults.
-pub const TABLE: [Spec; 11] = [
+pub const TABLE: [Spec; 12] = [
     number("mu_l", 10.0, Range::Modulus, |p| &mut p.mu_l, "shear modulus of the layer, whatever its law (units of mu_s)"),
     number("K_l", 30.0, Range::BulkModulus, |p| &mut p.K_l, "bulk modulus of the layer (units of mu_s)"),
     number("mu_s", 1.0, Range::Modulus, |p| &mut p.mu_s, "shear modulus of the substrate matrix, the unit of stress"),
@@ -128,7 +128,20 @@ pub const TABLE: [Spec; 11] = [
     ),
     number("mu_f", 10.0, Range::Stiffness, |p| &mut p.mu_f, "stiffness of the quadratic fibres (units of mu_s)"),
     number("lambda_f", 1.0, Range::Stretch, |p| &mut p.lambda_f, "pre-stretch parameter of the quadratic fibres"),
-    number("beta", 0.0, Range::Angle, |p| &mut p.beta, "fibre angle from X (radians): families along (cos beta, +-sin beta)"),
+    number(
+        "beta",
+        0.0,
+        Range::Angle,
+        |p| &mut p.beta,
+        "fibre inclination from the surface (radians): families along (cos beta, +-sin beta) in the X-Y plane",
+    ),
+    number(
+        "psi",
+        0.0,
+        Range::Angle,
+        |p| &mut p.psi,
+        "fibre azimuth in the surface plane, from X towards Z (radians): families along (cos beta cos psi, +-sin beta, cos beta sin psi)",
+    ),
     flag(
         "tension_only",
         false,

@@ -14,9 +14,11 @@ pub mod discrete;
 pub mod ellipticity;
 pub mod exact;
 pub mod moduli;
+pub mod oblique;
 mod search;
 
 pub use moduli::IncrementalModuli;
+pub use oblique::{Surface, SurfaceOnset};
 pub use search::{Minimum, Onset, StabilityAnalysis, K_MAX};
 
 /// Biot (1963): the compression `d = 1 - lambda_1` at which an incompressible neo-Hookean

@@ -4,6 +4,7 @@
 use super::discrete;
 use super::ellipticity::ellipticity_margin;
 use super::exact::{bifurcation_determinant, surface_impedance};
+use super::oblique::Surface;
 use super::{IncrementalModuli, Method};
 use crate::error::{Error, Result};
 use crate::homogeneous::{constraint_pressure, homogeneous_state};
@@ -50,7 +51,7 @@ pub const K_MAX: f64 = 10.0;
 const PROBES_PER_DECADE: f64 = 4.0;
 /// A rise of `d_c` beyond the grid smaller than this is the round-off of a curve that has
 /// levelled off at its limit, not a minimum.
-const RISE_TOLERANCE: f64 = 1e-6;
+pub(super) const RISE_TOLERANCE: f64 = 1e-6;
 
 /// The onset of wrinkling: the minimum of `d_c(k)`.
 #[derive(Clone, Copy, Debug, Serialize)]
@@ -81,8 +82,8 @@ impl Onset {
 /// The stability analysis of one parameter set.
 #[derive(Clone, Debug)]
 pub struct StabilityAnalysis {
-    materials: Bilayer,
-    method: Method,
+    pub(super) materials: Bilayer,
+    pub(super) method: Method,
     /// Searches stop here: 0.95, the end of a law's domain or the loss of ellipticity,
     /// whichever comes first.
     d_limit: f64,
@@ -91,12 +92,24 @@ pub struct StabilityAnalysis {
     d_domain_end: Option<f64>,
     /// Wavenumber range of the onset search.
     pub k_range: (f64, f64),
+    /// Modes in a direction of the surface under biaxial compression; `None` is the paper's
+    /// plane strain (modes along X, no Z displacement).
+    pub(super) surface: Option<Surface>,
 }
 
 impl StabilityAnalysis {
     /// Sets up the analysis (validates the parameters, finds the loss of ellipticity).
     pub fn new(params: &Parameters, method: Method) -> Result<Self> {
+        Self::with_surface(params, method, None)
+    }
+
+    /// The analysis of modes along `surface.theta` under biaxial compression (or of plane
+    /// strain, `None`).
+    pub fn with_surface(params: &Parameters, method: Method, surface: Option<Surface>) -> Result<Self> {
         params.validate()?;
+        if let Some(s) = &surface {
+            s.validate()?;
+        }
         let mut analysis = StabilityAnalysis {
             materials: Bilayer::new(params),
             method,
@@ -104,6 +117,7 @@ impl StabilityAnalysis {
             d_ellipticity_loss: None,
             d_domain_end: None,
             k_range: (0.02, 5.0),
+            surface,
         };
         analysis.d_domain_end = analysis.find_domain_end()?;
         analysis.d_ellipticity_loss = analysis.find_ellipticity_loss()?;
@@ -135,7 +149,11 @@ impl StabilityAnalysis {
 
     /// The first `d` at which the homogeneous state leaves a law's domain (None before 0.95).
     fn find_domain_end(&self) -> Result<Option<f64>> {
-        let admissible = |d: f64| match homogeneous_state(&self.materials, d).and_then(|_| self.moduli(d)) {
+        let moduli = |d: f64| match self.surface {
+            Some(_) => self.surface_moduli(d).map(|_| ()),
+            None => homogeneous_state(&self.materials, d).and_then(|_| self.moduli(d).map(|_| ())),
+        };
+        let admissible = |d: f64| match moduli(d) {
             Ok(_) => Ok(true),
             Err(Error::BeyondExtensibility { .. }) => Ok(false),
             Err(e) => Err(e),
@@ -157,6 +175,10 @@ impl StabilityAnalysis {
 
     fn find_ellipticity_loss(&self) -> Result<Option<f64>> {
         let margin = |d: f64| -> Result<f64> {
+            if self.surface.is_some() {
+                let (layer, substrate) = self.surface_moduli(d)?;
+                return Ok(layer.ellipticity_margin().min(substrate.ellipticity_margin()));
+            }
             let (layer, substrate) = self.moduli(d)?;
             Ok(ellipticity_margin(&layer).min(ellipticity_margin(&substrate)))
         };
@@ -176,6 +198,9 @@ impl StabilityAnalysis {
     /// A function of `d` whose sign changes where the bifurcation condition holds at `k`:
     /// the exact determinant, or +-1 from the inertia of the discrete stiffness.
     fn indicator(&self, d: f64, k: f64) -> Result<f64> {
+        if let Some(surface) = &self.surface {
+            return self.surface_indicator(surface.theta, d, k);
+        }
         let (layer, substrate) = self.moduli(d)?;
         match &self.method {
             Method::Exact => {
@@ -206,39 +231,24 @@ impl StabilityAnalysis {
         if !(k.is_finite() && k > 0.0) {
             return Err(Error::invalid("k", k, "(0, inf)"));
         }
-        let reference = self.indicator(D_START, k)?.signum();
-        let stable = |d: f64| -> Result<bool> { Ok(self.indicator(d, k)?.signum() == reference) };
-        let (lo, hi) = match hint.filter(|h| *h > D_START && *h < self.search_end()) {
-            Some(h) => self.bracket_near(h, &stable)?,
-            None => self.bracket_by_scan(&stable)?,
-        }
-        .ok_or_else(|| Error::NoRoot {
+        let smooth = matches!(self.method, Method::Exact);
+        first_sign_change(&|d| self.indicator(d, k), smooth, hint, self.search_end())?.ok_or_else(|| Error::NoRoot {
             what: format!("the bifurcation condition at k = {k} before {}", self.limit_reason()),
             lower: 0.0,
             upper: self.d_limit,
-        })?;
-        match self.method {
-            Method::Exact => brent(
-                "the bifurcation determinant",
-                |d| self.indicator(d, k),
-                lo,
-                hi,
-                D_TOLERANCE,
-            ),
-            Method::Discrete(_) => bisect(&stable, lo, hi),
-        }
+        })
     }
 
     /// The largest `d` evaluated: just short of the loss of ellipticity, where a Stroh root
     /// reaches the imaginary axis.
-    fn search_end(&self) -> f64 {
+    pub(super) fn search_end(&self) -> f64 {
         match self.d_ellipticity_loss {
             Some(d) => d * (1.0 - 1e-6),
             None => self.admissible_end(),
         }
     }
 
-    fn limit_reason(&self) -> String {
+    pub(super) fn limit_reason(&self) -> String {
         match self.d_ellipticity_loss {
             Some(d) if d < 1e-3 => format!(
                 "the loss of strong ellipticity at d = {d:.2e}, i.e. at rest (e.g. stiff fibres under compression, or no matrix): no wrinkling answer exists"
@@ -249,37 +259,6 @@ impl StabilityAnalysis {
                 None => format!("d = {D_END}"),
             },
         }
-    }
-
-    fn bracket_by_scan(&self, stable: &dyn Fn(f64) -> Result<bool>) -> Result<Option<(f64, f64)>> {
-        let mut lo = D_START;
-        for hi in scan_points(self.search_end(), 0.01) {
-            if !stable(hi)? {
-                return Ok(Some((lo, hi)));
-            }
-            lo = hi;
-        }
-        Ok(None)
-    }
-
-    fn bracket_near(&self, hint: f64, stable: &dyn Fn(f64) -> Result<bool>) -> Result<Option<(f64, f64)>> {
-        let end = self.search_end();
-        let (mut lo, mut hi) = (hint * 0.99, (hint * 1.01).min(end));
-        while !stable(lo)? {
-            hi = lo;
-            lo *= 0.8;
-            if lo < 1e-4 {
-                return self.bracket_by_scan(stable);
-            }
-        }
-        while stable(hi)? {
-            if hi >= end {
-                return Ok(None);
-            }
-            lo = hi;
-            hi = (hi * 1.1).min(end);
-        }
-        Ok(Some((lo, hi)))
     }
 
     /// The onset: `k0` minimising `d_c(k)`, found on a logarithmic grid over `k_range` and
@@ -418,6 +397,61 @@ impl StabilityAnalysis {
             _ => self.onset(),
         }
     }
+}
+
+/// The smallest `d` in `(D_START, end)` at which `indicator` first differs in sign from its
+/// value at `D_START` (a bifurcation condition at one wave): bracketed near `hint` or by a scan
+/// from rest, then refined by Brent's method if the indicator is continuous (`smooth`) or by
+/// bisection of its sign. `None` if the sign never changes before `end`.
+pub(super) fn first_sign_change(
+    indicator: &dyn Fn(f64) -> Result<f64>,
+    smooth: bool,
+    hint: Option<f64>,
+    end: f64,
+) -> Result<Option<f64>> {
+    let reference = indicator(D_START)?.signum();
+    let stable = |d: f64| -> Result<bool> { Ok(indicator(d)?.signum() == reference) };
+    let bracket = match hint.filter(|h| *h > D_START && *h < end) {
+        Some(h) => bracket_near(h, end, &stable)?,
+        None => bracket_by_scan(end, &stable)?,
+    };
+    let Some((lo, hi)) = bracket else {
+        return Ok(None);
+    };
+    match smooth {
+        true => brent("the bifurcation determinant", indicator, lo, hi, D_TOLERANCE).map(Some),
+        false => bisect(&stable, lo, hi).map(Some),
+    }
+}
+
+fn bracket_by_scan(end: f64, stable: &dyn Fn(f64) -> Result<bool>) -> Result<Option<(f64, f64)>> {
+    let mut lo = D_START;
+    for hi in scan_points(end, 0.01) {
+        if !stable(hi)? {
+            return Ok(Some((lo, hi)));
+        }
+        lo = hi;
+    }
+    Ok(None)
+}
+
+fn bracket_near(hint: f64, end: f64, stable: &dyn Fn(f64) -> Result<bool>) -> Result<Option<(f64, f64)>> {
+    let (mut lo, mut hi) = (hint * 0.99, (hint * 1.01).min(end));
+    while !stable(lo)? {
+        hi = lo;
+        lo *= 0.8;
+        if lo < 1e-4 {
+            return bracket_by_scan(end, stable);
+        }
+    }
+    while stable(hi)? {
+        if hi >= end {
+            return Ok(None);
+        }
+        lo = hi;
+        hi = (hi * 1.1).min(end);
+    }
+    Ok(Some((lo, hi)))
 }
 
 /// Scan points from `D_START` to `end`: geometric at small `d`, steps of `max_step` beyond.

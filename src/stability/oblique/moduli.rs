@@ -1,0 +1,181 @@
+//! The 3D incremental moduli of a layer at its homogeneous state `F = diag(lambda_1, lambda_2,
+//! lambda_3)` and the 6x6 Stroh matrix of a mode `U(Y) exp(i k (cos theta X + sin theta Z))`.
+
+use crate::error::Result;
+use crate::material::{full_response, StrainEnergy};
+use nalgebra::{Complex, Matrix3, Matrix6, SMatrix, SVector};
+
+/// `A_iJkL = d2W / dF_iJ dF_kL` at `[3 i + J][3 k + L]` (X = 0, Y = 1, Z = 2).
+pub type FullTangent = [[f64; 9]; 9];
+
+/// The moduli of one layer at a diagonal state.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceModuli {
+    /// The tangent; for an incompressible layer that of the Lagrangian `W_rest + p ln J`.
+    pub tangent: FullTangent,
+    /// `(lambda_1, lambda_2, lambda_3)`.
+    pub stretches: [f64; 3],
+    /// Increments keep `J = 1` to first order: `tr(F^-1 Grad u) = 0`.
+    pub incompressible: bool,
+}
+
+type C = Complex<f64>;
+
+impl SurfaceModuli {
+    /// Moduli of `material` at `diag(stretches)`.
+    pub fn at<M: StrainEnergy + ?Sized>(material: &M, stretches: [f64; 3]) -> Result<Self> {
+        Ok(SurfaceModuli {
+            tangent: full_response(material, &diagonal(stretches))?.tangent,
+            stretches,
+            incompressible: false,
+        })
+    }
+
+    /// Moduli of an incompressible layer (`rest` its energy without bulk term) at `diag(stretches)`
+    /// with `J = 1` and pressure `p` conjugate to `ln J`: `A = A_rest + p d(F^-T)/dF`, where
+    /// `d(F^-T)_iJ / dF_kL = -(F^-1)_Jk (F^-1)_Li`, nonzero at a diagonal `F` for `J = k`, `L = i`.
+    pub fn incompressible<M: StrainEnergy + ?Sized>(rest: &M, stretches: [f64; 3], p: f64) -> Result<Self> {
+        let mut tangent = full_response(rest, &diagonal(stretches))?.tangent;
+        for i in 0..3 {
+            for k in 0..3 {
+                tangent[3 * i + k][3 * k + i] -= p / (stretches[i] * stretches[k]);
+            }
+        }
+        Ok(SurfaceModuli {
+            tangent,
+            stretches,
+            incompressible: true,
+        })
+    }
+
+    /// `sum A_iJkL a_J b_L` over the directions `a`, `b` (3-vectors): the 3x3 matrix in `(i, k)`.
+    pub fn contracted(&self, a: [f64; 3], b: [f64; 3]) -> Matrix3<f64> {
+        Matrix3::from_fn(|i, k| {
+            let mut sum = 0.0;
+            for (jj, aj) in a.iter().enumerate() {
+                for (ll, bl) in b.iter().enumerate() {
+                    sum += self.tangent[3 * i + jj][3 * k + ll] * aj * bl;
+                }
+            }
+            sum
+        })
+    }
+
+    /// The Stroh matrix `M` of `y' = k M y` for `y = (U, t / k)`, `t_i` the incremental nominal
+    /// traction on planes `Y = const` of the mode `U(Y) exp(i k n . X)`, `n = (cos theta, 0,
+    /// sin theta)`. With `Q = A(n, n)`, `R = A(n, e_Y)`, `T = A(e_Y, e_Y)` ([`Self::contracted`]):
+    /// `t = T U' + i k R^T U` and `t' = -i k R U' + k^2 Q U` (equilibrium). An incompressible
+    /// layer adds the constraint `U_Y' = -i k lambda_2 (n_1 U_1 / lambda_1 + n_3 U_3 / lambda_3)`
+    /// and the incremental pressure `q`, which adds `q / lambda_i` to `S_ii`: `q / lambda_2` to
+    /// `t_Y` and `-i k q n_i / lambda_i` to `t_i'`. `(U', q)` is solved from the traction's
+    /// definition (and the constraint) at `k = 1`; `M` does not depend on `k`.
+    pub fn stroh_matrix(&self, theta: f64) -> Matrix6<C> {
+        let n = [theta.cos(), 0.0, theta.sin()];
+        let e_y = [0.0, 1.0, 0.0];
+        let (q, r, t) = (
+            self.contracted(n, n).map(C::from),
+            self.contracted(n, e_y).map(C::from),
+            self.contracted(e_y, e_y).map(C::from),
+        );
+        let i = C::i();
+        // Unknowns x = (U', q); rows: the three traction definitions, then the constraint.
+        let mut lhs = SMatrix::<C, 4, 4>::zeros();
+        let mut rhs = SMatrix::<C, 4, 6>::zeros();
+        for row in 0..3 {
+            for col in 0..3 {
+                lhs[(row, col)] = t[(row, col)];
+                // t / k = s:  T U' + q e_Y / lambda_2 = s - i R^T U.
+                rhs[(row, col)] = -i * r[(col, row)];
+            }
+            rhs[(row, 3 + row)] = C::from(1.0);
+        }
+        let lambda = self.stretches;
+        if self.incompressible {
+            lhs[(1, 3)] = C::from(1.0 / lambda[1]);
+            lhs[(3, 1)] = C::from(1.0);
+            rhs[(3, 0)] = -i * lambda[1] * n[0] / lambda[0];
+            rhs[(3, 2)] = -i * lambda[1] * n[2] / lambda[2];
+        } else {
+            lhs[(3, 3)] = C::from(1.0);
+        }
+        let solved = lhs.try_inverse().expect("an elliptic layer has an invertible T") * rhs;
+        let mut m = Matrix6::<C>::zeros();
+        for col in 0..6 {
+            let u_prime = SVector::<C, 3>::new(solved[(0, col)], solved[(1, col)], solved[(2, col)]);
+            let pressure = solved[(3, col)];
+            let u = SVector::<C, 3>::from_fn(|k, _| if k == col { C::from(1.0) } else { C::from(0.0) });
+            let s_prime = -(r * u_prime) * i + q * u
+                - SVector::<C, 3>::new(C::from(n[0] / lambda[0]), C::from(0.0), C::from(n[2] / lambda[2]))
+                    * (i * pressure);
+            for row in 0..3 {
+                m[(row, col)] = u_prime[row];
+                m[(3 + row, col)] = s_prime[row];
+            }
+        }
+        m
+    }
+}
+
+/// `diag(stretches)` as a full gradient (row-major).
+pub fn diagonal([l1, l2, l3]: [f64; 3]) -> [f64; 9] {
+    [l1, 0.0, 0.0, 0.0, l2, 0.0, 0.0, 0.0, l3]
+}
+
+impl SurfaceModuli {
+    /// Strong ellipticity in 3D: `min over unit a, n` of `(a x n) : A : (a x n)`, the smallest
+    /// eigenvalue of the acoustic tensor `Q(n) = A(n, n)` over the unit sphere of `n` (over `a`
+    /// perpendicular to `F^-T n` if incompressible). Sampled every 5 degrees in both angles of `n`,
+    /// then refined by golden sections in each angle in turn around the best sample.
+    pub fn ellipticity_margin(&self) -> f64 {
+        let smallest = |polar: f64, azimuth: f64| {
+            let n = [polar.sin() * azimuth.cos(), polar.cos(), polar.sin() * azimuth.sin()];
+            let q = self.contracted(n, n);
+            let q = (q + q.transpose()) * 0.5;
+            if !self.incompressible {
+                return q.symmetric_eigenvalues().min();
+            }
+            let m = nalgebra::Vector3::from_fn(|i, _| n[i] / self.stretches[i]).normalize();
+            let helper = if m[0].abs() < 0.9 {
+                nalgebra::Vector3::x()
+            } else {
+                nalgebra::Vector3::y()
+            };
+            let a = m.cross(&helper).normalize();
+            let b = m.cross(&a);
+            let (qaa, qab, qbb) = ((q * a).dot(&a), (q * a).dot(&b), (q * b).dot(&b));
+            0.5 * (qaa + qbb) - (0.25 * (qaa - qbb).powi(2) + qab * qab).sqrt()
+        };
+        const SAMPLES: usize = 36;
+        let step = std::f64::consts::PI / SAMPLES as f64;
+        let mut best = (0.0, 0.0, f64::INFINITY);
+        for i in 0..=SAMPLES {
+            for j in 0..SAMPLES {
+                let (polar, azimuth) = (i as f64 * step, j as f64 * step);
+                let value = smallest(polar, azimuth);
+                if value < best.2 {
+                    best = (polar, azimuth, value);
+                }
+            }
+        }
+        let golden = |f: &dyn Fn(f64) -> f64, centre: f64| {
+            let (mut lo, mut hi) = (centre - step, centre + step);
+            let ratio = 0.5 * (5f64.sqrt() - 1.0);
+            for _ in 0..30 {
+                let (x1, x2) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
+                if f(x1) < f(x2) {
+                    hi = x2;
+                } else {
+                    lo = x1;
+                }
+            }
+            0.5 * (lo + hi)
+        };
+        let (mut polar, mut azimuth, mut value) = best;
+        for _ in 0..3 {
+            polar = golden(&|x| smallest(x, azimuth), polar);
+            azimuth = golden(&|x| smallest(polar, x), azimuth);
+            value = value.min(smallest(polar, azimuth));
+        }
+        value
+    }
+}

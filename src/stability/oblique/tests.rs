@@ -1,0 +1,124 @@
+//! Independent facts for modes in any direction of the surface.
+
+use super::*;
+use crate::parameters::Parameters;
+use crate::stability::discrete::DiscreteOptions;
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, FRAC_PI_6};
+
+fn surface(biaxial: f64, theta: f64) -> Option<Surface> {
+    Some(Surface { biaxial, theta })
+}
+
+/// With `theta = 0`, `R = 0` and `psi = 0` the Z displacement decouples: `d_c(k)` is the
+/// plane-strain one, for fibres at any inclination.
+#[test]
+fn plane_strain_modes_along_x_are_the_plane_analysis() {
+    for beta in [0.0, FRAC_PI_4, FRAC_PI_2] {
+        let p = Parameters {
+            beta,
+            ..Parameters::default()
+        };
+        let plane = StabilityAnalysis::new(&p, Method::Exact).unwrap();
+        let oblique = StabilityAnalysis::with_surface(&p, Method::Exact, surface(0.0, 0.0)).unwrap();
+        for k in [0.2, 0.6, 1.5] {
+            let (a, b) = (
+                plane.critical_compression(k).unwrap(),
+                oblique.critical_compression(k).unwrap(),
+            );
+            assert!((a - b).abs() < 1e-11, "beta {beta}, k {k}: plane {a} vs oblique {b}");
+        }
+    }
+}
+
+/// Biot: an incompressible neo-Hookean half-space under equibiaxial compression wrinkles at
+/// `lambda = x^(1/3)`, `x` the root in (0, 1) of `x^3 + x^2 + 3 x - 1 = 0`, at every `k` and
+/// `theta`; a bilayer of one material is that half-space.
+#[test]
+fn equibiaxial_incompressible_half_space_is_biot() {
+    let x =
+        crate::numerics::roots::brent("Biot", |x: f64| Ok(x * x * x + x * x + 3.0 * x - 1.0), 0.0, 1.0, 1e-15).unwrap();
+    let expected = 1.0 - x.cbrt();
+    assert!((expected - 0.33386).abs() < 1e-5, "{expected}");
+    let p = Parameters {
+        mu_l: 1.0,
+        mu_f: 0.0,
+        phi_m: 1.0,
+        phi_f: 0.0,
+        incompressible: true,
+        ..Parameters::default()
+    };
+    for theta in [0.0, 0.7, FRAC_PI_2] {
+        let analysis = StabilityAnalysis::with_surface(&p, Method::Exact, surface(1.0, theta)).unwrap();
+        for k in [0.3, 2.0] {
+            let d_c = analysis.critical_compression(k).unwrap();
+            assert!(
+                (d_c - expected).abs() < 1e-9,
+                "theta {theta}, k {k}: {d_c} vs {expected}"
+            );
+        }
+    }
+}
+
+/// A thin stiff incompressible film on a compliant incompressible substrate: the plane-strain
+/// critical stress with an equibiaxial strain `eps` giving `sigma = 6 mu eps` (plane strain:
+/// 4 mu eps), so `d_c = (1/6) (3 mu_s / mu_l)^(2/3)` and `k0 H = (3 mu_s / mu_l)^(1/3)`.
+#[test]
+fn equibiaxial_thin_film_law() {
+    let ratio = 1000.0;
+    let p = Parameters {
+        mu_l: ratio,
+        mu_f: 0.0,
+        phi_m: 1.0,
+        phi_f: 0.0,
+        incompressible: true,
+        ..Parameters::default()
+    };
+    let mut analysis = StabilityAnalysis::with_surface(&p, Method::Exact, surface(1.0, 0.0)).unwrap();
+    analysis.k_range = (0.02, 2.0);
+    let onset = analysis.onset().unwrap();
+    let (d_c, k0) = ((3.0 / ratio).powf(2.0 / 3.0) / 6.0, (3.0 / ratio).cbrt());
+    assert!((onset.d_c / d_c - 1.0).abs() < 0.02, "d_c {} vs {d_c}", onset.d_c);
+    assert!((onset.k0 / k0 - 1.0).abs() < 0.02, "k0 {} vs {k0}", onset.k0);
+}
+
+/// Without fibres and with equal in-plane compressions nothing sets a direction.
+#[test]
+fn isotropic_bilayer_under_equibiaxial_compression_has_no_direction() {
+    let p = Parameters {
+        mu_f: 0.0,
+        ..Parameters::default()
+    };
+    let reference = StabilityAnalysis::with_surface(&p, Method::Exact, surface(1.0, 0.0)).unwrap();
+    let d0 = reference.critical_compression(0.5).unwrap();
+    for theta in [0.3, 1.1, FRAC_PI_2, 2.5] {
+        let d = reference.along(theta).critical_compression(0.5).unwrap();
+        assert!((d - d0).abs() < 1e-10, "theta {theta}: {d} vs {d0}");
+    }
+}
+
+/// The exact and discrete methods agree at an oblique direction with fibres at an oblique
+/// azimuth, compressible and incompressible.
+#[test]
+fn exact_and_discrete_agree_at_oblique_directions_and_fibres() {
+    for incompressible in [false, true] {
+        let p = Parameters {
+            beta: 0.5,
+            psi: FRAC_PI_6,
+            incompressible,
+            ..Parameters::default()
+        };
+        let s = surface(0.6, 1.0);
+        let exact = StabilityAnalysis::with_surface(&p, Method::Exact, s).unwrap();
+        let discrete = StabilityAnalysis::with_surface(&p, Method::Discrete(DiscreteOptions::default()), s).unwrap();
+        for k in [0.4, 1.2] {
+            let (a, b) = (
+                exact.critical_compression(k).unwrap(),
+                discrete.critical_compression(k).unwrap(),
+            );
+            assert!(
+                (a - b).abs() < 1e-6,
+                "incompressible {incompressible}, k {k}: exact {a} vs discrete {b}"
+            );
+        }
+    }
+}
