@@ -50,7 +50,8 @@ def _check_parameters(params: Any) -> Parameters:
 
 class Onset(types.SimpleNamespace):
     """The onset of wrinkling: the keys of ``onset.json`` as attributes (``k0``, ``d_c``,
-    ``lambda1_c``, ``d_ellipticity_loss``, ``d_domain_end``, ``wavelength``, ``method``, ``parameters``)."""
+    ``lambda1_c``, ``d_ellipticity_loss``, ``d_domain_end``, ``wavelength``, ``minimum``,
+    ``biaxial``, ``theta0``, ``direction_spread``, ``method``, ``parameters``)."""
 
     def as_dict(self) -> Dict[str, Any]:
         return dict(vars(self))
@@ -64,17 +65,32 @@ def homogeneous(params: Parameters, d: ArrayLike) -> Dict[str, np.ndarray]:
     return _fiberfold.homogeneous(_check_parameters(params), np.atleast_1d(np.asarray(d, dtype=float)))
 
 
-def dispersion(params: Parameters, k: ArrayLike, method: str = "exact") -> Dict[str, np.ndarray]:
+def dispersion(
+    params: Parameters,
+    k: ArrayLike,
+    method: str = "exact",
+    biaxial: Optional[float] = None,
+    theta: Optional[float] = None,
+) -> Dict[str, np.ndarray]:
     """The critical compression ``d_c(k)`` of the linear theory at each wavenumber ``k > 0``:
     ``k``, ``d_c``, ``lambda1_c`` where a bifurcation exists, and ``k_without_root`` where none
     does before d = 0.95 or the loss of ellipticity. ``method``: ``"exact"`` (Stroh) or
-    ``"discrete"`` (finite elements in Y)."""
-    return _fiberfold.dispersion(_check_parameters(params), np.atleast_1d(np.asarray(k, dtype=float)), method)
+    ``"discrete"`` (finite elements in Y). ``biaxial = R`` (``d_3 = R d``) or ``theta`` (the
+    wave direction in the surface, radians from X) analyse waves in the surface with three
+    displacement components (``theta`` 0 by default); both ``None`` is the paper's plane strain."""
+    return _fiberfold.dispersion(
+        _check_parameters(params), np.atleast_1d(np.asarray(k, dtype=float)), method, biaxial, theta
+    )
 
 
-def onset(params: Parameters, method: str = "exact") -> Onset:
-    """The onset of wrinkling: the minimum over k of ``d_c(k)`` (``k0``, ``d_c``, ...)."""
-    return Onset(**json.loads(_fiberfold.onset(_check_parameters(params), method)))
+def onset(
+    params: Parameters, method: str = "exact", biaxial: Optional[float] = None, theta: Optional[float] = None
+) -> Onset:
+    """The onset of wrinkling: the minimum over k of ``d_c(k)`` (``k0``, ``d_c``, ``theta0``,
+    ...). With ``biaxial = R`` (``d_3 = R d``) and no ``theta``, also the minimum over the wave
+    directions of the surface: ``theta0`` (radians from X; ``None`` where none is preferred) and
+    ``direction_spread``."""
+    return Onset(**json.loads(_fiberfold.onset(_check_parameters(params), method, biaxial, theta)))
 
 
 def sweep(

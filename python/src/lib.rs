@@ -9,12 +9,13 @@ use fiberfold::mesh::{ElementKind, MeshSpec};
 use fiberfold::output::vtu::{vtk_cell, write_vtu, DataArray};
 use fiberfold::parameters::validate_compression;
 use fiberfold::stability::discrete::DiscreteOptions;
-use fiberfold::stability::{Method, StabilityAnalysis, K_MAX};
+use fiberfold::stability::{Method, K_MAX};
 use fiberfold::studies::homogeneous::{columns, CSV_HEADER};
 use fiberfold::studies::simulate::{
     self, amplitude_header, amplitude_row, cell_arrays, displacement_array, Crossing, EllipticityReport, Progress,
     SimulateOptions, StateFields,
 };
+use fiberfold::studies::orientation::Modes;
 use fiberfold::studies::stability::{DispersionCurve, OnsetSummary, SweepStudy};
 use fiberfold::Error;
 use numpy::ndarray::Array2;
@@ -87,12 +88,14 @@ fn homogeneous<'py>(
 /// `d_c(k)` at each `k` (continued from one to the next): `k`, `d_c`, `lambda1_c` where a root
 /// exists, and `k_without_root`, as in `dispersion.csv` / `dispersion.json`.
 #[pyfunction]
-#[pyo3(signature = (params, k, method_name = "exact"))]
+#[pyo3(signature = (params, k, method_name = "exact", biaxial = None, theta = None))]
 fn dispersion<'py>(
     py: Python<'py>,
     params: &PyParameters,
     k: PyArrayLike1<'py, f64, AllowTypeChange>,
     method_name: &str,
+    biaxial: Option<f64>,
+    theta: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let ks = k.as_array().to_vec();
     if let Some(bad) = ks.iter().find(|k| !(k.is_finite() && **k > 0.0 && **k <= K_MAX)) {
@@ -104,7 +107,7 @@ fn dispersion<'py>(
     let p = params.inner.clone();
     let curve = py
         .detach(|| {
-            let analysis = StabilityAnalysis::new(&p, method)?;
+            let analysis = Modes { biaxial, theta }.analysis(&p, method)?;
             DispersionCurve::compute(&analysis, &ks, &|| {})
         })
         .map_err(to_py)?;
@@ -120,11 +123,19 @@ fn dispersion<'py>(
 
 /// The onset: the content of `onset.json`, as JSON text.
 #[pyfunction]
-#[pyo3(signature = (params, method_name = "exact"))]
-fn onset(py: Python<'_>, params: &PyParameters, method_name: &str) -> PyResult<String> {
+#[pyo3(signature = (params, method_name = "exact", biaxial = None, theta = None))]
+fn onset(
+    py: Python<'_>,
+    params: &PyParameters,
+    method_name: &str,
+    biaxial: Option<f64>,
+    theta: Option<f64>,
+) -> PyResult<String> {
     let method = method(method_name)?;
     let p = params.inner.clone();
-    let summary = py.detach(|| OnsetSummary::new(&p, method)).map_err(to_py)?;
+    let summary = py
+        .detach(|| OnsetSummary::new(&p, method, &Modes { biaxial, theta }))
+        .map_err(to_py)?;
     serde_json::to_string(&summary).map_err(|e| PyRuntimeError::new_err(e.to_string()))
 }
 

@@ -1,8 +1,9 @@
 //! `fiberfold dispersion | onset | sweep`: the linear stability analysis (Appendix A).
 
-use super::common::{progress, report_files, ParamArgs};
+use super::common::{progress, report_files, spinner, ParamArgs};
 use clap::{Args, ValueEnum};
 use fiberfold::stability::{discrete::DiscreteOptions, Method, Minimum};
+use fiberfold::studies::orientation::Modes;
 use fiberfold::studies::stability::{self, parse_series, DispersionStudy, SweepStudy};
 use fiberfold::Result;
 use std::path::PathBuf;
@@ -25,10 +26,36 @@ impl MethodArg {
     }
 }
 
+/// Waves in the surface under biaxial compression instead of the paper's plane strain.
+#[derive(Args)]
+pub struct ModesArgs {
+    /// Compression along Z as a fraction R of the compression d along X, d_3 = R d, in [0, 1]
+    /// (0: plane strain in the stretches, 1: equibiaxial). Given (or with --theta), waves run in
+    /// any direction of the surface with three displacement components, and the fibres may
+    /// leave the X-Y plane (psi). Absent: the paper's plane strain, waves along X only.
+    #[arg(long, value_name = "R", allow_negative_numbers = true)]
+    pub biaxial: Option<f64>,
+    /// Direction of the wave vector in the surface, radians from X towards Z (the crests run
+    /// perpendicular to it). Absent with --biaxial: `onset` searches every direction.
+    #[arg(long, value_name = "RAD", allow_negative_numbers = true)]
+    pub theta: Option<f64>,
+}
+
+impl ModesArgs {
+    fn modes(&self) -> Modes {
+        Modes {
+            biaxial: self.biaxial,
+            theta: self.theta,
+        }
+    }
+}
+
 #[derive(Args)]
 pub struct DispersionArgs {
     #[command(flatten)]
     pub params: ParamArgs,
+    #[command(flatten)]
+    pub modes: ModesArgs,
     /// Smallest referential wavenumber k (units 1/H, > 0).
     #[arg(long, default_value_t = 0.05, allow_negative_numbers = true)]
     pub k_min: f64,
@@ -53,11 +80,17 @@ pub fn dispersion(args: &DispersionArgs) -> Result<()> {
         k_max: args.k_max,
         points: args.points,
         method: args.method.method(),
+        modes: args.modes.modes(),
     };
     study.validate()?;
+    study.modes.validate()?;
     println!(
-        "critical compression d_c(k) for k in [{}, {}], {} points ({:?})",
-        study.k_min, study.k_max, study.points, args.method
+        "critical compression d_c(k) for k in [{}, {}], {} points ({:?}; {})",
+        study.k_min,
+        study.k_max,
+        study.points,
+        args.method,
+        study.modes.describe()
     );
     let bar = progress(study.points, "dispersion");
     let files = stability::dispersion(&params, &study, &args.out, &|| bar.inc(1))?;
@@ -70,6 +103,8 @@ pub fn dispersion(args: &DispersionArgs) -> Result<()> {
 pub struct OnsetArgs {
     #[command(flatten)]
     pub params: ParamArgs,
+    #[command(flatten)]
+    pub modes: ModesArgs,
     /// Solver.
     #[arg(long, value_enum, default_value_t = MethodArg::Exact)]
     pub method: MethodArg,
@@ -80,11 +115,18 @@ pub struct OnsetArgs {
 
 pub fn onset(args: &OnsetArgs) -> Result<()> {
     let params = args.params.resolve()?;
+    let modes = args.modes.modes();
+    modes.validate()?;
     println!(
-        "onset of wrinkling: minimum of d_c(k) over k in [0.02, 5], followed to 1e-4 or 10 if it lies at an end ({:?})",
-        args.method
+        "onset of wrinkling: minimum of d_c(k) over k in [0.02, 5], followed to 1e-4 or 10 if it lies at an end ({:?}; {})",
+        args.method,
+        modes.describe()
     );
-    let (onset, path) = stability::onset(&params, args.method.method(), &args.out)?;
+    let spinner = (modes.surface().is_some() && modes.theta.is_none()).then(|| spinner("directions"));
+    let (onset, files) = stability::onset(&params, args.method.method(), &modes, &args.out)?;
+    if let Some(s) = spinner {
+        s.finish_and_clear();
+    }
     match (onset.minimum, onset.wavelength) {
         (_, Some(wavelength)) => println!("  k0 = {:.6}  (wavelength {wavelength:.4} H)", onset.k0),
         (Minimum::Flat, _) => println!(
@@ -98,6 +140,19 @@ pub fn onset(args: &OnsetArgs) -> Result<()> {
         ),
     }
     println!("  d_c = {:.6}  (lambda1_c = {:.6})", onset.d_c, onset.lambda1_c);
+    if let Some(spread) = onset.direction_spread {
+        match onset.theta0.is_finite() {
+            true => println!(
+                "  theta0 = {:.6} rad = {:.2} deg: the wave vector's direction from X (crests perpendicular); \
+                 the least critical direction's onset is {spread:.2e} later",
+                onset.theta0,
+                onset.theta0.to_degrees()
+            ),
+            false => {
+                println!("  no preferred direction: the onset is the same in every direction (within {spread:.1e})")
+            }
+        }
+    }
     match onset.d_ellipticity_loss {
         Some(d) => println!("  strong ellipticity is lost at d = {d:.6}; beyond it wrinkling results are meaningless"),
         None => match onset.d_domain_end {
@@ -108,7 +163,7 @@ pub fn onset(args: &OnsetArgs) -> Result<()> {
             None => println!("  both layers stay strongly elliptic up to d = 0.95"),
         },
     }
-    report_files(&[path]);
+    report_files(&files);
     Ok(())
 }
 

@@ -8,6 +8,7 @@ pub mod crease;
 pub mod crease_threshold;
 pub mod homogeneous;
 pub mod map;
+pub mod orientation;
 pub mod reproduce;
 pub mod simulate;
 pub mod stability;

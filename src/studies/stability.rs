@@ -1,5 +1,6 @@
 //! Linear-stability studies: the dispersion curve `d_c(k)`, the onset, and parameter sweeps.
 
+use super::orientation::{directed_onset, orientation_figure, DirectedOnset, Modes};
 use super::{linspace, validate_points, Tick};
 use crate::error::{Error, Result};
 use crate::output::table::{variant_name, Cell};
@@ -17,6 +18,8 @@ pub struct DispersionStudy {
     pub k_max: f64,
     pub points: usize,
     pub method: Method,
+    /// Plane strain, or waves along one direction of the surface (`theta`, default 0).
+    pub modes: Modes,
 }
 
 impl DispersionStudy {
@@ -83,20 +86,25 @@ struct DispersionSummary<'a> {
     files: Vec<String>,
 }
 
-/// Writes `dispersion.csv` (`k,d_c,lambda1_c`), `dispersion.json` and `dispersion.png/svg`.
+/// Writes `dispersion.csv` (`k,theta,d_c,lambda1_c`), `dispersion.json` and `dispersion.png/svg`.
 pub fn dispersion(params: &Parameters, study: &DispersionStudy, out: &Path, tick: Tick) -> Result<Vec<PathBuf>> {
     study.validate()?;
-    let analysis = StabilityAnalysis::new(params, study.method)?;
+    let modes = Modes {
+        theta: Some(study.modes.theta.unwrap_or(0.0)).filter(|_| study.modes.surface().is_some()),
+        ..study.modes
+    };
+    let analysis = modes.analysis(params, study.method)?;
     ensure_dir(out)?;
     let curve = DispersionCurve::compute(&analysis, &linspace(study.k_min, study.k_max, study.points), tick)?;
     let onset = analysis.onset()?;
+    let theta = modes.theta.unwrap_or(0.0);
     let csv = out.join("dispersion.csv");
-    let mut table = CsvWriter::create(&csv, &["k", "d_c", "lambda1_c"])?;
+    let mut table = CsvWriter::create(&csv, &["k", "theta", "d_c", "lambda1_c"])?;
     for &(k, d) in &curve.points {
-        table.append(&[k, d, 1.0 - d])?;
+        table.append(&[k, theta, d, 1.0 - d])?;
     }
     let figure = Figure::new(
-        format!("Critical compression, beta = {:.4}", params.beta),
+        format!("Critical compression, beta = {:.4}, {}", params.beta, modes.describe()),
         "wavenumber k H",
         "critical compression d_c",
     )
@@ -149,15 +157,28 @@ pub struct OnsetSummary {
     /// `interior`, `long_wave` (`k0 = 0`, `d_c` the `k -> 0` limit: the substrate's own surface
     /// instability) or `short_wave` (`k0` infinite, null: the layer's own).
     pub minimum: Minimum,
+    /// `d_3 / d` of a surface analysis (null: the paper's plane strain).
+    pub biaxial: Option<f64>,
+    /// Direction of the first wrinkles' wave vector in the surface, radians from X towards Z
+    /// (the crests run perpendicular to it): 0 in plane strain, null where every direction
+    /// has the same onset.
+    pub theta0: f64,
+    /// How much the onset depends on the direction: the largest onset over directions minus
+    /// `d_c` (null unless the direction was searched).
+    pub direction_spread: Option<f64>,
     pub method: String,
     pub parameters: Parameters,
 }
 
 impl OnsetSummary {
-    /// The onset of `params` by `method`.
-    pub fn new(params: &Parameters, method: Method) -> Result<Self> {
-        let onset = StabilityAnalysis::new(params, method)?.onset()?;
-        Ok(OnsetSummary {
+    /// The onset of `params` by `method` over `modes`.
+    pub fn new(params: &Parameters, method: Method, modes: &Modes) -> Result<Self> {
+        Ok(Self::of(params, method, modes, &directed_onset(params, method, modes)?))
+    }
+
+    fn of(params: &Parameters, method: Method, modes: &Modes, directed: &DirectedOnset) -> Self {
+        let onset = directed.onset;
+        OnsetSummary {
             k0: onset.k0,
             d_c: onset.d_c,
             lambda1_c: onset.lambda1_c,
@@ -165,19 +186,29 @@ impl OnsetSummary {
             d_domain_end: onset.d_domain_end,
             wavelength: onset.wavelength(),
             minimum: onset.minimum,
+            biaxial: modes.surface().map(|s| s.biaxial),
+            theta0: directed.theta0,
+            direction_spread: directed.direction_spread,
             method: format!("{method:?}"),
             parameters: params.clone(),
-        })
+        }
     }
 }
 
-/// Writes `onset.json`: `k0`, `d_c`, `lambda1_c`, `d_ellipticity_loss` and the parameters.
-pub fn onset(params: &Parameters, method: Method, out: &Path) -> Result<(OnsetSummary, PathBuf)> {
-    let summary = OnsetSummary::new(params, method)?;
+/// Writes `onset.json` (`k0`, `d_c`, `lambda1_c`, `theta0`, `d_ellipticity_loss` and the
+/// parameters) and, for waves in every direction of the surface, `orientation.csv` and the
+/// polar figure `orientation.png/svg`.
+pub fn onset(params: &Parameters, method: Method, modes: &Modes, out: &Path) -> Result<(OnsetSummary, Vec<PathBuf>)> {
+    let directed = directed_onset(params, method, modes)?;
+    let summary = OnsetSummary::of(params, method, modes, &directed);
     ensure_dir(out)?;
     let path = out.join("onset.json");
     write_json(&path, &summary)?;
-    Ok((summary, path))
+    let mut files = vec![path];
+    if modes.theta.is_none() {
+        files.extend(orientation_figure(params, method, modes, &directed, out)?);
+    }
+    Ok((summary, files))
 }
 
 /// A sweep of one numeric parameter, optionally repeated for several values of another.

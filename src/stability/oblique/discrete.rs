@@ -89,9 +89,8 @@ pub fn negative_eigenvalues(
             }
         }
         let base = stride * e;
-        for q in 0..local {
-            for p in 0..=q {
-                let z = element[q][p];
+        for (q, row) in element.iter().enumerate() {
+            for (p, z) in row.iter().enumerate().take(q + 1) {
                 let (gq, gp) = (2 * (base + q), 2 * (base + p));
                 stiffness.add(gq, gp, z.re);
                 stiffness.add(gq + 1, gp + 1, z.re);

@@ -121,9 +121,12 @@ impl StabilityAnalysis {
         let step = PI / DIRECTIONS as f64;
         let thetas: Vec<f64> = (0..DIRECTIONS).map(|i| i as f64 * step).collect();
         let sampled: Vec<(f64, Onset)> = thetas.iter().copied().zip(self.onsets_along(&thetas)?).collect();
+        // The first direction within round-off of the lowest: of a mirror pair (theta and
+        // pi - theta, where the fibres' projection lies along X or Z) the one in [0, pi/2].
+        let lowest = sampled.iter().map(|s| s.1.d_c).fold(f64::INFINITY, f64::min);
         let (best_theta, best) = *sampled
             .iter()
-            .min_by(|a, b| a.1.d_c.total_cmp(&b.1.d_c))
+            .find(|s| s.1.d_c <= lowest + 1e-12)
             .expect("directions sampled");
         let highest = sampled.iter().map(|s| s.1.d_c).fold(f64::NEG_INFINITY, f64::max);
         if highest - best.d_c <= RISE_TOLERANCE {
