@@ -80,6 +80,14 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                 let l2 = csv_column(dir.join("homogeneous.csv"), "lambda2_layer");
                 assert_eq!(l2[0], 1.0);
             }
+            "onset" if command.contains("--biaxial") => {
+                // Inclined fibres under equibiaxial compression: crests along the fibres'
+                // projection, the wave vector at psi + 90 degrees (psi = 30 degrees here).
+                let (dir, _) = run(command, &[]);
+                let theta0 = json(dir.join("onset.json"))["theta0"].as_f64().unwrap();
+                assert!((theta0.to_degrees() - 120.0).abs() < 0.01, "theta0 {theta0}");
+                assert!(dir.join("orientation.png").exists());
+            }
             "onset" if command.contains("incompressible=true") => {
                 // An incompressible stiff film (mu_l = 1000): the thin-film law within 2 %.
                 let (dir, _) = run(command, &[]);

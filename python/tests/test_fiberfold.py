@@ -41,6 +41,22 @@ def test_onset_without_fibre_stiffness_matches_the_paper():
     assert o.lambda1_c == pytest.approx(1.0 - o.d_c, abs=1e-15)
 
 
+def test_equibiaxial_half_space_is_biot_in_every_direction_and_inclined_fibres_orient_the_crests():
+    # Incompressible neo-Hookean half-space, equibiaxial: x^3 + x^2 + 3x - 1 = 0, x = lambda^3.
+    roots = np.roots([1.0, 1.0, 3.0, -1.0])
+    x = roots[np.isreal(roots)].real[0]
+    half_space = fiberfold.Parameters(mu_l=1.0, phi_m=1.0, phi_f=0.0, incompressible=True)
+    for theta in (0.0, 0.9):
+        d = fiberfold.dispersion(half_space, [0.5, 2.0], biaxial=1.0, theta=theta)["d_c"]
+        assert np.allclose(d, 1.0 - np.cbrt(x), atol=1e-8)
+    o = fiberfold.onset(fiberfold.Parameters(beta=np.pi / 4, psi=np.pi / 6), biaxial=1.0)
+    assert o.theta0 == pytest.approx(np.pi / 6 + np.pi / 2, abs=1e-4)
+    assert o.direction_spread > 1e-3 and o.biaxial == 1.0
+    assert fiberfold.onset(fiberfold.Parameters()).theta0 == 0.0
+    with pytest.raises(ValueError, match="biaxial"):
+        fiberfold.onset(fiberfold.Parameters(), biaxial=2.0)
+
+
 def test_homogeneous_state_is_stress_free_at_rest_and_has_the_csv_columns():
     h = fiberfold.homogeneous(fiberfold.Parameters(), np.array([0.0, 0.1, 0.2]))
     assert list(h) == [

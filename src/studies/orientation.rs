@@ -174,7 +174,8 @@ pub fn orientation_figure(
         cartesian = cartesian.with(Series::new(label.clone(), vertical(params.psi), LineStyle::Dashed, 2));
         polar = polar.with(Series::new(label, ray(params.psi), LineStyle::Dashed, 2));
     }
-    polar.x_range = Some((-reach, reach));
+    // The panel's plotting area is about 1.45 times as wide as it is high: equal scales.
+    polar.x_range = Some((-1.45 * reach, 1.45 * reach));
     polar.y_range = Some((-reach, reach));
     let mut files = vec![csv];
     files.extend(save_panels(&[cartesian, polar], out, "orientation")?);

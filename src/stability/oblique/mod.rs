@@ -152,7 +152,8 @@ impl StabilityAnalysis {
         let theta0 = if onset.d_c < best.d_c { theta } else { best_theta };
         Ok(SurfaceOnset {
             onset,
-            theta0: theta0.rem_euclid(PI),
+            // Within the minimisation's tolerance of pi is the direction 0.
+            theta0: Some(theta0.rem_euclid(PI)).filter(|t| PI - t > 1e-5).unwrap_or(0.0),
             direction_spread: highest - onset.d_c,
         })
     }
