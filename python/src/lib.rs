@@ -11,11 +11,11 @@ use fiberfold::parameters::validate_compression;
 use fiberfold::stability::discrete::DiscreteOptions;
 use fiberfold::stability::{Method, K_MAX};
 use fiberfold::studies::homogeneous::{columns, CSV_HEADER};
+use fiberfold::studies::orientation::Modes;
 use fiberfold::studies::simulate::{
     self, amplitude_header, amplitude_row, cell_arrays, displacement_array, Crossing, EllipticityReport, Progress,
     SimulateOptions, StateFields,
 };
-use fiberfold::studies::orientation::Modes;
 use fiberfold::studies::stability::{DispersionCurve, OnsetSummary, SweepStudy};
 use fiberfold::Error;
 use numpy::ndarray::Array2;
