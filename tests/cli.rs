@@ -207,7 +207,7 @@ fn dispersion_writes_its_curve() {
     ]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let csv = std::fs::read_to_string(dir.join("dispersion.csv")).unwrap();
-    assert!(csv.starts_with("k,d_c,lambda1_c\n"));
+    assert!(csv.starts_with("k,theta,d_c,lambda1_c\n"));
     assert_eq!(csv.lines().count(), 21);
     for f in ["dispersion.png", "dispersion.svg", "dispersion.json"] {
         assert!(dir.join(f).exists(), "{f}");
