@@ -71,3 +71,42 @@ fn onset_reports_the_direction_of_the_first_wrinkles() {
     assert!(table.starts_with("theta,d_c"));
     assert_eq!(table.lines().count(), 73);
 }
+
+/// `sweep --biaxial` over the fibres' azimuth: the wave vector turns with the fibres'
+/// projection, `theta0 = psi + 90 degrees` (mod 180), and the sweep draws a theta0 panel.
+#[test]
+fn sweep_over_the_azimuth_turns_the_wrinkles_with_the_fibres() {
+    let dir = scratch("orientation-sweep");
+    let out = fiberfold(&[
+        "sweep",
+        "--param",
+        "psi",
+        "--from",
+        "0",
+        "--to",
+        "1.5707963",
+        "--points",
+        "4",
+        "--set",
+        "beta=0.785398",
+        "--biaxial",
+        "1",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let table = std::fs::read_to_string(dir.join("sweep.csv")).unwrap();
+    let mut lines = table.lines();
+    assert_eq!(lines.next(), Some("series,value,k0,d_c,minimum,theta0"));
+    for line in lines {
+        let cells: Vec<&str> = line.split(',').collect();
+        let (psi, theta0): (f64, f64) = (cells[1].parse().unwrap(), cells[5].parse().unwrap());
+        let expected = (psi + FRAC_PI_2).rem_euclid(std::f64::consts::PI);
+        let gap = (theta0 - expected).abs();
+        assert!(
+            gap < 1e-4 || (gap - std::f64::consts::PI).abs() < 1e-4,
+            "psi {psi}: theta0 {theta0}"
+        );
+    }
+    assert!(dir.join("sweep.png").exists());
+}

@@ -99,17 +99,20 @@ def sweep(
     values: ArrayLike,
     series: Optional[Tuple[str, Sequence[float]]] = None,
     method: str = "exact",
+    biaxial: Optional[float] = None,
+    theta: Optional[float] = None,
 ) -> Dict[str, np.ndarray]:
     """The onset along ``values`` of the numeric parameter ``name`` (for each value of
     ``series = (other_name, [v1, v2, ...])`` if given): arrays ``series`` (NaN without a
-    series), ``value``, ``k0``, ``d_c`` (NaN where no onset exists), as in ``sweep.csv``."""
+    series), ``value``, ``k0``, ``d_c`` (NaN where no onset exists) and ``theta0``, as in
+    ``sweep.csv``. ``biaxial`` and ``theta`` as in :func:`onset`."""
     if not isinstance(name, str):
         raise TypeError(f"name must be a str, not {type(name).__name__}")
     if series is not None:
         key, levels = series
         series = (str(key), [float(v) for v in levels])
     return _fiberfold.sweep(
-        _check_parameters(params), name, np.atleast_1d(np.asarray(values, dtype=float)), series, method
+        _check_parameters(params), name, np.atleast_1d(np.asarray(values, dtype=float)), series, method, biaxial, theta
     )
 
 

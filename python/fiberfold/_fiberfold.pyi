@@ -65,6 +65,8 @@ def sweep(
     values: npt.ArrayLike,
     series: Optional[Tuple[str, List[float]]] = ...,
     method_name: str = ...,
+    biaxial: Optional[float] = ...,
+    theta: Optional[float] = ...,
 ) -> Dict[str, npt.NDArray[np.float64]]: ...
 def simulate_run(
     params: Parameters,

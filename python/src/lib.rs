@@ -140,9 +140,10 @@ fn onset(
 }
 
 /// The onset along `values` of `name` (and for each value of `series`): `series`, `value`,
-/// `k0`, `d_c` (NaN where no onset exists), as in `sweep.csv`.
+/// `k0`, `d_c` (NaN where no onset exists) and `theta0`, as in `sweep.csv`.
 #[pyfunction]
-#[pyo3(signature = (params, name, values, series = None, method_name = "exact"))]
+#[pyo3(signature = (params, name, values, series = None, method_name = "exact", biaxial = None, theta = None))]
+#[allow(clippy::too_many_arguments)]
 fn sweep<'py>(
     py: Python<'py>,
     params: &PyParameters,
@@ -150,6 +151,8 @@ fn sweep<'py>(
     values: PyArrayLike1<'py, f64, AllowTypeChange>,
     series: Option<(String, Vec<f64>)>,
     method_name: &str,
+    biaxial: Option<f64>,
+    theta: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let study = SweepStudy {
         param: name,
@@ -159,6 +162,7 @@ fn sweep<'py>(
         series,
         values: Some(values.as_array().to_vec()),
         method: method(method_name)?,
+        modes: Modes { biaxial, theta },
     };
     let p = params.inner.clone();
     let points = py.detach(|| study.compute(&p, &|| {})).map_err(to_py)?;
@@ -169,6 +173,7 @@ fn sweep<'py>(
     dict.set_item("value", pick(&|p| p.value).into_pyarray(py))?;
     dict.set_item("k0", pick(&|p| p.onset.map_or(f64::NAN, |o| o.k0)).into_pyarray(py))?;
     dict.set_item("d_c", pick(&|p| p.onset.map_or(f64::NAN, |o| o.d_c)).into_pyarray(py))?;
+    dict.set_item("theta0", pick(&|p| p.theta0).into_pyarray(py))?;
     Ok(dict)
 }
 

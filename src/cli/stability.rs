@@ -144,7 +144,7 @@ pub fn onset(args: &OnsetArgs) -> Result<()> {
         match onset.theta0.is_finite() {
             true => println!(
                 "  theta0 = {:.6} rad = {:.2} deg: the wave vector's direction from X (crests perpendicular); \
-                 the least critical direction's onset is {spread:.2e} later",
+                 at k0 the least critical direction's d_c is {spread:.2e} higher",
                 onset.theta0,
                 onset.theta0.to_degrees()
             ),
@@ -186,6 +186,8 @@ pub struct SweepArgs {
     /// Repeat the sweep for several values of another parameter, e.g. `mu_f=1,10,20,50`.
     #[arg(long, value_name = "KEY=V1,V2,...")]
     pub series: Option<String>,
+    #[command(flatten)]
+    pub modes: ModesArgs,
     /// Solver.
     #[arg(long, value_enum, default_value_t = MethodArg::Exact)]
     pub method: MethodArg,
@@ -204,13 +206,16 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
         series: args.series.as_deref().map(parse_series).transpose()?,
         values: None,
         method: args.method.method(),
+        modes: args.modes.modes(),
     };
+    study.modes.validate()?;
     println!(
-        "onset k0 and d_c against {} in [{}, {}], {} onsets in parallel",
+        "onset k0 and d_c against {} in [{}, {}], {} onsets in parallel ({})",
         study.param,
         study.from,
         study.to,
-        study.onsets()
+        study.onsets(),
+        study.modes.describe()
     );
     let bar = progress(study.onsets(), "sweep");
     let files = stability::sweep(&params, &study, &args.out, &|| bar.inc(1))?;

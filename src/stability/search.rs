@@ -353,7 +353,7 @@ impl StabilityAnalysis {
     }
 
     /// The onset at `(k0, d_c)` of this analysis.
-    fn onset_at(&self, k0: f64, d_c: f64, minimum: Minimum) -> Onset {
+    pub(super) fn onset_at(&self, k0: f64, d_c: f64, minimum: Minimum) -> Onset {
         Onset {
             k0,
             d_c,

@@ -1,9 +1,13 @@
 //! Timings of the linear stability analysis (`fiberfold bench stability`).
 
+use super::linspace;
+use super::orientation::Modes;
+use super::stability::SweepStudy;
 use super::stability_figures::{onset_against_angle, FIBRE_STIFFNESSES};
 use crate::error::Result;
 use crate::parameters::Parameters;
-use crate::stability::{Method, StabilityAnalysis};
+use crate::stability::{Method, StabilityAnalysis, Surface};
+use std::f64::consts::FRAC_PI_2;
 use std::time::Instant;
 
 /// Median wall time of `repeats` runs of `f`, in seconds.
@@ -17,6 +21,9 @@ fn median_seconds(repeats: usize, mut f: impl FnMut() -> Result<()>) -> Result<f
     times.sort_by(f64::total_cmp);
     Ok(times[repeats / 2])
 }
+
+/// Side of the (beta, psi) orientation map.
+const MAP_SIDE: usize = 91;
 
 /// A Markdown table: one d_c(k) (cold scan, and continued from a nearby root), one onset, the
 /// Fig. 4b sweep (4 stiffnesses x 91 angles, parallel), and the discrete cross-check.
@@ -36,6 +43,32 @@ pub fn run(params: &Parameters) -> Result<String> {
     })?;
     let discrete = StabilityAnalysis::new(params, Method::Discrete(Default::default()))?;
     let discrete_dc = median_seconds(3, || discrete.critical_compression(onset.k0).map(|_| ()))?;
+    // Waves in every direction of the surface under equibiaxial compression, beside the plane
+    // onset above; and the orientation map over the fibres' inclination and azimuth.
+    let surface = Some(Surface {
+        biaxial: 1.0,
+        theta: 0.0,
+    });
+    let oblique = StabilityAnalysis::with_surface(params, Method::Exact, surface)?;
+    let surface_onset = oblique.surface_onset()?;
+    let one_surface_onset = median_seconds(5, || oblique.surface_onset().map(|_| ()))?;
+    let orientation_map = median_seconds(1, || {
+        SweepStudy {
+            param: "psi".into(),
+            from: 0.0,
+            to: FRAC_PI_2,
+            points: MAP_SIDE,
+            series: Some(("beta".into(), linspace(0.0, FRAC_PI_2, MAP_SIDE))),
+            values: None,
+            method: Method::Exact,
+            modes: Modes {
+                biaxial: Some(1.0),
+                theta: None,
+            },
+        }
+        .compute(params, &|| {})
+        .map(|_| ())
+    })?;
     let threads = rayon::current_num_threads();
     Ok(format!(
         "| stability benchmark (Table 1, beta = {beta}) | wall time |\n|---|---|\n\
@@ -44,7 +77,12 @@ pub fn run(params: &Parameters) -> Result<String> {
          | one d_c(k) continued from a nearby root | {warm:.2e} s |\n\
          | one onset (k0 = {k0:.5}, d_c = {dc:.5}) | {one_onset:.2e} s |\n\
          | Fig. 4b sweep: 4 stiffnesses x 91 angles, {threads} threads | {sweep:.3} s |\n\
-         | one d_c(k) by the discrete cross-check | {discrete_dc:.2e} s |\n",
+         | one d_c(k) by the discrete cross-check | {discrete_dc:.2e} s |\n\
+         | one onset over k and theta, equibiaxial (theta0 = {theta0:.4}, d_c = {sdc:.5}) | {one_surface_onset:.2e} s ({ratio:.1}x the plane onset) |\n\
+         | orientation map: {MAP_SIDE} x {MAP_SIDE} (beta, psi), equibiaxial, {threads} threads | {orientation_map:.1} s |\n",
+        theta0 = surface_onset.theta0,
+        sdc = surface_onset.onset.d_c,
+        ratio = one_surface_onset / one_onset,
         beta = params.beta,
         k0 = onset.k0,
         dc = onset.d_c,

@@ -6,7 +6,7 @@ use crate::error::{Error, Result};
 use crate::output::table::{variant_name, Cell};
 use crate::output::{ensure_dir, plot::save_panels, write_json, CsvWriter, Figure, LineStyle, Series};
 use crate::parameters::Parameters;
-use crate::stability::{Method, Minimum, Onset, StabilityAnalysis, K_MAX};
+use crate::stability::{Method, Minimum, Onset, StabilityAnalysis, SurfaceOnset, K_MAX};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -223,6 +223,9 @@ pub struct SweepStudy {
     /// The swept values themselves, instead of `points` equally spaced from `from` to `to`.
     pub values: Option<Vec<f64>>,
     pub method: Method,
+    /// Plane strain, or waves in the surface (the onset's direction `theta0` searched unless
+    /// `theta` is given).
+    pub modes: Modes,
 }
 
 /// Parses `KEY=V1,V2,...` for `--series`.
@@ -243,6 +246,9 @@ pub struct SweepPoint {
     pub series: Option<f64>,
     pub value: f64,
     pub onset: Option<Onset>,
+    /// The direction of the onset's wave vector (radians from X): 0 in plane strain, NaN
+    /// (null) where none is preferred or there is no onset.
+    pub theta0: f64,
 }
 
 impl SweepStudy {
@@ -307,23 +313,42 @@ impl SweepStudy {
         let results: Vec<Vec<SweepPoint>> = curves
             .into_par_iter()
             .map(|curve| {
-                let mut previous: Option<Onset> = None;
+                let mut previous: Option<SurfaceOnset> = None;
                 let mut points = Vec::with_capacity(curve.len());
                 for (series, value, p) in curve {
-                    let analysis = StabilityAnalysis::new(&p, self.method)?;
-                    let onset = match previous.map_or_else(|| analysis.onset(), |o| analysis.onset_near(&o)) {
+                    let analysis = self.modes.analysis(&p, self.method)?;
+                    let directed = match self.directed_onset(&analysis, previous.as_ref()) {
                         Ok(o) => Some(o),
                         Err(Error::NoRoot { .. }) => None,
                         Err(e) => return Err(e),
                     };
-                    previous = onset;
+                    previous = directed;
                     tick();
-                    points.push(SweepPoint { series, value, onset });
+                    points.push(SweepPoint {
+                        series,
+                        value,
+                        onset: directed.map(|d| d.onset),
+                        theta0: directed.map_or(f64::NAN, |d| d.theta0),
+                    });
                 }
                 Ok(points)
             })
             .collect::<Result<_>>()?;
         Ok(results.into_iter().flatten().collect())
+    }
+
+    /// The onset of `analysis` with its direction, continued from the previous point's.
+    fn directed_onset(&self, analysis: &StabilityAnalysis, previous: Option<&SurfaceOnset>) -> Result<SurfaceOnset> {
+        let searched = self.modes.surface().is_some() && self.modes.theta.is_none();
+        match (searched, previous) {
+            (true, None) => analysis.surface_onset(),
+            (true, Some(p)) => analysis.surface_onset_near(p),
+            (false, p) => Ok(SurfaceOnset {
+                onset: p.map_or_else(|| analysis.onset(), |o| analysis.onset_near(&o.onset))?,
+                theta0: self.modes.theta.unwrap_or(0.0),
+                direction_spread: f64::NAN,
+            }),
+        }
     }
 
     /// Number of onsets to compute (for progress bars).
@@ -346,18 +371,21 @@ struct SweepSummary<'a> {
 pub(crate) fn parameter_axis(name: &str) -> String {
     match name {
         "beta" => "fibre angle beta (rad)".into(),
+        "psi" => "fibre azimuth psi (rad)".into(),
         "mu_l" | "K_l" | "mu_s" | "K_s" | "mu_f" => format!("{name} (units of mu_s)"),
         other => format!("{other} (-)"),
     }
 }
 
-/// Writes `sweep.csv` (`series,value,k0,d_c,minimum`; `k0` empty where the minimum is a
-/// long- or short-wave limit), `sweep.json` and `sweep.png/svg` (limits marked by crosses).
+/// Writes `sweep.csv` (`series,value,k0,d_c,minimum,theta0`; `k0` empty where the minimum is a
+/// long- or short-wave limit, `theta0` where no direction is preferred), `sweep.json` and
+/// `sweep.png/svg` (limits marked by crosses; a third panel of `theta0` when the direction is
+/// searched).
 pub fn sweep(params: &Parameters, study: &SweepStudy, out: &Path, tick: Tick) -> Result<Vec<PathBuf>> {
     let points = study.compute(params, tick)?;
     ensure_dir(out)?;
     let csv = out.join("sweep.csv");
-    let mut table = CsvWriter::create(&csv, &["series", "value", "k0", "d_c", "minimum"])?;
+    let mut table = CsvWriter::create(&csv, &["series", "value", "k0", "d_c", "minimum", "theta0"])?;
     let label = |s: Option<f64>| match (&study.series, s) {
         (Some((key, _)), Some(v)) => format!("{key}={v}"),
         _ => "base".to_string(),
@@ -376,6 +404,11 @@ pub fn sweep(params: &Parameters, study: &SweepStudy, out: &Path, tick: Tick) ->
                 k0,
                 Cell::Number(o.d_c),
                 Cell::Text(&minimum),
+                if p.theta0.is_finite() {
+                    Cell::Number(p.theta0)
+                } else {
+                    Cell::Empty
+                },
             ])?;
         }
     }
@@ -406,8 +439,28 @@ pub fn sweep(params: &Parameters, study: &SweepStudy, out: &Path, tick: Tick) ->
             d_panel.series.push(Series::new(name, limits, LineStyle::Crosses, i));
         }
     }
+    let mut panels = vec![k_panel, d_panel];
+    if study.modes.surface().is_some() && study.modes.theta.is_none() {
+        let mut theta_panel = Figure::new(
+            "Direction of the first wrinkles",
+            axis.as_str(),
+            "theta0 (deg, wave vector from X)",
+        );
+        for (i, s) in series_values.iter().enumerate() {
+            let directions: Vec<(f64, f64)> = points
+                .iter()
+                .filter(|p| p.series == *s && p.theta0.is_finite())
+                .map(|p| (p.value, p.theta0.to_degrees()))
+                .collect();
+            theta_panel
+                .series
+                .push(Series::new(label(*s), directions, LineStyle::Circles, i));
+        }
+        theta_panel.y_range = Some((-5.0, 185.0));
+        panels.push(theta_panel);
+    }
     let mut files = vec![csv];
-    files.extend(save_panels(&[k_panel, d_panel], out, "sweep")?);
+    files.extend(save_panels(&panels, out, "sweep")?);
     let json = out.join("sweep.json");
     let summary = SweepSummary {
         command: "sweep",

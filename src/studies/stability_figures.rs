@@ -55,6 +55,7 @@ pub fn onset_against_angle(
         series: Some(("mu_f".into(), stiffnesses.to_vec())),
         values: None,
         method: Method::Exact,
+        modes: Default::default(),
     }
     .compute(params, tick)
 }

@@ -14,12 +14,12 @@
 pub mod discrete;
 pub mod exact;
 pub mod moduli;
+mod search;
 
-use super::search::{Onset, StabilityAnalysis, RISE_TOLERANCE};
+use super::search::{Onset, StabilityAnalysis};
 use super::Method;
 use crate::error::{Error, Result};
 use crate::homogeneous::{biaxial_state, normal_stress};
-use crate::numerics::minimize::brent_minimize;
 use moduli::SurfaceModuli;
 use serde::Serialize;
 use std::f64::consts::PI;
@@ -57,12 +57,10 @@ pub struct SurfaceOnset {
     /// The direction of the first wrinkles' wave vector, in `[0, pi)` (the crests run
     /// perpendicular to it); NaN where `d_c` is the same in every direction (null in JSON).
     pub theta0: f64,
-    /// `max over theta of min over k of d_c`, minus `d_c`: how much the direction matters.
+    /// How much the direction matters: the largest `d_c(k0, theta)` over the sampled
+    /// directions, minus `d_c`.
     pub direction_spread: f64,
 }
-
-/// Directions sampled before the refinement (every 15 degrees of `[0, pi)`).
-const DIRECTIONS: usize = 12;
 
 impl StabilityAnalysis {
     /// The moduli of both layers at the biaxial state of compression `d`.
@@ -112,69 +110,11 @@ impl StabilityAnalysis {
         surface.theta = theta;
         analysis
     }
+}
 
-    /// The onset over wavenumbers and directions: the onset in `k` along `DIRECTIONS`
-    /// directions of `[0, pi)` (`d_c(k, theta + pi) = d_c(k, theta)`: the conjugate mode), then
-    /// Brent's minimisation over the 30 degrees around the best, continuing `k0` from one
-    /// direction to the next.
-    pub fn surface_onset(&self) -> Result<SurfaceOnset> {
-        let step = PI / DIRECTIONS as f64;
-        let thetas: Vec<f64> = (0..DIRECTIONS).map(|i| i as f64 * step).collect();
-        let sampled: Vec<(f64, Onset)> = thetas.iter().copied().zip(self.onsets_along(&thetas)?).collect();
-        // The first direction within round-off of the lowest: of a mirror pair (theta and
-        // pi - theta, where the fibres' projection lies along X or Z) the one in [0, pi/2].
-        let lowest = sampled.iter().map(|s| s.1.d_c).fold(f64::INFINITY, f64::min);
-        let (best_theta, best) = *sampled
-            .iter()
-            .find(|s| s.1.d_c <= lowest + 1e-12)
-            .expect("directions sampled");
-        let highest = sampled.iter().map(|s| s.1.d_c).fold(f64::NEG_INFINITY, f64::max);
-        if highest - best.d_c <= RISE_TOLERANCE {
-            return Ok(SurfaceOnset {
-                onset: best,
-                theta0: f64::NAN,
-                direction_spread: highest - best.d_c,
-            });
-        }
-        let last = std::cell::Cell::new(best);
-        let (theta, _) = brent_minimize(
-            |theta| {
-                let onset = self.along(theta).onset_near(&last.get())?;
-                last.set(onset);
-                Ok(onset.d_c)
-            },
-            best_theta - step,
-            best_theta + step,
-            1e-6,
-        )?;
-        let onset = self.along(theta).onset_near(&last.get())?;
-        let onset = if onset.d_c <= best.d_c { onset } else { best };
-        let theta0 = if onset.d_c < best.d_c { theta } else { best_theta };
-        Ok(SurfaceOnset {
-            onset,
-            // Within the minimisation's tolerance of pi is the direction 0.
-            theta0: Some(theta0.rem_euclid(PI)).filter(|t| PI - t > 1e-5).unwrap_or(0.0),
-            direction_spread: highest - onset.d_c,
-        })
-    }
-
-    /// The onset in `k` along each of `thetas` (continued from one to the next): `d_c(theta)`
-    /// for the polar figure.
-    pub fn onsets_along(&self, thetas: &[f64]) -> Result<Vec<Onset>> {
-        let mut previous: Option<Onset> = None;
-        thetas
-            .iter()
-            .map(|&theta| {
-                let along = self.along(theta);
-                let onset = match &previous {
-                    Some(p) => along.onset_near(p)?,
-                    None => along.onset()?,
-                };
-                previous = Some(onset);
-                Ok(onset)
-            })
-            .collect()
-    }
+/// A direction in `[0, pi)`; within the minimisation's tolerance of pi it is 0.
+fn folded(theta: f64) -> f64 {
+    Some(theta.rem_euclid(PI)).filter(|t| PI - t > 1e-5).unwrap_or(0.0)
 }
 
 #[cfg(test)]

@@ -122,3 +122,33 @@ fn exact_and_discrete_agree_at_oblique_directions_and_fibres() {
         }
     }
 }
+
+/// Continued from a neighbouring parameter set, the onset over directions is the fresh one,
+/// or its mirror image about the fibres' projection (`theta -> 2 psi - theta`: the fibre pair
+/// is symmetric about the vertical plane through it, and the equibiaxial load in every plane).
+#[test]
+fn continued_onset_over_directions_matches_a_fresh_search() {
+    let analysis = |beta: f64| {
+        let p = Parameters {
+            beta,
+            psi: 0.3,
+            ..Parameters::default()
+        };
+        StabilityAnalysis::with_surface(&p, Method::Exact, surface(1.0, 0.0)).unwrap()
+    };
+    let previous = analysis(0.2).surface_onset().unwrap();
+    for beta in [0.22, 0.26] {
+        let fresh = analysis(beta).surface_onset().unwrap();
+        let near = analysis(beta).surface_onset_near(&previous).unwrap();
+        assert!(
+            (fresh.onset.d_c - near.onset.d_c).abs() < 1e-9,
+            "beta {beta}: {fresh:?} vs {near:?}"
+        );
+        let mirror = (2.0 * 0.3 - near.theta0).rem_euclid(std::f64::consts::PI);
+        let same = |a: f64, b: f64| (a - b).abs() < 1e-4 || ((a - b).abs() - std::f64::consts::PI).abs() < 1e-4;
+        assert!(
+            same(fresh.theta0, near.theta0) || same(fresh.theta0, mirror),
+            "beta {beta}: {fresh:?} vs {near:?}"
+        );
+    }
+}
