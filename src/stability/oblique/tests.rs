@@ -152,3 +152,23 @@ fn continued_onset_over_directions_matches_a_fresh_search() {
         );
     }
 }
+
+/// The 3D margin of an unstrained neo-Hookean layer is its shear modulus (as in plane strain);
+/// strongly compressed fibres along X make it negative.
+#[test]
+fn surface_ellipticity_margin_of_rest_and_of_compressed_fibres() {
+    let solid = crate::material::NeoHookean { mu: 1.7, bulk: 40.0 };
+    let rest = moduli::SurfaceModuli::at(&solid, [1.0; 3]).unwrap();
+    assert!(
+        (rest.ellipticity_margin() - 1.7).abs() < 1e-10,
+        "{}",
+        rest.ellipticity_margin()
+    );
+    let p = Parameters {
+        mu_f: 200.0,
+        ..Parameters::default()
+    };
+    let fibres = crate::material::Bilayer::new(&p).substrate;
+    let compressed = moduli::SurfaceModuli::at(&fibres, [0.5, 1.2, 1.0]).unwrap();
+    assert!(compressed.ellipticity_margin() < 0.0);
+}
