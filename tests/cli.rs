@@ -147,7 +147,14 @@ fn bench_writes_its_tables_where_asked() {
         assert!(help.contains(flag), "`{flag}` missing from help:\n{help}");
     }
     let dir = scratch("bench");
-    let out = fiberfold(&["bench", "stability", "--out", dir.to_str().unwrap()]);
+    let out = fiberfold(&[
+        "bench",
+        "stability",
+        "--orientation-map",
+        "3",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let table = std::fs::read_to_string(dir.join("bench_stability.md")).unwrap();
     assert!(table.contains("d_c(k)"), "{table}");
@@ -239,7 +246,7 @@ fn sweep_over_a_parameter_with_series() {
     ]);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let csv = std::fs::read_to_string(dir.join("sweep.csv")).unwrap();
-    assert!(csv.starts_with("series,value,k0,d_c,minimum\n"));
+    assert!(csv.starts_with("series,value,k0,d_c,minimum,theta0\n"));
     assert!(csv.lines().skip(1).all(|l| l.ends_with(",interior")), "{csv}");
     assert_eq!(csv.lines().filter(|l| l.starts_with("mu_f=20,")).count(), 5);
     rejected(

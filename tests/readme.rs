@@ -125,8 +125,8 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                 assert!(d_at_zero("mu_f=50") < d_at_zero("mu_f=1"));
             }
             "bench" if command.ends_with("stability") => {
-                let (_, stdout) = run(command, &[]);
-                assert!(stdout.contains("Fig. 4b sweep"));
+                let (_, stdout) = run(command, &[("--orientation-map", "3")]);
+                assert!(stdout.contains("Fig. 4b sweep") && stdout.contains("orientation map"));
             }
             "bench" => {
                 let (_, stdout) = run(command, &[("--coarse-only", "")]);

@@ -12,7 +12,8 @@ use std::path::PathBuf;
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum BenchTarget {
-    /// Linear stability: one d_c(k), one onset, the Fig. 4b sweep.
+    /// Linear stability: one d_c(k), one onset, the Fig. 4b sweep, one onset over k and the
+    /// directions of the surface, the (beta, psi) orientation map.
     Stability,
     /// Finite elements: the beta = pi/4, N = 4.5 curve to d = 0.25 on coarse and fine meshes,
     /// split per Newton iteration into assembly / factorisation / solve, with peak memory; then
@@ -34,6 +35,10 @@ pub struct BenchArgs {
     /// fe: only the coarse mesh (seconds).
     #[arg(long, conflicts_with = "extra")]
     pub coarse_only: bool,
+    /// stability: values of beta and of psi in the equibiaxial orientation map (N x N onsets
+    /// over k and theta, about 2 minutes at 91 on 2 cores; 0 skips it).
+    #[arg(long, value_name = "N", default_value_t = 91)]
+    pub orientation_map: usize,
     /// Output folder: `bench_stability.md`, or `bench_fe.md` and `bench_fe.json`.
     #[arg(long, value_name = "DIR", default_value = "results/bench")]
     pub out: PathBuf,
@@ -53,7 +58,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
     let files = match args.target {
         BenchTarget::Stability => {
             println!("timing the linear stability analysis (medians of repeated runs)...");
-            let table = fiberfold::studies::bench_stability::run(&params)?;
+            let table = fiberfold::studies::bench_stability::run(&params, args.orientation_map)?;
             print!("{table}");
             let path = args.out.join("bench_stability.md");
             write_file(&path, &table)?;

@@ -22,12 +22,9 @@ fn median_seconds(repeats: usize, mut f: impl FnMut() -> Result<()>) -> Result<f
     Ok(times[repeats / 2])
 }
 
-/// Side of the (beta, psi) orientation map.
-const MAP_SIDE: usize = 91;
-
 /// A Markdown table: one d_c(k) (cold scan, and continued from a nearby root), one onset, the
 /// Fig. 4b sweep (4 stiffnesses x 91 angles, parallel), and the discrete cross-check.
-pub fn run(params: &Parameters) -> Result<String> {
+pub fn run(params: &Parameters, map_side: usize) -> Result<String> {
     let analysis = StabilityAnalysis::new(params, Method::Exact)?;
     let onset = analysis.onset()?;
     let cold = median_seconds(21, || analysis.critical_compression(onset.k0).map(|_| ()))?;
@@ -53,12 +50,15 @@ pub fn run(params: &Parameters) -> Result<String> {
     let surface_onset = oblique.surface_onset()?;
     let one_surface_onset = median_seconds(5, || oblique.surface_onset().map(|_| ()))?;
     let orientation_map = median_seconds(1, || {
+        if map_side == 0 {
+            return Ok(());
+        }
         SweepStudy {
             param: "psi".into(),
             from: 0.0,
             to: FRAC_PI_2,
-            points: MAP_SIDE,
-            series: Some(("beta".into(), linspace(0.0, FRAC_PI_2, MAP_SIDE))),
+            points: map_side,
+            series: Some(("beta".into(), linspace(0.0, FRAC_PI_2, map_side))),
             values: None,
             method: Method::Exact,
             modes: Modes {
@@ -70,6 +70,12 @@ pub fn run(params: &Parameters) -> Result<String> {
         .map(|_| ())
     })?;
     let threads = rayon::current_num_threads();
+    let map_row = match map_side {
+        0 => String::new(),
+        n => format!(
+            "| orientation map: {n} x {n} (beta, psi), equibiaxial, {threads} threads | {orientation_map:.1} s |\n"
+        ),
+    };
     Ok(format!(
         "| stability benchmark (Table 1, beta = {beta}) | wall time |\n|---|---|\n\
          | setup (homogeneous state, loss of ellipticity scan) | {setup:.2e} s |\n\
@@ -78,8 +84,7 @@ pub fn run(params: &Parameters) -> Result<String> {
          | one onset (k0 = {k0:.5}, d_c = {dc:.5}) | {one_onset:.2e} s |\n\
          | Fig. 4b sweep: 4 stiffnesses x 91 angles, {threads} threads | {sweep:.3} s |\n\
          | one d_c(k) by the discrete cross-check | {discrete_dc:.2e} s |\n\
-         | one onset over k and theta, equibiaxial (theta0 = {theta0:.4}, d_c = {sdc:.5}) | {one_surface_onset:.2e} s ({ratio:.1}x the plane onset) |\n\
-         | orientation map: {MAP_SIDE} x {MAP_SIDE} (beta, psi), equibiaxial, {threads} threads | {orientation_map:.1} s |\n",
+         | one onset over k and theta, equibiaxial (theta0 = {theta0:.4}, d_c = {sdc:.5}) | {one_surface_onset:.2e} s ({ratio:.1}x the plane onset) |\n{map_row}",
         theta0 = surface_onset.theta0,
         sdc = surface_onset.onset.d_c,
         ratio = one_surface_onset / one_onset,
