@@ -3,21 +3,7 @@
 
 mod common;
 
-use common::{fiberfold, scratch};
-
-fn rejected(args: &[&str], must_mention: &[&str]) {
-    let out = fiberfold(args);
-    let stderr = String::from_utf8_lossy(&out.stderr).to_string();
-    assert_eq!(out.status.code(), Some(2), "{args:?} should exit 2, stderr: {stderr}");
-    assert_eq!(
-        stderr.trim().lines().count(),
-        1,
-        "{args:?}: one line expected: {stderr}"
-    );
-    for word in must_mention {
-        assert!(stderr.contains(word), "{args:?}: `{word}` missing from: {stderr}");
-    }
-}
+use common::{fiberfold, rejected, scratch};
 
 #[test]
 fn bad_laws_and_constants_are_named_with_their_range() {

@@ -3,22 +3,8 @@
 
 mod common;
 
-use common::{fiberfold, scratch};
+use common::{fiberfold, rejected, scratch};
 use std::f64::consts::FRAC_PI_2;
-
-fn rejected(args: &[&str], must_mention: &[&str]) {
-    let out = fiberfold(args);
-    let stderr = String::from_utf8_lossy(&out.stderr).to_string();
-    assert_eq!(out.status.code(), Some(2), "{args:?} should exit 2, stderr: {stderr}");
-    assert_eq!(
-        stderr.trim().lines().count(),
-        1,
-        "{args:?}: one line expected: {stderr}"
-    );
-    for word in must_mention {
-        assert!(stderr.contains(word), "{args:?}: `{word}` missing from: {stderr}");
-    }
-}
 
 fn onset_json(args: &[&str]) -> serde_json::Value {
     let dir = scratch(&format!("orientation-{}", args.join("_").replace(['=', '.', '-'], "")));

@@ -29,17 +29,23 @@ fn sampled_minimum(samples: usize, smallest: &impl Fn(f64) -> f64) -> (f64, f64)
 /// Golden sections within a sample spacing of the best sample `(best_theta, best)`.
 fn refined_minimum(samples: usize, (best_theta, best): (f64, f64), smallest: &impl Fn(f64) -> f64) -> f64 {
     let step = std::f64::consts::PI / samples as f64;
-    let (mut lo, mut hi) = (best_theta - step, best_theta + step);
+    best.min(smallest(golden_section(smallest, best_theta, step, 25)))
+}
+
+/// The minimiser of `f` on `[centre - half_width, centre + half_width]` after `sections`
+/// golden sections (each shrinks the bracket by 0.618).
+pub(crate) fn golden_section(f: &impl Fn(f64) -> f64, centre: f64, half_width: f64, sections: usize) -> f64 {
+    let (mut lo, mut hi) = (centre - half_width, centre + half_width);
     let ratio = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..25 {
+    for _ in 0..sections {
         let (x1, x2) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
-        if smallest(x1) < smallest(x2) {
+        if f(x1) < f(x2) {
             hi = x2;
         } else {
             lo = x1;
         }
     }
-    best.min(smallest(0.5 * (lo + hi)))
+    0.5 * (lo + hi)
 }
 
 /// Directions sampled by [`referential_margin`] before the refinement (every 15 degrees).

@@ -136,36 +136,14 @@ fn incompressible_negative_eigenvalues(
     let y = options.nodes_of_elements(k, slowest_decay(substrate)?);
     let elements = y.len() - 1;
     let mut stiffness = SymmetricBanded::zeros(2 * (elements + 1), 3);
-    // 4-point Gauss-Legendre on [0, 1] (exact for the degree-6 products of cubics).
-    let (inner, outer) = (0.339_981_043_584_856_3, 0.861_136_311_594_052_6);
-    let (w_inner, w_outer) = (0.652_145_154_862_546_1, 0.347_854_845_137_453_9);
-    let gauss = [(-outer, w_outer), (-inner, w_inner), (inner, w_inner), (outer, w_outer)]
-        .map(|(x, w)| (0.5 * (x + 1.0), 0.5 * w));
+    let gauss = gauss_legendre_4();
     for e in 0..elements {
         let (y0, y1) = (y[e], y[e + 1]);
         let form = if y0 >= 0.0 { layer } else { substrate }.energy_form(k);
         let h = y1 - y0;
         for &(t, weight) in &gauss {
-            let t: f64 = t;
             // Hermite cubics on [y0, y1] for (b_0, b'_0, b_1, b'_1), and their Y-derivatives.
-            let n = [
-                1.0 - 3.0 * t * t + 2.0 * t.powi(3),
-                h * (t - 2.0 * t * t + t.powi(3)),
-                3.0 * t * t - 2.0 * t.powi(3),
-                h * (t.powi(3) - t * t),
-            ];
-            let dn = [
-                (6.0 * t * t - 6.0 * t) / h,
-                1.0 - 4.0 * t + 3.0 * t * t,
-                (6.0 * t - 6.0 * t * t) / h,
-                3.0 * t * t - 2.0 * t,
-            ];
-            let ddn = [
-                (12.0 * t - 6.0) / (h * h),
-                (6.0 * t - 4.0) / h,
-                (6.0 - 12.0 * t) / (h * h),
-                (6.0 * t - 2.0) / h,
-            ];
+            let (n, dn, ddn) = hermite_cubics(t, h);
             // Rows of B: g = (a, a', b, b') = (-b' / (r k), -b'' / (r k), b, b').
             let b: [[f64; 4]; 4] = [dn.map(|x| -x / (r * k)), ddn.map(|x| -x / (r * k)), n, dn];
             for p in 0..4 {
@@ -184,4 +162,38 @@ fn incompressible_negative_eigenvalues(
     stiffness.constrain(0);
     stiffness.constrain(1);
     stiffness.negative_eigenvalues()
+}
+
+/// 4-point Gauss-Legendre on `[0, 1]`, `(point, weight)` (exact for the degree-6 products of
+/// cubics).
+pub(crate) fn gauss_legendre_4() -> [(f64, f64); 4] {
+    let (inner, outer) = (0.339_981_043_584_856_3, 0.861_136_311_594_052_6);
+    let (w_inner, w_outer) = (0.652_145_154_862_546_1, 0.347_854_845_137_453_9);
+    [(-outer, w_outer), (-inner, w_inner), (inner, w_inner), (outer, w_outer)].map(|(x, w)| (0.5 * (x + 1.0), 0.5 * w))
+}
+
+/// The C1 cubic Hermite functions on an element of length `h` at `t` in `[0, 1]`, for the
+/// unknowns (value, slope) at its start and (value, slope) at its end: their values and first
+/// and second derivatives in `Y`.
+pub(crate) fn hermite_cubics(t: f64, h: f64) -> ([f64; 4], [f64; 4], [f64; 4]) {
+    (
+        [
+            1.0 - 3.0 * t * t + 2.0 * t.powi(3),
+            h * (t - 2.0 * t * t + t.powi(3)),
+            3.0 * t * t - 2.0 * t.powi(3),
+            h * (t.powi(3) - t * t),
+        ],
+        [
+            (6.0 * t * t - 6.0 * t) / h,
+            1.0 - 4.0 * t + 3.0 * t * t,
+            (6.0 * t - 6.0 * t * t) / h,
+            3.0 * t * t - 2.0 * t,
+        ],
+        [
+            (12.0 * t - 6.0) / (h * h),
+            (6.0 * t - 4.0) / h,
+            (6.0 - 12.0 * t) / (h * h),
+            (6.0 * t - 2.0) / h,
+        ],
+    )
 }

@@ -240,3 +240,18 @@ pub fn error_norms(
         exact_l2: norms.exact_l2.sqrt(),
     }
 }
+
+/// A command that must exit 2 with a one-line error mentioning each of `must_mention`.
+pub fn rejected(args: &[&str], must_mention: &[&str]) {
+    let out = fiberfold(args);
+    let stderr = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(out.status.code(), Some(2), "{args:?} should exit 2, stderr: {stderr}");
+    assert_eq!(
+        stderr.trim().lines().count(),
+        1,
+        "{args:?}: one line expected: {stderr}"
+    );
+    for word in must_mention {
+        assert!(stderr.contains(word), "{args:?}: `{word}` missing from: {stderr}");
+    }
+}

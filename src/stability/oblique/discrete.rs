@@ -13,7 +13,7 @@
 
 use super::moduli::SurfaceModuli;
 use crate::numerics::banded::SymmetricBanded;
-use crate::stability::discrete::DiscreteOptions;
+use crate::stability::discrete::{gauss_legendre_4, hermite_cubics, DiscreteOptions};
 use nalgebra::Complex;
 
 type C = Complex<f64>;
@@ -171,24 +171,7 @@ fn quadratic(t: f64, h: f64) -> Vec<Basis> {
 /// functions for `v` (field 1), in the order (U_Y, U_Y', v) at the first vertex, v at the
 /// midpoint, (U_Y, U_Y', v) at the second vertex.
 fn hermite_and_quadratic(t: f64, h: f64) -> Vec<Basis> {
-    let value = [
-        1.0 - 3.0 * t * t + 2.0 * t.powi(3),
-        h * (t - 2.0 * t * t + t.powi(3)),
-        3.0 * t * t - 2.0 * t.powi(3),
-        h * (t.powi(3) - t * t),
-    ];
-    let first = [
-        (6.0 * t * t - 6.0 * t) / h,
-        1.0 - 4.0 * t + 3.0 * t * t,
-        (6.0 * t - 6.0 * t * t) / h,
-        3.0 * t * t - 2.0 * t,
-    ];
-    let second = [
-        (12.0 * t - 6.0) / (h * h),
-        (6.0 * t - 4.0) / h,
-        (6.0 - 12.0 * t) / (h * h),
-        (6.0 * t - 2.0) / h,
-    ];
+    let (value, first, second) = hermite_cubics(t, h);
     let cubic = |m: usize| Basis {
         field: 0,
         value: value[m],
@@ -201,11 +184,4 @@ fn hermite_and_quadratic(t: f64, h: f64) -> Vec<Basis> {
         ..lagrange[3 * node]
     };
     vec![cubic(0), cubic(1), v(0), v(1), cubic(2), cubic(3), v(2)]
-}
-
-/// 4-point Gauss-Legendre on `[0, 1]` (exact for the degree-6 products of cubics).
-fn gauss_legendre_4() -> [(f64, f64); 4] {
-    let (inner, outer) = (0.339_981_043_584_856_3, 0.861_136_311_594_052_6);
-    let (w_inner, w_outer) = (0.652_145_154_862_546_1, 0.347_854_845_137_453_9);
-    [(-outer, w_outer), (-inner, w_inner), (inner, w_inner), (outer, w_outer)].map(|(x, w)| (0.5 * (x + 1.0), 0.5 * w))
 }

@@ -2,6 +2,7 @@
 //! lambda_3)` and the 6x6 Stroh matrix of a mode `U(Y) exp(i k (cos theta X + sin theta Z))`.
 
 use crate::error::Result;
+use crate::material::ellipticity::golden_section;
 use crate::material::{full_response, StrainEnergy};
 use nalgebra::{Complex, Matrix3, Matrix6, SMatrix, SVector};
 
@@ -185,19 +186,6 @@ impl SurfaceModuli {
                 }
             }
         }
-        let golden = |f: &dyn Fn(f64) -> f64, centre: f64| {
-            let (mut lo, mut hi) = (centre - step, centre + step);
-            let ratio = 0.5 * (5f64.sqrt() - 1.0);
-            for _ in 0..30 {
-                let (x1, x2) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
-                if f(x1) < f(x2) {
-                    hi = x2;
-                } else {
-                    lo = x1;
-                }
-            }
-            0.5 * (lo + hi)
-        };
         let scale = (0..3)
             .map(|i| self.contracted(e(i), e(i)).diagonal().abs().max())
             .fold(0.0, f64::max);
@@ -206,8 +194,8 @@ impl SurfaceModuli {
         }
         let (mut polar, mut azimuth, mut value) = best;
         for _ in 0..3 {
-            polar = golden(&|x| smallest(x, azimuth), polar);
-            azimuth = golden(&|x| smallest(polar, x), azimuth);
+            polar = golden_section(&|x| smallest(x, azimuth), polar, step, 30);
+            azimuth = golden_section(&|x| smallest(polar, x), azimuth, step, 30);
             value = value.min(smallest(polar, azimuth));
         }
         value
