@@ -154,6 +154,7 @@ pub fn biaxial_state(materials: &Bilayer, d: f64, d3: f64) -> Result<BiaxialStat
 
 /// `P_22 = dW/dF_22` at `diag(stretches)`, by one dual number.
 pub fn normal_stress<M: StrainEnergy + ?Sized>(material: &M, [l1, l2, l3]: [f64; 3]) -> Result<f64> {
+    material.admissible(&[l1, 0.0, 0.0, 0.0, l2, 0.0, 0.0, 0.0, l3])?;
     let x = Dual64::from(l2).derivative();
     let zero = Dual64::from(0.0);
     let w = material.density(&[l1.into(), zero, zero, zero, x, zero, zero, zero, l3.into()]);

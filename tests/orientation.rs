@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{fiberfold, rejected, scratch};
+use common::{fiberfold, map_points, rejected, scratch, tiny_map};
 use std::f64::consts::FRAC_PI_2;
 
 fn onset_json(args: &[&str]) -> serde_json::Value {
@@ -22,6 +22,11 @@ fn bad_directions_and_loads_are_named_with_their_range() {
     rejected(&["onset", "--theta", "nan"], &["theta", "finite"]);
     rejected(&["dispersion", "--theta", "inf"], &["theta", "finite"]);
     rejected(&["onset", "--biaxial", "1", "--set", "psi=nan"], &["psi"]);
+    let map = tiny_map(&scratch("orientation-bad-map"), &["--biaxial", "2"]);
+    rejected(
+        &map.iter().map(String::as_str).collect::<Vec<_>>(),
+        &["biaxial", "[0, 1]"],
+    );
 }
 
 /// Plane strain reports `theta0 = 0` and no biaxial ratio. Under equibiaxial compression
@@ -95,4 +100,52 @@ fn sweep_over_the_azimuth_turns_the_wrinkles_with_the_fibres() {
         );
     }
     assert!(dir.join("sweep.png").exists());
+}
+
+/// `map --biaxial 1` gives each point the direction of `onset --biaxial 1` at its parameters
+/// (fibres in the surface, at the map's beta = 0, swung to psi = 0.6 from X), and none without
+/// fibres; the columns are in `map.csv`.
+#[test]
+fn map_points_carry_the_direction_of_the_onset_over_the_surface() {
+    let dir = scratch("orientation-map");
+    let fibres = ["--set", "phi_m=0.9", "--set", "phi_f=0.1", "--set", "psi=0.6"];
+    let mut args = tiny_map(&dir, &fibres);
+    args.extend(["--biaxial", "1"].map(String::from));
+    let out = fiberfold(&args);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let csv = std::fs::read_to_string(dir.join("map.csv")).unwrap();
+    assert!(
+        csv.lines().next().unwrap().contains(",d_wrinkle_biaxial,theta0,"),
+        "{csv}"
+    );
+    let points = map_points(&dir);
+    let stiff = &points[1];
+    let onset = onset_json(&["--biaxial", "1", "--set", "mu_l=10", "--set", "psi=0.6"]);
+    for (key, from_map) in [("d_c", "d_wrinkle_biaxial"), ("theta0", "theta0")] {
+        let (a, b) = (onset[key].as_f64().unwrap(), stiff[from_map].as_f64().unwrap());
+        assert!((a - b).abs() < 1e-9, "{key}: onset {a}, map {b}");
+    }
+
+    let isotropic = scratch("orientation-map-isotropic");
+    let mut args = tiny_map(&isotropic, &[]);
+    args.extend(["--biaxial", "1"].map(String::from));
+    let out = fiberfold(&args);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for point in map_points(&isotropic) {
+        assert!(
+            point["d_wrinkle_biaxial"].is_f64() && point["theta0"].is_null(),
+            "{point:?}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    let _ = std::fs::remove_dir_all(&isotropic);
+}
+
+/// A Gent layer under equibiaxial compression reaches its limiting extensibility: the search
+/// ends there (as in plane strain), with the onset before it, not with a non-finite energy.
+#[test]
+fn a_gent_layer_under_biaxial_compression_ends_the_search_at_its_domain() {
+    let onset = onset_json(&["--biaxial", "1", "--set", "layer.law=gent", "--set", "layer.jm=0.05"]);
+    let (d_c, end) = (onset["d_c"].as_f64().unwrap(), onset["d_domain_end"].as_f64().unwrap());
+    assert!(d_c > 0.0 && d_c < end && end < 0.95, "d_c {d_c}, domain end {end}");
 }

@@ -46,6 +46,14 @@ pub struct MapArgs {
     #[arg(long)]
     pub y_log: bool,
 
+    /// Also the direction of the first wrinkles under biaxial compression d_3 = R d (R in
+    /// [0, 1]; 1 equibiaxial): each point's onset over wavenumbers and directions of the
+    /// surface, written as d_wrinkle_biaxial and theta0 (radians, wave vector from X towards
+    /// Z) and drawn as the crests' direction in each cell. The crease search and the nonlinear
+    /// run stay in plane strain. Absent: not computed.
+    #[arg(long, value_name = "R", allow_negative_numbers = true)]
+    pub biaxial: Option<f64>,
+
     /// Let the bulk modulus stay at its base value when mu_l or mu_s is mapped (by default it
     /// scales with it, keeping the base K/mu: Table 1's Poisson ratio).
     #[arg(long)]
@@ -136,6 +144,7 @@ impl MapArgs {
                 },
                 fold_lengths: self.fold.clone(),
                 keep_poisson: !self.free_bulk,
+                biaxial: self.biaxial,
                 ..defaults
             },
         })

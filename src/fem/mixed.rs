@@ -163,7 +163,7 @@ impl MixedElement {
             if !(j > 0.0 && j.is_finite()) {
                 return Err(Error::NonPositiveJacobian { jacobian: j });
             }
-            self.rest.admissible(&f)?;
+            self.rest.admissible(&crate::material::plane_gradient(&f, 1.0))?;
             let inverse_transpose = cofactor(&f).map(|c| c / j);
             let (w, phi) = (geometry.weights()[g], &self.basis[g]);
             for (a, grad) in geometry.gradients(g).iter().enumerate() {

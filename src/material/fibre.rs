@@ -1,6 +1,6 @@
 //! One family of fibres (eq. 3): `f(I4) = mu_f/4 (I4 - lambda_f^2)^2`, `I4 = N . C N`.
 
-use super::{Response, StrainEnergy, Tensor2};
+use super::{FullResponse, Response, StrainEnergy, Tensor2};
 use num_dual::DualNum;
 
 /// A family of fibres along the unit reference direction `direction` (`N3` out of the plane of
@@ -56,6 +56,33 @@ impl StrainEnergy for FibreFamily {
     fn plane_stress(&self, f: &Tensor2) -> (f64, Tensor2) {
         let (energy, stress, _, _) = self.closed_stress(f);
         (energy, stress)
+    }
+
+    /// The plane closed form on a full 3x3 `F`: `M_iJ = (F N)_i N_J`,
+    /// `A_iJkL = mu_f (2 M_iJ M_kL + (I4 - lambda_f^2) delta_ik N_J N_L)`.
+    fn response_3d(&self, f: &[f64; 9]) -> FullResponse {
+        let n = self.direction;
+        let fn_: [f64; 3] = std::array::from_fn(|i| f[3 * i] * n[0] + f[3 * i + 1] * n[1] + f[3 * i + 2] * n[2]);
+        let strain = fn_.iter().map(|x| x * x).sum::<f64>() - self.prestretch * self.prestretch;
+        if self.tension_only && strain < 0.0 {
+            return FullResponse {
+                energy: 0.0,
+                stress: [0.0; 9],
+                tangent: [[0.0; 9]; 9],
+            };
+        }
+        let m: [f64; 9] = std::array::from_fn(|p| fn_[p / 3] * n[p % 3]);
+        let tangent = std::array::from_fn(|p| {
+            std::array::from_fn(|q| {
+                let same_row = if p / 3 == q / 3 { n[p % 3] * n[q % 3] } else { 0.0 };
+                self.stiffness * (2.0 * m[p] * m[q] + strain * same_row)
+            })
+        });
+        FullResponse {
+            energy: 0.25 * self.stiffness * strain * strain,
+            stress: m.map(|x| self.stiffness * strain * x),
+            tangent,
+        }
     }
 }
 

@@ -2,8 +2,7 @@
 //! `Ibar1 = J^(-2/3) I1`; `mu` is the shear modulus and `Jm` bounds `Ibar1 - 3` (the chains'
 //! limiting extensibility). It tends to neo-Hookean as `Jm -> inf`.
 
-use super::isotropic::{plane_invariants, Invariants, IsotropicEnergy};
-use super::Tensor2;
+use super::isotropic::{Invariants, IsotropicEnergy};
 use crate::error::{Error, Result};
 use num_dual::DualNum;
 
@@ -21,9 +20,8 @@ impl Gent {
     }
 
     /// An error at a deformation beyond the limiting extensibility (where `W` is infinite).
-    fn check_extensibility(&self, f: &Tensor2) -> Result<()> {
-        let (t, q) = plane_invariants(f);
-        let x = self.extension(&Invariants::plane(t, q, 1.0));
+    fn check_extensibility(&self, f: &[f64; 9]) -> Result<()> {
+        let x = self.extension(&Invariants::of_gradient(f));
         if x < 1.0 {
             Ok(())
         } else {
@@ -33,8 +31,12 @@ impl Gent {
 }
 
 impl IsotropicEnergy for Gent {
-    fn admissible(&self, f: &Tensor2) -> Result<()> {
+    fn admissible(&self, f: &[f64; 9]) -> Result<()> {
         self.check_extensibility(f)
+    }
+
+    fn bounded_domain(&self) -> bool {
+        true
     }
 
     fn isotropic_density<D: DualNum<Primitive = f64> + Copy>(&self, inv: &Invariants<D>) -> D {

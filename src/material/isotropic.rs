@@ -73,8 +73,13 @@ pub trait IsotropicEnergy {
     fn isotropic_density<D: DualNum<Primitive = f64> + Copy>(&self, inv: &Invariants<D>) -> D;
 
     /// An error at a plane gradient outside the law's domain ([`super::StrainEnergy::admissible`]).
-    fn admissible(&self, _f: &Tensor2) -> crate::error::Result<()> {
+    fn admissible(&self, _f: &[f64; 9]) -> crate::error::Result<()> {
         Ok(())
+    }
+
+    /// Whether [`IsotropicEnergy::admissible`] can fail ([`super::StrainEnergy::bounded_domain`]).
+    fn bounded_domain(&self) -> bool {
+        false
     }
 }
 
@@ -96,8 +101,12 @@ macro_rules! strain_energy_by_invariants {
                 $crate::material::isotropic::invariant_stress(self, f)
             }
 
-            fn admissible(&self, f: &$crate::material::Tensor2) -> $crate::error::Result<()> {
+            fn admissible(&self, f: &[f64; 9]) -> $crate::error::Result<()> {
                 $crate::material::isotropic::IsotropicEnergy::admissible(self, f)
+            }
+
+            fn bounded_domain(&self) -> bool {
+                $crate::material::isotropic::IsotropicEnergy::bounded_domain(self)
             }
         }
     };

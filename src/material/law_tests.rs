@@ -231,6 +231,34 @@ fn full_gradients() -> Vec<[f64; 9]> {
     list
 }
 
+/// The closed-form full 3x3 responses (neo-Hookean, quadratic fibres and the tissues built of
+/// them) against hyper-dual differentiation of the same energy.
+#[test]
+fn closed_full_responses_match_the_differentiated_energy() {
+    for (name, m) in super::tests::materials() {
+        for f in full_gradients() {
+            let (closed, differentiated) = (m.response_3d(&f), differentiated_full_response(&m, &f));
+            let scale = differentiated
+                .tangent
+                .iter()
+                .flatten()
+                .fold(1.0f64, |s, x| s.max(x.abs()));
+            assert!(
+                (closed.energy - differentiated.energy).abs() < 1e-13 * scale,
+                "{name}: W"
+            );
+            for a in 0..9 {
+                let (x, y) = (closed.stress[a], differentiated.stress[a]);
+                assert!((x - y).abs() < 1e-13 * scale, "{name} F={f:?}: P[{a}] {x} vs {y}");
+                for b in 0..9 {
+                    let (x, y) = (closed.tangent[a][b], differentiated.tangent[a][b]);
+                    assert!((x - y).abs() < 1e-12 * scale, "{name} F={f:?}: A[{a}][{b}] {x} vs {y}");
+                }
+            }
+        }
+    }
+}
+
 /// Every law on the full 3x3 gradient: its hyper-dual stress and tangent against central
 /// differences of its energy and stress, frame indifference, and plane strain as its
 /// restriction (the plane fast path against the full tangent's in-plane block).

@@ -2,7 +2,9 @@
 //! substrate's matrix, a fibre law for the substrate's two families. Each variant's energy,
 //! stress and tangent are its own file's; these enums only dispatch.
 
-use super::{FibreFamily, Gent, HgoFamily, MooneyRivlin, NeoHookean, Ogden, Response, StrainEnergy, Tensor2};
+use super::{
+    FibreFamily, FullResponse, Gent, HgoFamily, MooneyRivlin, NeoHookean, Ogden, Response, StrainEnergy, Tensor2,
+};
 use crate::error::Result;
 use num_dual::DualNum;
 
@@ -55,8 +57,16 @@ impl StrainEnergy for Matrix {
         matrix!(self, m => m.plane_stress(f))
     }
 
-    fn admissible(&self, f: &Tensor2) -> Result<()> {
+    fn response_3d(&self, f: &[f64; 9]) -> FullResponse {
+        matrix!(self, m => m.response_3d(f))
+    }
+
+    fn admissible(&self, f: &[f64; 9]) -> Result<()> {
         matrix!(self, m => m.admissible(f))
+    }
+
+    fn bounded_domain(&self) -> bool {
+        matrix!(self, m => m.bounded_domain())
     }
 }
 
@@ -98,6 +108,10 @@ impl StrainEnergy for Fibre {
 
     fn plane_stress(&self, f: &Tensor2) -> (f64, Tensor2) {
         fibre!(self, m => m.plane_stress(f))
+    }
+
+    fn response_3d(&self, f: &[f64; 9]) -> FullResponse {
+        fibre!(self, m => m.response_3d(f))
     }
 }
 

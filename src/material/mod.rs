@@ -56,10 +56,23 @@ pub trait StrainEnergy: Send + Sync {
         differentiated_stress(self, f)
     }
 
-    /// An error at a gradient (with `J > 0`) outside the law's domain, where its energy is
-    /// infinite; every gradient is admissible unless a law says otherwise.
-    fn admissible(&self, _f: &Tensor2) -> Result<()> {
+    /// `W`, `P` and `A` of a full 3x3 `F` (with `J > 0`): by hyper-dual differentiation of
+    /// [`StrainEnergy::density`] unless a law overrides it with its closed form. The checked
+    /// entry point is [`full_response`].
+    fn response_3d(&self, f: &[f64; 9]) -> FullResponse {
+        differentiated_full_response(self, f)
+    }
+
+    /// An error at a full 3x3 gradient (with `J > 0`) outside the law's domain, where its
+    /// energy is infinite; every gradient is admissible unless a law says otherwise.
+    fn admissible(&self, _f: &[f64; 9]) -> Result<()> {
         Ok(())
+    }
+
+    /// Whether some gradient with `J > 0` lies outside the law's domain (a limiting
+    /// extensibility); analyses look for the end of the domain only then.
+    fn bounded_domain(&self) -> bool {
+        false
     }
 }
 
@@ -116,25 +129,73 @@ pub struct FullResponse {
     pub tangent: [[f64; 9]; 9],
 }
 
-/// `W`, `P` and `A` of a full 3x3 `F` (with `J > 0`) by hyper-dual differentiation of the
-/// energy: the moduli of any law at any state, for analyses beyond plane strain.
+/// `W`, `P` and `A` of a full 3x3 `F` (with `J > 0`): the moduli of any law at any state, for
+/// analyses beyond plane strain. A closed form where the law has one
+/// ([`StrainEnergy::response_3d`]), hyper-dual differentiation of its energy otherwise.
 pub fn full_response<M: StrainEnergy + ?Sized>(m: &M, f: &[f64; 9]) -> Result<FullResponse> {
     let j = determinant(f);
     if !(j > 0.0 && j.is_finite()) {
         return Err(Error::NonPositiveJacobian { jacobian: j });
     }
+    m.admissible(f)?;
+    let response = m.response_3d(f);
+    if !response.energy.is_finite() {
+        return Err(Error::NonFinite("the energy of a full deformation gradient".into()));
+    }
+    Ok(response)
+}
+
+/// `W`, `P = dW/dF` and `A = d2W/dF dF` of `density` on a full 3x3 `F` by hyper-dual numbers.
+pub fn differentiated_full_response<M: StrainEnergy + ?Sized>(m: &M, f: &[f64; 9]) -> FullResponse {
     let (energy, g, h) = hessian(
         |x: SVector<Dual2SVec64<9>, 9>| m.density(&std::array::from_fn(|i| x[i])),
         &SVector::from(*f),
     );
-    if !energy.is_finite() {
-        return Err(Error::NonFinite("the energy of a full deformation gradient".into()));
-    }
-    Ok(FullResponse {
+    FullResponse {
         energy,
         stress: std::array::from_fn(|a| g[a]),
         tangent: std::array::from_fn(|a| std::array::from_fn(|b| h[(a, b)])),
-    })
+    }
+}
+
+impl FullResponse {
+    /// `self + weight other` (a mixture of energies).
+    pub(crate) fn plus(self, other: FullResponse, weight: f64) -> FullResponse {
+        FullResponse {
+            energy: self.energy + weight * other.energy,
+            stress: std::array::from_fn(|a| self.stress[a] + weight * other.stress[a]),
+            tangent: std::array::from_fn(|a| {
+                std::array::from_fn(|b| self.tangent[a][b] + weight * other.tangent[a][b])
+            }),
+        }
+    }
+
+    /// This response times `weight`.
+    pub(crate) fn scaled(self, weight: f64) -> FullResponse {
+        FullResponse {
+            energy: 0.0,
+            stress: [0.0; 9],
+            tangent: [[0.0; 9]; 9],
+        }
+        .plus(self, weight)
+    }
+}
+
+/// `F^-T` of a full gradient (`cof F / J`).
+pub(crate) fn inverse_transpose(f: &[f64; 9]) -> [f64; 9] {
+    let cofactor = [
+        f[4] * f[8] - f[5] * f[7],
+        f[5] * f[6] - f[3] * f[8],
+        f[3] * f[7] - f[4] * f[6],
+        f[2] * f[7] - f[1] * f[8],
+        f[0] * f[8] - f[2] * f[6],
+        f[1] * f[6] - f[0] * f[7],
+        f[1] * f[5] - f[2] * f[4],
+        f[2] * f[3] - f[0] * f[5],
+        f[0] * f[4] - f[1] * f[3],
+    ];
+    let j = determinant(f);
+    cofactor.map(|c| c / j)
 }
 
 /// Adds the terms of a pressure `p` conjugate to `ln J` (an energy `p ln J`, the multiplier of
@@ -212,7 +273,7 @@ fn check_state<M: StrainEnergy + ?Sized>(m: &M, f: &Tensor2) -> Result<f64> {
     if !(j > 0.0 && j.is_finite()) {
         return Err(Error::NonPositiveJacobian { jacobian: j });
     }
-    m.admissible(f)?;
+    m.admissible(&plane_gradient(f, 1.0))?;
     Ok(j)
 }
 

@@ -1,7 +1,7 @@
 //! Compressible neo-Hookean solid (layer, and matrix of the substrate; eqs. 1-2 as corrected in
 //! `docs/model.md`, "Strain energies"): `W = mu/2 (Ibar1 - 3) + K/2 (ln J)^2`, `Ibar1 = J^(-2/3) I1`.
 
-use super::{cofactor, Response, StrainEnergy, Tensor2};
+use super::{cofactor, inverse_transpose, FullResponse, Response, StrainEnergy, Tensor2};
 use num_dual::DualNum;
 
 /// Compressible neo-Hookean solid with shear modulus `mu` and bulk modulus `bulk`.
@@ -27,6 +27,10 @@ impl StrainEnergy for NeoHookean {
     fn plane_stress(&self, f: &Tensor2) -> (f64, Tensor2) {
         let (energy, stress, _) = self.closed_stress(f);
         (energy, stress)
+    }
+
+    fn response_3d(&self, f: &[f64; 9]) -> FullResponse {
+        self.closed_full_response(f)
     }
 }
 
@@ -93,6 +97,37 @@ impl NeoHookean {
         Response {
             energy,
             stress,
+            tangent,
+        }
+    }
+}
+
+impl NeoHookean {
+    /// The closed form on a full 3x3 `F`, with `H = F^-T`, `a = J^(-2/3)`, `I1 = F : F` and
+    /// `g = K ln J - mu a I1 / 3`: `P = mu a F + g H` and
+    /// `A_iJkL = mu a delta_ik delta_JL - 2 mu a / 3 (F_iJ H_kL + H_iJ F_kL)
+    ///           + (K + 2 mu a I1 / 9) H_iJ H_kL - g H_iL H_kJ`
+    /// (`dH_iJ / dF_kL = -H_iL H_kJ`).
+    fn closed_full_response(&self, f: &[f64; 9]) -> FullResponse {
+        let h = inverse_transpose(f);
+        let ln_j = super::determinant(f).ln();
+        let a = (-2.0 / 3.0 * ln_j).exp();
+        let i1: f64 = f.iter().map(|x| x * x).sum();
+        let g = self.bulk * ln_j - self.mu * a * i1 / 3.0;
+        let mixed = -2.0 * self.mu * a / 3.0;
+        let hh = self.bulk + 2.0 * self.mu * a * i1 / 9.0;
+        let mut tangent = [[0.0; 9]; 9];
+        for (p, row) in tangent.iter_mut().enumerate() {
+            let (i, jj) = (p / 3, p % 3);
+            for (q, entry) in row.iter_mut().enumerate() {
+                let (k, l) = (q / 3, q % 3);
+                *entry = mixed * (f[p] * h[q] + h[p] * f[q]) + hh * h[p] * h[q] - g * h[3 * i + l] * h[3 * k + jj];
+            }
+            row[p] += self.mu * a;
+        }
+        FullResponse {
+            energy: 0.5 * self.mu * (a * i1 - 3.0) + 0.5 * self.bulk * ln_j * ln_j,
+            stress: std::array::from_fn(|p| self.mu * a * f[p] + g * h[p]),
             tangent,
         }
     }

@@ -62,6 +62,12 @@ pub(super) fn materials() -> Vec<(String, Tissue)> {
             list.push(("layer".into(), b.layer_tissue()));
         }
     }
+    let oblique = Bilayer::new(&Parameters {
+        beta: 0.5,
+        psi: 0.7,
+        ..Parameters::default()
+    });
+    list.push(("substrate beta=0.5 psi=0.7".into(), oblique.substrate_tissue()));
     for (name, settings) in other_laws() {
         let mut p = Parameters {
             beta: 0.6,

@@ -3,7 +3,9 @@
 //! `phi_m W_m + phi_f (f1 + f2)`), built from `Parameters`.
 
 use super::laws::{Fibre, Matrix};
-use super::{FibreFamily, Gent, HgoFamily, MooneyRivlin, NeoHookean, Ogden, Response, StrainEnergy, Tensor2};
+use super::{
+    FibreFamily, FullResponse, Gent, HgoFamily, MooneyRivlin, NeoHookean, Ogden, Response, StrainEnergy, Tensor2,
+};
 use crate::error::Result;
 use crate::parameters::{FibreLaw, MatrixLaw, Parameters};
 use num_dual::DualNum;
@@ -44,8 +46,20 @@ impl StrainEnergy for FibreReinforced {
         )
     }
 
-    fn admissible(&self, f: &Tensor2) -> Result<()> {
+    fn response_3d(&self, f: &[f64; 9]) -> FullResponse {
+        let fibres = self.fibres[0].response_3d(f).plus(self.fibres[1].response_3d(f), 1.0);
+        self.matrix
+            .response_3d(f)
+            .scaled(self.matrix_fraction)
+            .plus(fibres, self.fibre_fraction)
+    }
+
+    fn admissible(&self, f: &[f64; 9]) -> Result<()> {
         self.matrix.admissible(f)
+    }
+
+    fn bounded_domain(&self) -> bool {
+        self.matrix.bounded_domain()
     }
 }
 
@@ -78,10 +92,24 @@ impl StrainEnergy for Tissue {
         }
     }
 
-    fn admissible(&self, f: &Tensor2) -> Result<()> {
+    fn response_3d(&self, f: &[f64; 9]) -> FullResponse {
+        match self {
+            Tissue::Layer(m) => m.response_3d(f),
+            Tissue::Substrate(m) => m.response_3d(f),
+        }
+    }
+
+    fn admissible(&self, f: &[f64; 9]) -> Result<()> {
         match self {
             Tissue::Layer(m) => m.admissible(f),
             Tissue::Substrate(m) => m.admissible(f),
+        }
+    }
+
+    fn bounded_domain(&self) -> bool {
+        match self {
+            Tissue::Layer(m) => m.bounded_domain(),
+            Tissue::Substrate(m) => m.bounded_domain(),
         }
     }
 }

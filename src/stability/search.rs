@@ -8,7 +8,7 @@ use super::oblique::Surface;
 use super::{IncrementalModuli, Method};
 use crate::error::{Error, Result};
 use crate::homogeneous::{constraint_pressure, homogeneous_state};
-use crate::material::Bilayer;
+use crate::material::{Bilayer, StrainEnergy};
 use crate::numerics::minimize::brent_minimize;
 use crate::numerics::roots::brent;
 use crate::parameters::Parameters;
@@ -20,6 +20,8 @@ pub const D_END: f64 = 0.95;
 const D_START: f64 = 1e-6;
 /// Tolerance of `d_c` in `d`.
 const D_TOLERANCE: f64 = 1e-13;
+/// The longest step of the scan for the loss of ellipticity.
+const ELLIPTICITY_STEP: f64 = 0.1;
 
 /// Where the smallest `d_c(k)` lies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -147,8 +149,12 @@ impl StabilityAnalysis {
         ))
     }
 
-    /// The first `d` at which the homogeneous state leaves a law's domain (None before 0.95).
+    /// The first `d` at which the homogeneous state leaves a law's domain (None before 0.95,
+    /// and where neither law's domain is bounded).
     fn find_domain_end(&self) -> Result<Option<f64>> {
+        if !(self.materials.layer.bounded_domain() || self.materials.substrate.bounded_domain()) {
+            return Ok(None);
+        }
         let moduli = |d: f64| match self.surface {
             Some(_) => self.surface_moduli(d).map(|_| ()),
             None => homogeneous_state(&self.materials, d).and_then(|_| self.moduli(d).map(|_| ())),
@@ -182,15 +188,25 @@ impl StabilityAnalysis {
             let (layer, substrate) = self.moduli(d)?;
             Ok(ellipticity_margin(&layer).min(ellipticity_margin(&substrate)))
         };
-        let mut lo = D_START;
-        if margin(lo)? <= 0.0 {
+        let (mut lo, mut margin_lo) = (D_START, margin(D_START)?);
+        if margin_lo <= 0.0 {
             return Ok(Some(0.0));
         }
-        for hi in scan_points(self.admissible_end(), 0.025) {
-            if margin(hi)? <= 0.0 {
+        // The margin is smooth in d: steps double from 1e-3 up to ELLIPTICITY_STEP, and go at
+        // most 1.5 times as far as the secant through the last two margins predicts its zero,
+        // so that a loss ahead is bracketed in a step or two.
+        let end = self.admissible_end();
+        let mut step: f64 = 1e-3;
+        while lo < end {
+            let hi = (lo + step).min(end);
+            let margin_hi = margin(hi)?;
+            if margin_hi <= 0.0 {
                 return brent("loss of ellipticity", margin, lo, hi, D_TOLERANCE).map(Some);
             }
-            lo = hi;
+            let slope = (margin_hi - margin_lo) / (hi - lo);
+            let to_zero = if slope < 0.0 { -margin_hi / slope } else { f64::INFINITY };
+            step = (2.0 * step).min(ELLIPTICITY_STEP).min(1.5 * to_zero).max(1e-4);
+            (lo, margin_lo) = (hi, margin_hi);
         }
         Ok(None)
     }

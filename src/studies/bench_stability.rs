@@ -48,6 +48,9 @@ pub fn run(params: &Parameters, map_side: usize) -> Result<String> {
     });
     let oblique = StabilityAnalysis::with_surface(params, Method::Exact, surface)?;
     let surface_onset = oblique.surface_onset()?;
+    let surface_setup = median_seconds(11, || {
+        StabilityAnalysis::with_surface(params, Method::Exact, surface).map(|_| ())
+    })?;
     let one_surface_onset = median_seconds(5, || oblique.surface_onset().map(|_| ()))?;
     let orientation_map = median_seconds(1, || {
         if map_side == 0 {
@@ -84,6 +87,7 @@ pub fn run(params: &Parameters, map_side: usize) -> Result<String> {
          | one onset (k0 = {k0:.5}, d_c = {dc:.5}) | {one_onset:.2e} s |\n\
          | Fig. 4b sweep: 4 stiffnesses x 91 angles, {threads} threads | {sweep:.3} s |\n\
          | one d_c(k) by the discrete cross-check | {discrete_dc:.2e} s |\n\
+         | setup of the analysis over the directions of the surface (3D ellipticity scan) | {surface_setup:.2e} s |\n\
          | one onset over k and theta, equibiaxial (theta0 = {theta0:.4}, d_c = {sdc:.5}) | {one_surface_onset:.2e} s ({ratio:.1}x the plane onset) |\n{map_row}",
         theta0 = surface_onset.theta0,
         sdc = surface_onset.onset.d_c,

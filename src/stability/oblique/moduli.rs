@@ -4,7 +4,7 @@
 use crate::error::Result;
 use crate::material::ellipticity::golden_section;
 use crate::material::{full_response, StrainEnergy};
-use nalgebra::{Complex, Matrix3, Matrix6, SMatrix, SVector};
+use nalgebra::{Complex, Matrix3, Matrix6, SMatrix, SVector, Vector3};
 
 /// `A_iJkL = d2W / dF_iJ dF_kL` at `[3 i + J][3 k + L]` (X = 0, Y = 1, Z = 2).
 pub type FullTangent = [[f64; 9]; 9];
@@ -117,24 +117,76 @@ impl SurfaceModuli {
     }
 }
 
-/// The smallest eigenvalue of a symmetric 3x3 matrix, by the trigonometric solution of its
-/// characteristic cubic (Smith 1961): with `q = tr/3`, `p = |A - q I|_F / sqrt 6` and
+/// The smallest eigenvalue of a symmetric 3x3 matrix: the least diagonal entry of a diagonal
+/// one (an acoustic tensor along a principal axis); otherwise by the trigonometric solution of
+/// its characteristic cubic (Smith 1961): with `q = tr/3`, `p = |A - q I|_F / sqrt 6` and
 /// `B = (A - q I) / p`, the eigenvalues are `q + 2 p cos(phi + 2 pi j / 3)`, `cos 3 phi = det B / 2`.
-/// Near a double eigenvalue (`|det B / 2|` near 1) the arccosine loses half the digits, and the
-/// iterative symmetric eigensolver is used instead.
-fn smallest_eigenvalue(a: &Matrix3<f64>) -> f64 {
+/// Near a double eigenvalue (`|det B / 2|` near 1) the arccosine loses half the digits of the
+/// pair, but not of the simple root, whose cosine is stationary there. If the pair is the
+/// smaller, it is the spectrum of `A` on the plane normal to the simple root's eigenvector
+/// (Eberly's deflation), a 2x2 problem without cancellation.
+pub(super) fn smallest_eigenvalue(a: &Matrix3<f64>) -> f64 {
+    if a[(0, 1)] == 0.0 && a[(0, 2)] == 0.0 && a[(1, 2)] == 0.0 {
+        return a[(0, 0)].min(a[(1, 1)]).min(a[(2, 2)]);
+    }
     let q = a.trace() / 3.0;
     let shifted = a - Matrix3::identity() * q;
     let p = (shifted.norm_squared() / 6.0).sqrt();
-    if p == 0.0 {
-        return q;
-    }
     let half_det = ((shifted / p).determinant() / 2.0).clamp(-1.0, 1.0);
-    if half_det.abs() > 1.0 - 1e-6 {
-        return a.symmetric_eigenvalues().min();
-    }
     let phi = half_det.acos() / 3.0;
-    q + 2.0 * p * (phi + 2.0 * std::f64::consts::PI / 3.0).cos()
+    let third = 2.0 * std::f64::consts::PI / 3.0;
+    if half_det < 1.0 - 1e-6 {
+        return q + 2.0 * p * (phi + third).cos();
+    }
+    // The pair is the smaller: deflate the largest, simple root.
+    let largest = q + 2.0 * p * phi.cos();
+    let rows = a - Matrix3::identity() * largest;
+    let (r0, r1, r2) = (
+        rows.row(0).transpose(),
+        rows.row(1).transpose(),
+        rows.row(2).transpose(),
+    );
+    let candidates = [r0.cross(&r1), r0.cross(&r2), r1.cross(&r2)];
+    let v = candidates
+        .iter()
+        .max_by(|x, y| x.norm_squared().total_cmp(&y.norm_squared()))
+        .expect("three candidates")
+        .normalize();
+    smallest_on_plane(a, &v)
+}
+
+/// The smaller eigenvalue of the symmetric `a` restricted to the plane normal to the unit `v`.
+fn smallest_on_plane(a: &Matrix3<f64>, v: &Vector3<f64>) -> f64 {
+    let helper = if v[0].abs() < 0.9 { Vector3::x() } else { Vector3::y() };
+    let u = v.cross(&helper).normalize();
+    let w = v.cross(&u);
+    let (uu, uw, ww) = ((a * u).dot(&u), (a * u).dot(&w), (a * w).dot(&w));
+    0.5 * (uu + ww) - (0.25 * (uu - ww).powi(2) + uw * uw).sqrt()
+}
+
+/// Directions sampled by the ellipticity margin: every `pi / MARGIN_STEPS` in the polar angle
+/// from `Y` and in the azimuth over `[0, pi)` (with `-n` this covers the sphere), each pole once.
+const MARGIN_STEPS: usize = 12;
+
+/// The sampled unit directions `n`, with their `(polar, azimuth)`.
+fn margin_directions() -> &'static [([f64; 3], f64, f64)] {
+    static DIRECTIONS: std::sync::OnceLock<Vec<([f64; 3], f64, f64)>> = std::sync::OnceLock::new();
+    DIRECTIONS.get_or_init(|| {
+        let step = std::f64::consts::PI / MARGIN_STEPS as f64;
+        let mut list = vec![([0.0, 1.0, 0.0], 0.0, 0.0)];
+        for i in 1..MARGIN_STEPS {
+            for j in 0..MARGIN_STEPS {
+                let (polar, azimuth) = (i as f64 * step, j as f64 * step);
+                list.push((surface_direction(polar, azimuth), polar, azimuth));
+            }
+        }
+        list
+    })
+}
+
+/// The unit vector at `polar` from `Y` and `azimuth` from `X` towards `Z`.
+fn surface_direction(polar: f64, azimuth: f64) -> [f64; 3] {
+    [polar.sin() * azimuth.cos(), polar.cos(), polar.sin() * azimuth.sin()]
 }
 
 /// The unit vector along axis `i`.
@@ -156,42 +208,37 @@ impl SurfaceModuli {
     /// by at most about 2 % of that scale (the curvature over half a 15 degree step), so every
     /// margin near zero, and its sign, is exact; a larger one is within about 2 %.
     pub fn ellipticity_margin(&self) -> f64 {
-        let smallest = |polar: f64, azimuth: f64| {
-            let n = [polar.sin() * azimuth.cos(), polar.cos(), polar.sin() * azimuth.sin()];
-            let q = self.contracted(n, n);
-            let q = (q + q.transpose()) * 0.5;
+        // Q(n) = sum over (J, L) of A(e_J, e_L) n_J n_L, the six symmetric pairs summed once.
+        let pairs: [Matrix3<f64>; 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)].map(|(jj, ll)| {
+            let (a, b) = (self.contracted(e(jj), e(ll)), self.contracted(e(ll), e(jj)));
+            let q = if jj == ll { a } else { a + b };
+            (q + q.transpose()) * 0.5
+        });
+        let smallest_along = |n: [f64; 3]| {
+            let q = pairs[0] * (n[0] * n[0])
+                + pairs[1] * (n[1] * n[1])
+                + pairs[2] * (n[2] * n[2])
+                + pairs[3] * (n[0] * n[1])
+                + pairs[4] * (n[0] * n[2])
+                + pairs[5] * (n[1] * n[2]);
             if !self.incompressible {
                 return smallest_eigenvalue(&q);
             }
-            let m = nalgebra::Vector3::from_fn(|i, _| n[i] / self.stretches[i]).normalize();
-            let helper = if m[0].abs() < 0.9 {
-                nalgebra::Vector3::x()
-            } else {
-                nalgebra::Vector3::y()
-            };
-            let a = m.cross(&helper).normalize();
-            let b = m.cross(&a);
-            let (qaa, qab, qbb) = ((q * a).dot(&a), (q * a).dot(&b), (q * b).dot(&b));
-            0.5 * (qaa + qbb) - (0.25 * (qaa - qbb).powi(2) + qab * qab).sqrt()
+            smallest_on_plane(&q, &Vector3::from_fn(|i, _| n[i] / self.stretches[i]).normalize())
         };
-        const SAMPLES: usize = 12;
-        let step = std::f64::consts::PI / SAMPLES as f64;
+        let smallest = |polar: f64, azimuth: f64| smallest_along(surface_direction(polar, azimuth));
         let mut best = (0.0, 0.0, f64::INFINITY);
-        for i in 0..=SAMPLES {
-            for j in 0..SAMPLES {
-                let (polar, azimuth) = (i as f64 * step, j as f64 * step);
-                let value = smallest(polar, azimuth);
-                if value < best.2 {
-                    best = (polar, azimuth, value);
-                }
+        for &(n, polar, azimuth) in margin_directions() {
+            let value = smallest_along(n);
+            if value < best.2 {
+                best = (polar, azimuth, value);
             }
         }
-        let scale = (0..3)
-            .map(|i| self.contracted(e(i), e(i)).diagonal().abs().max())
-            .fold(0.0, f64::max);
+        let scale = (0..3).map(|i| pairs[i].diagonal().abs().max()).fold(0.0, f64::max);
         if best.2 >= 0.05 * scale {
             return best.2;
         }
+        let step = std::f64::consts::PI / MARGIN_STEPS as f64;
         let (mut polar, mut azimuth, mut value) = best;
         for _ in 0..3 {
             polar = golden_section(&|x| smallest(x, azimuth), polar, step, 30);

@@ -172,3 +172,36 @@ fn surface_ellipticity_margin_of_rest_and_of_compressed_fibres() {
     let compressed = moduli::SurfaceModuli::at(&fibres, [0.5, 1.2, 1.0]).unwrap();
     assert!(compressed.ellipticity_margin() < 0.0);
 }
+
+/// The closed-form smallest eigenvalue against the iterative symmetric eigensolver: general,
+/// diagonal, exactly and nearly double (both the smaller and the larger pair), and triple.
+#[test]
+fn smallest_eigenvalue_in_closed_form_matches_the_eigensolver() {
+    use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
+    let rotation = Rotation3::from_axis_angle(&Unit::new_normalize(Vector3::new(0.3, -1.1, 0.7)), 0.9).into_inner();
+    for spectrum in [
+        [1.0f64, 2.5, -0.7],
+        [3.0, 3.0, 7.0],
+        [3.0, 3.0 + 1e-9, 7.0],
+        [3.0, 3.0 + 1e-5, 7.0],
+        [-2.0, 5.0, 5.0],
+        [-2.0, 5.0, 5.0 + 1e-8],
+        [1.7, 1.7, 1.7 + 1e-12],
+        [0.0, 1e-3, 40.0],
+    ] {
+        let matrix = rotation * Matrix3::from_diagonal(&Vector3::from(spectrum)) * rotation.transpose();
+        let matrix = (matrix + matrix.transpose()) * 0.5;
+        let expected = matrix.symmetric_eigenvalues().min();
+        let scale = spectrum.iter().fold(0.0f64, |s, x| s.max(x.abs()));
+        let found = moduli::smallest_eigenvalue(&matrix);
+        assert!(
+            (found - expected).abs() < 1e-13 * scale,
+            "{spectrum:?}: {found} vs {expected}"
+        );
+        let diagonal = Matrix3::from_diagonal(&Vector3::from(spectrum));
+        assert_eq!(
+            moduli::smallest_eigenvalue(&diagonal),
+            spectrum.iter().copied().fold(f64::INFINITY, f64::min)
+        );
+    }
+}

@@ -1,5 +1,7 @@
 //! The phase diagram `map.png/svg`: one coloured cell per point by its regime, black lines
-//! where the regime changes between neighbours, and the paper's parameter set marked.
+//! where the regime changes between neighbours, and the paper's parameter set marked. A map
+//! with `--biaxial` draws in each cell the direction of the first wrinkles' crests under
+//! biaxial compression.
 
 use super::{First, MapPoint, MapReport, PostBuckling};
 use crate::error::Result;
@@ -141,6 +143,34 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, report: &MapReport) ->
     chart
         .draw_series(lines.into_iter().map(|l| PathElement::new(l, BLACK.stroke_width(3))))
         .map_err(err)?;
+    // The crests of the first wrinkles under biaxial compression: a segment at the angle
+    // theta0 + 90 degrees from the horizontal (X of the surface to the right, Z upwards), a
+    // ring where no direction is preferred.
+    let crests = report.study.settings.biaxial.is_some();
+    if crests {
+        let (cell_w, cell_h) = (
+            (chart.backend_coord(&(xe[1], ye[0])).0 - chart.backend_coord(&(xe[0], ye[0])).0).abs(),
+            (chart.backend_coord(&(xe[0], ye[0])).1 - chart.backend_coord(&(xe[0], ye[1])).1).abs(),
+        );
+        let half = 0.38 * f64::from(cell_w.min(cell_h).max(6));
+        for p in report.points.iter().filter(|p| p.d_wrinkle_biaxial.is_some()) {
+            let centre = chart.backend_coord(&(0.5 * (xe[p.ix] + xe[p.ix + 1]), 0.5 * (ye[p.iy] + ye[p.iy + 1])));
+            match p.theta0 {
+                Some(theta0) => {
+                    let crest = theta0 + std::f64::consts::FRAC_PI_2;
+                    let (dx, dy) = ((half * crest.cos()) as i32, (half * crest.sin()) as i32);
+                    root.draw(&PathElement::new(
+                        vec![(centre.0 - dx, centre.1 + dy), (centre.0 + dx, centre.1 - dy)],
+                        BLACK.stroke_width(2),
+                    ))
+                    .map_err(err)?;
+                }
+                None => root
+                    .draw(&Circle::new(centre, (0.3 * half) as i32, BLACK.stroke_width(2)))
+                    .map_err(err)?,
+            }
+        }
+    }
     // The paper's point: Table 1's values of the two mapped parameters.
     let table1 = Parameters::default();
     let mut paper = false;
@@ -167,8 +197,31 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, report: &MapReport) ->
             .draw(&Text::new(*name, (38, y - 8), text.clone()))
             .map_err(err)?;
     }
+    let mut rows = legend.len() as i32;
+    if crests {
+        let y = 60 + 28 * rows;
+        legend_area
+            .draw(&PathElement::new(vec![(12, y + 6), (28, y - 6)], BLACK.stroke_width(2)))
+            .map_err(err)?;
+        let biaxial = report.study.settings.biaxial.unwrap_or(0.0);
+        legend_area
+            .draw(&Text::new(
+                format!("wrinkle crests, d_3 = {biaxial} d"),
+                (38, y - 8),
+                text.clone(),
+            ))
+            .map_err(err)?;
+        legend_area
+            .draw(&Text::new(
+                "(X right, Z up; ring: any direction)",
+                (38, y + 8),
+                text.clone(),
+            ))
+            .map_err(err)?;
+        rows += 1;
+    }
     if paper {
-        let y = 60 + 28 * legend.len() as i32;
+        let y = 60 + 28 * rows + if crests { 10 } else { 0 };
         legend_area
             .draw(&Cross::new((20, y), 7, BLACK.stroke_width(3)))
             .map_err(err)?;

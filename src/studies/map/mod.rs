@@ -12,6 +12,7 @@ mod point;
 pub use point::{compute as compute_point, doubling, first_instability, post_buckling, First, MapPoint, PostBuckling};
 
 use super::crease::{CreaseMesh, CreaseStudy, Scan};
+use super::orientation::Modes;
 use super::{validate_points, Tick};
 use crate::error::{Error, Result};
 use crate::output::table::{variant_name, Cell};
@@ -114,6 +115,12 @@ pub struct MapSettings {
     /// Scale the bulk modulus with a mapped shear modulus (`K_l` with `mu_l`, `K_s` with
     /// `mu_s`), keeping the base set's `K / mu`: the Poisson ratio stays Table 1's.
     pub keep_poisson: bool,
+    /// `R = d_3 / d`: each point also finds the direction of the first wrinkles under biaxial
+    /// compression `d_3 = R d` (the linear theory over the directions of the surface), drawn
+    /// on the figure as the crests' direction. The crease search and the nonlinear run stay
+    /// in plane strain.
+    #[serde(default)]
+    pub biaxial: Option<f64>,
 }
 
 impl Default for MapSettings {
@@ -139,6 +146,7 @@ impl Default for MapSettings {
             fold_lengths: crease.fold_lengths,
             crease_scan: crease.scan,
             keep_poisson: true,
+            biaxial: None,
         }
     }
 }
@@ -184,6 +192,13 @@ impl MapSettings {
             if !(1..=most).contains(&count) {
                 return Err(Error::invalid(name, count, &format!("[1, {most}]")));
             }
+        }
+        if let Some(biaxial) = self.biaxial {
+            Modes {
+                biaxial: Some(biaxial),
+                theta: None,
+            }
+            .validate()?;
         }
         self.crease_study().validate()
     }
@@ -392,7 +407,9 @@ pub struct MapReport {
 
 const MAP_NOTE: &str = "d_wrinkle: minimum of the linear theory's d_c(k) (minimum: interior, long_wave or \
     short_wave). d_crease: energy criterion of `fiberfold crease`, minimised over the fold lengths. first: the \
-    smaller of the two. becomes (where the wrinkle has a wavelength and comes first): a nonlinear run of `waves` \
+    smaller of the two. d_wrinkle_biaxial and theta0 (with --biaxial R): the onset over \
+    wavenumbers and directions of the surface under d_3 = R d, and the direction of its wave vector from X towards \
+    Z (radians; the crests run perpendicular to it; empty where no direction is preferred). becomes (where the wrinkle has a wavelength and comes first): a nonlinear run of `waves` \
     wavelengths 2 pi / k0 to d_wrinkle + post_buckling_range; if the tangent's inertia changes along it \
     (d_secondary), the run is repeated seeded with that change's mode (secondary_half_waves across the domain); the \
     last state is classified: 'fold' if one trough is more than 20 % deeper than all others, \
@@ -460,6 +477,8 @@ fn write_csv(report: &MapReport, out: &Path) -> Result<PathBuf> {
             "secondary_half_waves",
             "d_first_contact",
             "d_reached",
+            "d_wrinkle_biaxial",
+            "theta0",
             "seconds",
         ],
     )?;
@@ -485,6 +504,8 @@ fn write_csv(report: &MapReport, out: &Path) -> Result<PathBuf> {
             number(p.secondary_half_waves.map(|m| m as f64)),
             number(p.d_first_contact),
             number(p.d_reached),
+            number(p.d_wrinkle_biaxial),
+            number(p.theta0),
             Cell::Number(p.seconds.iter().sum()),
         ])?;
     }

@@ -8,6 +8,7 @@ use crate::parameters::Parameters;
 use crate::protocol::secondary::{branch_kind, BranchKind};
 use crate::stability::{Method, Minimum, StabilityAnalysis};
 use crate::studies::crease::{crease, CreaseStudy, Scan};
+use crate::studies::orientation::{directed_onset, Modes};
 use crate::studies::simulate::{solve, solve_to_secondary, SimulateOptions, ToSecondary};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
@@ -124,6 +125,13 @@ pub struct MapPoint {
     pub secondary_half_waves: Option<usize>,
     pub d_first_contact: Option<f64>,
     pub d_reached: Option<f64>,
+    /// With [`MapSettings::biaxial`]: the onset over wavenumbers and directions of the surface
+    /// under that biaxial compression, and its wave vector's direction in `[0, pi)` (None
+    /// where no direction is preferred).
+    #[serde(default)]
+    pub d_wrinkle_biaxial: Option<f64>,
+    #[serde(default)]
+    pub theta0: Option<f64>,
     /// Why a part is missing or ended early.
     pub notes: Vec<String>,
     /// Wall time of the linear theory, the crease search and the nonlinear run (s).
@@ -157,6 +165,11 @@ pub fn compute(
 ) -> Result<MapPoint> {
     let mut point = first_instability(crease_study, parameters.clone())?;
     (point.index, point.ix, point.iy, point.x, point.y) = (index, ix, iy, x, y);
+    if let Some(biaxial) = settings.biaxial {
+        let clock = Instant::now();
+        orientation(biaxial, &parameters, &mut point)?;
+        point.seconds[0] += clock.elapsed().as_secs_f64();
+    }
     let clock = Instant::now();
     match (point.k0, point.d_wrinkle) {
         _ if point.first == First::Crease => point
@@ -172,6 +185,34 @@ pub fn compute(
     }
     point.seconds[2] = clock.elapsed().as_secs_f64();
     Ok(point)
+}
+
+/// The onset over the directions of the surface under `d_3 = biaxial d`, and its direction.
+fn orientation(biaxial: f64, parameters: &Parameters, point: &mut MapPoint) -> Result<()> {
+    let modes = Modes {
+        biaxial: Some(biaxial),
+        theta: None,
+    };
+    match directed_onset(parameters, Method::Exact, &modes) {
+        Ok(found) => {
+            point.d_wrinkle_biaxial = Some(found.onset.d_c);
+            point.theta0 = Some(found.theta0).filter(|t| t.is_finite());
+            if point.theta0.is_none() {
+                point.notes.push(format!(
+                    "under d_3 = {biaxial} d no direction of the surface is preferred (spread {:.1e})",
+                    found.direction_spread.unwrap_or(0.0)
+                ));
+            }
+            Ok(())
+        }
+        Err(Error::NoRoot { .. }) => {
+            point.notes.push(format!(
+                "under d_3 = {biaxial} d no wrinkling before the loss of ellipticity or d = 0.95"
+            ));
+            Ok(())
+        }
+        Err(e) => Err(e),
+    }
 }
 
 /// The wrinkling onset (linear theory), the crease onset (energy criterion) and which comes
@@ -240,6 +281,8 @@ pub fn first_instability(crease_study: &CreaseStudy, parameters: Parameters) -> 
         secondary_half_waves: None,
         d_first_contact: None,
         d_reached: None,
+        d_wrinkle_biaxial: None,
+        theta0: None,
         notes,
         seconds: [linear_seconds, crease_seconds, 0.0],
     })
