@@ -22,8 +22,10 @@ type C = Complex<f64>;
 fn matrix_sign(m: &Matrix6<C>) -> Result<Matrix6<C>> {
     let mut s = *m;
     for _ in 0..100 {
-        let det = s.determinant().norm();
-        let inverse = s
+        // One LU factorisation gives both the determinant and the inverse.
+        let lu = s.lu();
+        let det = lu.determinant().norm();
+        let inverse = lu
             .try_inverse()
             .filter(|_| det.is_finite() && det != 0.0)
             .ok_or_else(not_elliptic)?;
