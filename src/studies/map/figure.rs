@@ -53,7 +53,7 @@ fn edges(values: &[f64]) -> Vec<f64> {
 
 /// Writes `map.png` and `map.svg`.
 pub fn phase_diagram(report: &MapReport, out: &Path) -> Result<Vec<PathBuf>> {
-    save_canvas(&PhaseDiagram(report), (900, 620), out, "map")
+    save_canvas(&PhaseDiagram(report), (980, 620), out, "map")
 }
 
 struct PhaseDiagram<'a>(&'a MapReport);
