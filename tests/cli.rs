@@ -413,6 +413,15 @@ fn crease_writes_its_onset_and_refuses_bad_folds() {
     for file in ["crease_energy.csv", "crease.png", "crease.svg"] {
         assert!(dir.join(file).is_file(), "{file}");
     }
+    // The creased states' strong-ellipticity margins, per layer.
+    assert!(
+        report["ellipticity"]["smallest_substrate"].is_f64(),
+        "{}",
+        report["ellipticity"]
+    );
+    let table = std::fs::read_to_string(dir.join("crease_energy.csv")).unwrap();
+    assert!(table
+        .starts_with("fold_length,d,difference,scaled_difference,depth,min_J,ellipticity_layer,ellipticity_substrate"));
 }
 
 #[test]

@@ -262,3 +262,37 @@ fn the_crease_onset_of_a_half_space_is_the_same_for_every_fold_length() {
     assert_eq!(d_crease, thresholds.iter().copied().fold(f64::INFINITY, f64::min));
     assert!(report.depth.unwrap() > 0.0);
 }
+
+/// A creased state's strong-ellipticity margins (`crease`'s flag) against the homogeneous
+/// state's: the block's far field is homogeneous, so the smallest margin over its Gauss points
+/// lies at or below the homogeneous one, in both layers, at every compression.
+#[test]
+fn a_creased_state_carries_the_ellipticity_margins_of_its_far_field() {
+    use fiberfold::material::Bilayer;
+    use fiberfold::protocol::crease_seed::crease_energy;
+    use fiberfold::stability::{ellipticity::ellipticity_margin, Method, StabilityAnalysis};
+    use fiberfold::studies::crease::{CreaseMesh, CreaseStudy};
+    let mut params = Parameters::default();
+    params.mu_l = 1.5;
+    params.K_l = 4.5;
+    let analysis = StabilityAnalysis::new(&params, Method::Exact).unwrap();
+    let mesh = CreaseMesh {
+        nx: 24,
+        layer: 2,
+        substrate: 10,
+        ..CreaseStudy::default().mesh
+    };
+    let materials = Bilayer::new(&params);
+    for d in [0.05, 0.15, 0.25] {
+        let creased = crease_energy(&materials, mesh.spec(0.5), d, 0.5).unwrap();
+        let (layer, substrate) = analysis.moduli(d).unwrap();
+        let homogeneous = [ellipticity_margin(&layer), ellipticity_margin(&substrate)];
+        let fe = [creased.ellipticity.layer, creased.ellipticity.substrate];
+        for (f, h) in fe.iter().zip(&homogeneous) {
+            assert!(
+                *f <= h + 1e-9 * h.abs().max(1.0),
+                "d = {d}: FE margin {f} above the homogeneous {h}"
+            );
+        }
+    }
+}

@@ -201,9 +201,9 @@ def simulate(
     (``event``: ``"stage"``, ``"step"`` or ``"cut"``; ``d``, ``A``, ``message``...) after every
     stage, accepted state and cut. ``element`` is ``"displacement"`` (the default) or ``"mixed"``
     (more accurate, and needed for nearly and exactly incompressible tissue). ``stabilisation``
-    is how a snap is crossed: ``"snap"`` (the default: the energy is minimised at that d and the
-    stable equilibrium reached is recorded, see ``summary["snaps"]``), ``"viscous"`` (damped
-    steps, with ``eta``) or ``"none"``. Raises :class:`SolverError` (with ``result``, the path so
+    is how a snap is crossed: ``"viscous"`` (the default: damped steps, with ``eta``),
+    ``"snap"`` (the energy is minimised at that d and the stable equilibrium reached is
+    recorded, see ``summary["snaps"]``) or ``"none"``. Raises :class:`SolverError` (with ``result``, the path so
     far) if the path stops before ``d_max``.
     """
     if progress is not None and not callable(progress):

@@ -397,7 +397,7 @@ fn simulate_run<'py>(
         "contact": solution.contact,
         "secondary": solution.inertia_changes,
         "snaps": solution.curve.records.iter().filter_map(|r| r.snap.clone()).collect::<Vec<_>>(),
-        "ellipticity": EllipticityReport::new(&solution.curve.records),
+        "ellipticity": EllipticityReport::new(solution.curve.records.iter().map(|r| (r.d, r.ellipticity))),
     });
     let stopped = solution.curve.stopped.as_ref().map(|e| e.to_string());
     Ok((

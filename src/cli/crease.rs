@@ -129,6 +129,19 @@ pub fn run(args: &CreaseArgs) -> Result<()> {
         }
         _ => println!("no crease pays off within the scan"),
     }
+    let e = &report.ellipticity;
+    for (layer, d, smallest) in [
+        ("layer", e.d_loss_layer, e.smallest_layer),
+        ("substrate", e.d_loss_substrate, e.smallest_substrate),
+    ] {
+        if let Some(d) = d {
+            println!(
+                "note: a creased state's {layer} loses strong ellipticity at a Gauss point from d = {d:.4} \
+                 (smallest margin {smallest:.3e}); there the continuum admits shear bands and the energies depend on \
+                 the mesh"
+            );
+        }
+    }
     report_files(&files);
     Ok(())
 }

@@ -26,6 +26,46 @@ impl EllipticityMargins {
     }
 }
 
+/// The strong-ellipticity margins along a sequence of states `(d, margins)`: the first `d` at
+/// which a layer's smallest margin over its Gauss points is negative (beyond it the answer
+/// depends on the mesh), and the smallest margins met.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct EllipticityReport {
+    pub d_loss_layer: Option<f64>,
+    pub d_loss_substrate: Option<f64>,
+    pub smallest_layer: f64,
+    pub smallest_substrate: f64,
+}
+
+impl EllipticityReport {
+    pub fn new(states: impl Iterator<Item = (f64, EllipticityMargins)> + Clone) -> Self {
+        let first = |margin: fn(&EllipticityMargins) -> f64| {
+            states
+                .clone()
+                .filter(|(_, m)| margin(m) < 0.0)
+                .map(|(d, _)| d)
+                .fold(None, |least: Option<f64>, d| Some(least.map_or(d, |l| l.min(d))))
+        };
+        let least = |margin: fn(&EllipticityMargins) -> f64| {
+            states.clone().map(|(_, m)| margin(&m)).fold(f64::INFINITY, f64::min)
+        };
+        EllipticityReport {
+            d_loss_layer: first(|m| m.layer),
+            d_loss_substrate: first(|m| m.substrate),
+            smallest_layer: least(|m| m.layer),
+            smallest_substrate: least(|m| m.substrate),
+        }
+    }
+
+    /// The first `d` at which either layer has lost strong ellipticity.
+    pub fn d_loss(&self) -> Option<f64> {
+        match (self.d_loss_layer, self.d_loss_substrate) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        }
+    }
+}
+
 /// The margins of the state `u` of `system`. An exactly incompressible tissue (no bulk
 /// modulus) is checked on the directions that keep the volume.
 pub fn ellipticity_margins(system: &System, u: &[f64]) -> Result<EllipticityMargins> {

@@ -16,6 +16,7 @@ use crate::error::{Error, Result};
 use crate::fem::added::NoAddedEnergy;
 use crate::fem::boundary::{dof, X};
 use crate::fem::contact::{Contact, ContactSettings, Plane};
+use crate::fem::ellipticity::{ellipticity_margins, EllipticityMargins};
 use crate::fem::equilibrium::solve_with_contact;
 use crate::fem::{model_conditions, Dirichlet, Newton, NewtonPolicy, System};
 use crate::homogeneous::homogeneous_state;
@@ -48,6 +49,8 @@ pub struct CreaseEnergy {
     pub min_jacobian: f64,
     /// Ramp steps taken.
     pub steps: usize,
+    /// The smallest strong-ellipticity margins over the Gauss points of the creased state.
+    pub ellipticity: EllipticityMargins,
     /// The deformed top surface of the creased state, `(x, y)` from the crease outwards.
     #[serde(skip)]
     pub surface: Vec<(f64, f64)>,
@@ -131,6 +134,7 @@ pub fn crease_energy(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_leng
         .collect();
     let depth = y(*surface.last().expect("a surface")) - folded.iter().map(|&n| y(n)).fold(f64::INFINITY, f64::min);
     let crease_energy = report.energy;
+    let ellipticity = ellipticity_margins(&system, &u)?;
     Ok(CreaseEnergy {
         strain,
         fold_length,
@@ -142,6 +146,7 @@ pub fn crease_energy(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_leng
         tensile_nodes: reactions.iter().filter(|&&r| r < 0.0).count(),
         min_jacobian: report.min_jacobian,
         steps,
+        ellipticity,
         surface: profile,
     })
 }

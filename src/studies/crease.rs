@@ -13,6 +13,7 @@
 
 use super::Tick;
 use crate::error::{Error, Result};
+use crate::fem::ellipticity::EllipticityReport;
 use crate::material::Bilayer;
 use crate::mesh::{ElementKind, MeshSpec, XRefinement};
 use crate::numerics::roots::brent;
@@ -184,6 +185,9 @@ pub struct CreaseReport {
     pub d_crease_refined: Option<f64>,
     pub refined_unknowns: Option<usize>,
     pub mesh_change: Option<f64>,
+    /// Strong ellipticity over the creased states evaluated (all folds, first mesh): where a
+    /// margin is negative the continuum admits shear bands and the threshold depends on the mesh.
+    pub ellipticity: EllipticityReport,
     pub scan: Scan,
     pub seconds: f64,
 }
@@ -340,6 +344,11 @@ pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<Cr
         d_crease_refined,
         refined_unknowns,
         scan: study.scan,
+        ellipticity: EllipticityReport::new(
+            folds
+                .iter()
+                .flat_map(|f| f.evaluations.iter().map(|e| (e.strain, e.ellipticity))),
+        ),
         folds,
         seconds: start.elapsed().as_secs_f64(),
     })
@@ -362,7 +371,16 @@ pub fn run(params: &Parameters, study: &CreaseStudy, out: &Path, tick: Tick) -> 
     let csv = out.join("crease_energy.csv");
     let mut table = CsvWriter::create(
         &csv,
-        &["fold_length", "d", "difference", "scaled_difference", "depth", "min_J"],
+        &[
+            "fold_length",
+            "d",
+            "difference",
+            "scaled_difference",
+            "depth",
+            "min_J",
+            "ellipticity_layer",
+            "ellipticity_substrate",
+        ],
     )?;
     let mut energy = Figure::new(
         "Energy of a seeded crease against the flat state",
@@ -378,6 +396,8 @@ pub fn run(params: &Parameters, study: &CreaseStudy, out: &Path, tick: Tick) -> 
                 e.scaled_difference,
                 e.depth,
                 e.min_jacobian,
+                e.ellipticity.layer,
+                e.ellipticity.substrate,
             ])?;
         }
         let label = match fold.d_threshold {

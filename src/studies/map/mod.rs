@@ -409,7 +409,9 @@ const MAP_NOTE: &str = "d_wrinkle: minimum of the linear theory's d_c(k) (minimu
     short_wave). d_crease: energy criterion of `fiberfold crease`, minimised over the fold lengths. first: the \
     smaller of the two. d_wrinkle_biaxial and theta0 (with --biaxial R): the onset over \
     wavenumbers and directions of the surface under d_3 = R d, and the direction of its wave vector from X towards \
-    Z (radians; the crests run perpendicular to it; empty where no direction is preferred). becomes (where the wrinkle has a wavelength and comes first): a nonlinear run of `waves` \
+    Z (radians; the crests run perpendicular to it; empty where no direction is preferred). d_ellipticity_loss_fe: \
+    the first d at which a finite-element state (crease search or nonlinear run) has a Gauss point without strong \
+    ellipticity; beyond it the answer depends on the mesh. becomes (where the wrinkle has a wavelength and comes first): a nonlinear run of `waves` \
     wavelengths 2 pi / k0 to d_wrinkle + post_buckling_range; if the tangent's inertia changes along it \
     (d_secondary), the run is repeated seeded with that change's mode (secondary_half_waves across the domain); the \
     last state is classified: 'fold' if one trough is more than 20 % deeper than all others, \
@@ -479,6 +481,7 @@ fn write_csv(report: &MapReport, out: &Path) -> Result<PathBuf> {
             "d_reached",
             "d_wrinkle_biaxial",
             "theta0",
+            "d_ellipticity_loss_fe",
             "seconds",
         ],
     )?;
@@ -506,6 +509,7 @@ fn write_csv(report: &MapReport, out: &Path) -> Result<PathBuf> {
             number(p.d_reached),
             number(p.d_wrinkle_biaxial),
             number(p.theta0),
+            number(p.d_ellipticity_loss_fe),
             Cell::Number(p.seconds.iter().sum()),
         ])?;
     }

@@ -3,6 +3,7 @@
 
 use super::MapSettings;
 use crate::error::{Error, Result};
+use crate::fem::ellipticity::EllipticityReport;
 use crate::mesh::MeshSpec;
 use crate::parameters::Parameters;
 use crate::protocol::secondary::{branch_kind, BranchKind};
@@ -132,6 +133,11 @@ pub struct MapPoint {
     pub d_wrinkle_biaxial: Option<f64>,
     #[serde(default)]
     pub theta0: Option<f64>,
+    /// The first `d` at which a finite-element state of the crease search or of the nonlinear
+    /// run has a Gauss point without strong ellipticity (beyond it the answer depends on the
+    /// mesh; `crease` and `simulate` report each layer).
+    #[serde(default)]
+    pub d_ellipticity_loss_fe: Option<f64>,
     /// Why a part is missing or ended early.
     pub notes: Vec<String>,
     /// Wall time of the linear theory, the crease search and the nonlinear run (s).
@@ -184,6 +190,12 @@ pub fn compute(
             .push("no nonlinear run: the wrinkle has no finite wavelength".into()),
     }
     point.seconds[2] = clock.elapsed().as_secs_f64();
+    if let Some(d) = point.d_ellipticity_loss_fe {
+        point.notes.push(format!(
+            "a finite-element state loses strong ellipticity at a Gauss point from d = {d:.4}: beyond it the answer \
+             depends on the mesh"
+        ));
+    }
     Ok(point)
 }
 
@@ -283,6 +295,7 @@ pub fn first_instability(crease_study: &CreaseStudy, parameters: Parameters) -> 
         d_reached: None,
         d_wrinkle_biaxial: None,
         theta0: None,
+        d_ellipticity_loss_fe: report.ellipticity.d_loss(),
         notes,
         seconds: [linear_seconds, crease_seconds, 0.0],
     })
@@ -363,6 +376,11 @@ fn nonlinear(
     point.doubling = Some(doubled);
     point.trough_depths = depths;
     point.d_first_contact = solution.contact.d_first_contact;
+    let run_loss = EllipticityReport::new(solution.curve.records.iter().map(|r| (r.d, r.ellipticity))).d_loss();
+    point.d_ellipticity_loss_fe = match (point.d_ellipticity_loss_fe, run_loss) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    };
     point.d_reached = Some(d);
     Ok(())
 }

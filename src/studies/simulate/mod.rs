@@ -25,6 +25,7 @@ pub use solve::{solve, solve_to_secondary, Solution, StateFields, ToSecondary};
 pub use state_vtu::{cell_arrays, displacement_array, write_state};
 
 use crate::error::{Error, Result};
+pub use crate::fem::ellipticity::EllipticityReport;
 use crate::fem::{System, Timings};
 use crate::material::Bilayer;
 use crate::mesh::MeshSpec;
@@ -296,30 +297,6 @@ pub struct SimulationSummary {
     pub files: Vec<String>,
 }
 
-/// The strong-ellipticity margins along the path ([`crate::fem::ellipticity`]): the first `d`
-/// at which a layer's smallest margin over its Gauss points is negative (beyond it the answer
-/// depends on the mesh), and the smallest margins met.
-#[derive(Clone, Copy, Debug, Serialize)]
-pub struct EllipticityReport {
-    pub d_loss_layer: Option<f64>,
-    pub d_loss_substrate: Option<f64>,
-    pub smallest_layer: f64,
-    pub smallest_substrate: f64,
-}
-
-impl EllipticityReport {
-    pub fn new(records: &[StepRecord]) -> Self {
-        let first = |margin: fn(&StepRecord) -> f64| records.iter().find(|r| margin(r) < 0.0).map(|r| r.d);
-        let least = |margin: fn(&StepRecord) -> f64| records.iter().map(margin).fold(f64::INFINITY, f64::min);
-        EllipticityReport {
-            d_loss_layer: first(|r| r.ellipticity.layer),
-            d_loss_substrate: first(|r| r.ellipticity.substrate),
-            smallest_layer: least(|r| r.ellipticity.layer),
-            smallest_substrate: least(|r| r.ellipticity.substrate),
-        }
-    }
-}
-
 /// The mesh of a run as written to JSON: its spec and number of unknowns.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct MeshSummary {
@@ -436,7 +413,7 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
         contact,
         secondary,
         snaps,
-        ellipticity: EllipticityReport::new(&curve.records),
+        ellipticity: EllipticityReport::new(curve.records.iter().map(|r| (r.d, r.ellipticity))),
         files: files.iter().map(|f| f.display().to_string()).collect(),
     };
     write_json(&out.join("simulate.json"), &summary)?;
