@@ -272,9 +272,11 @@ fn a_creased_state_carries_the_ellipticity_margins_of_its_far_field() {
     use fiberfold::protocol::crease_seed::crease_energy;
     use fiberfold::stability::{ellipticity::ellipticity_margin, Method, StabilityAnalysis};
     use fiberfold::studies::crease::{CreaseMesh, CreaseStudy};
-    let mut params = Parameters::default();
-    params.mu_l = 1.5;
-    params.K_l = 4.5;
+    let params = Parameters {
+        mu_l: 1.5,
+        K_l: 4.5,
+        ..Parameters::default()
+    };
     let analysis = StabilityAnalysis::new(&params, Method::Exact).unwrap();
     let mesh = CreaseMesh {
         nx: 24,
