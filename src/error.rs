@@ -30,6 +30,14 @@ pub enum Error {
         constants: String,
     },
 
+    /// An option given a value of the wrong type, e.g. a string for a number (user input).
+    #[error("`{name}` takes {expected}, not {value}")]
+    WrongType {
+        name: String,
+        value: String,
+        expected: String,
+    },
+
     /// A parameter file or `--set` value that cannot be parsed (user input).
     #[error("cannot read parameters: {0}")]
     ParameterSyntax(String),
@@ -81,6 +89,7 @@ impl Error {
                 | Error::ParameterSyntax(_)
                 | Error::MissingConstant { .. }
                 | Error::NotAConstant { .. }
+                | Error::WrongType { .. }
         )
     }
 

@@ -156,6 +156,29 @@ impl XRefinement {
     }
 }
 
+/// The three meshes of the half domain that runs are quoted on.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MeshPreset {
+    /// [`MeshSpec::coarse`].
+    #[default]
+    Coarse,
+    /// [`MeshSpec::fine`].
+    Fine,
+    /// [`MeshSpec::extra`].
+    Extra,
+}
+
+impl MeshPreset {
+    pub fn spec(self) -> MeshSpec {
+        match self {
+            MeshPreset::Coarse => MeshSpec::coarse(),
+            MeshPreset::Fine => MeshSpec::fine(),
+            MeshPreset::Extra => MeshSpec::extra(),
+        }
+    }
+}
+
 impl MeshSpec {
     /// Any mesh of the domain `[0, length] x [-depth, 1]`; validated by [`Mesh::new`].
     pub fn new(

@@ -182,14 +182,17 @@ fn every_state_of_a_run_through_a_snap_is_an_undamped_equilibrium_with_the_repor
     use fiberfold::fem::model_conditions;
     use fiberfold::mesh::ElementKind;
     use fiberfold::protocol::{stages, Event};
-    use fiberfold::studies::simulate::{Crossing, SimulateOptions};
+    use fiberfold::studies::simulate::{Crossing, MeshChoice, SimulateOptions};
 
     let params = Parameters {
         beta: std::f64::consts::FRAC_PI_4,
         ..Parameters::default()
     };
     let study = SimulateOptions {
-        mesh: MeshSpec::coarse().with_element(ElementKind::Mixed),
+        mesh: MeshChoice {
+            element: ElementKind::Mixed,
+            ..MeshChoice::default()
+        },
         waves: Some(4.5),
         d_max: 0.25,
         crossing: Crossing::Snap,

@@ -35,6 +35,7 @@ __all__ = [
     "onset",
     "sweep",
     "simulate",
+    "simulate_defaults",
     "bifurcation",
     "crease",
 ]
@@ -169,57 +170,49 @@ def simulate(
     params: Parameters,
     waves: Optional[float] = None,
     *,
-    k: Optional[float] = None,
-    mesh: str = "coarse",
-    nx: Optional[int] = None,
-    layer_elements: Optional[int] = None,
-    substrate_elements: Optional[int] = None,
-    h0: Optional[float] = None,
-    d_max: float = 0.3,
-    imperfection: float = 0.05,
-    max_step: float = 0.005,
-    min_step: float = 1e-7,
-    max_newton_iterations: int = 8,
-    refine_troughs: Optional[float] = None,
-    refine_width: float = 1.0,
-    imperfection2: float = 0.0,
-    imperfection2_waves: float = 0.5,
-    contact: bool = True,
-    eta: float = 1e-6,
-    inertia: bool = True,
-    force: bool = False,
     progress: Optional[Callable[[Dict[str, Any]], None]] = None,
-    element: str = "displacement",
-    stabilisation: str = "viscous",
+    **options: Any,
 ) -> Simulation:
-    """The paper's finite-element protocol, exactly as ``fiberfold simulate`` with the same
-    options (see ``fiberfold simulate --help`` for each; the defaults are the CLI's).
+    """The paper's finite-element protocol, exactly as ``fiberfold simulate``, with the same
+    options by the same names: :func:`simulate_defaults` gives every one with its default (the
+    CLI's; see ``fiberfold simulate --help`` for each).
 
     ``waves`` is the number N of seeded waves across the half domain (2N an integer), or give
     ``k = m pi / 50``. ``mesh`` is ``"coarse"``, ``"fine"`` or ``"extra"``, modified by ``nx``,
-    ``layer_elements``, ``substrate_elements`` and ``h0``. ``progress`` is called with a dict
-    (``event``: ``"stage"``, ``"step"`` or ``"cut"``; ``d``, ``A``, ``message``...) after every
-    stage, accepted state and cut. ``element`` is ``"displacement"`` (the default) or ``"mixed"``
-    (more accurate, and needed for nearly and exactly incompressible tissue). ``stabilisation``
-    is how a snap is crossed: ``"viscous"`` (the default: damped steps, with ``eta``),
-    ``"snap"`` (the energy is minimised at that d and the stable equilibrium reached is
-    recorded, see ``summary["snaps"]``) or ``"none"``. Raises :class:`SolverError` (with ``result``, the path so
-    far) if the path stops before ``d_max``.
+    ``layer_elements``, ``substrate_elements`` and ``h0`` (or ``grading``). ``element`` is
+    ``"displacement"`` or ``"mixed"`` (more accurate, and needed for nearly and exactly
+    incompressible tissue). ``stabilisation`` is how a snap is crossed: ``"viscous"`` (damped
+    steps, with ``eta``), ``"snap"`` (the energy is minimised at that d and the stable
+    equilibrium reached is recorded, see ``summary["snaps"]``) or ``"none"``. ``progress`` is
+    called with a dict (``event``: ``"stage"``, ``"step"`` or ``"cut"``; ``d``, ``A``,
+    ``message``...) after every stage, accepted state and cut. An unknown option raises
+    ``ValueError``, a value of the wrong type ``TypeError``. Raises :class:`SolverError` (with
+    ``result``, the path so far) if the path stops before ``d_max``.
     """
     if progress is not None and not callable(progress):
         raise TypeError("progress must be callable")
-    columns, summary, state, stopped = _fiberfold.simulate_run(
-        _check_parameters(params), mesh, nx, layer_elements, substrate_elements, h0, waves, k, d_max,
-        imperfection, max_step, min_step, max_newton_iterations, refine_troughs, refine_width,
-        imperfection2, imperfection2_waves, contact, eta, inertia, force, progress, element,
-        stabilisation,
-    )
+    if waves is not None:
+        options["waves"] = waves
+    keywords = json.dumps(options, default=_plain)
+    columns, summary, state, stopped = _fiberfold.simulate_run(_check_parameters(params), keywords, progress)
     result = Simulation(columns, json.loads(summary), state, stopped)
     if stopped is not None:
         error = SolverError(f"{stopped}; the path up to d = {result.d_reached:.6f} is in the exception's `result`")
         error.result = result
         raise error
     return result
+
+
+def simulate_defaults() -> Dict[str, Any]:
+    """Every option of :func:`simulate` with its default (those of ``fiberfold simulate``)."""
+    return dict(json.loads(_fiberfold.simulate_defaults()))
+
+
+def _plain(value: Any) -> Any:
+    """A NumPy scalar as the Python number JSON takes."""
+    if isinstance(value, np.generic):
+        return value.item()
+    raise TypeError(f"{value!r} is not a number, a string or a boolean")
 
 
 def bifurcation(

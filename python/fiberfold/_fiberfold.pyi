@@ -70,30 +70,10 @@ def sweep(
 ) -> Dict[str, npt.NDArray[np.float64]]: ...
 def simulate_run(
     params: Parameters,
-    mesh: str,
-    nx: Optional[int],
-    layer_elements: Optional[int],
-    substrate_elements: Optional[int],
-    h0: Optional[float],
-    waves: Optional[float],
-    k: Optional[float],
-    d_max: float,
-    imperfection: float,
-    max_step: float,
-    min_step: float,
-    max_newton_iterations: int,
-    refine_troughs: Optional[float],
-    refine_width: float,
-    imperfection2: float,
-    imperfection2_waves: float,
-    contact: bool,
-    eta: float,
-    inertia: bool,
-    force: bool,
+    options: str,
     progress: Optional[Callable[[Dict[str, Any]], None]],
-    element: str,
-    stabilisation: str,
 ) -> Tuple[Dict[str, npt.NDArray[np.float64]], str, State, Optional[str]]: ...
+def simulate_defaults() -> str: ...
 def bifurcation_run(params: Parameters, out: str, mesh: str = ..., element: str = ...) -> str: ...
 def crease_run(
     params: Parameters,

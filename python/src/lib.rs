@@ -13,7 +13,7 @@ use fiberfold::stability::{Method, K_MAX};
 use fiberfold::studies::homogeneous::{columns, CSV_HEADER};
 use fiberfold::studies::orientation::Modes;
 use fiberfold::studies::simulate::{
-    self, amplitude_header, amplitude_row, cell_arrays, displacement_array, Crossing, EllipticityReport, Progress,
+    self, amplitude_header, amplitude_row, cell_arrays, displacement_array, EllipticityReport, Progress,
     SimulateOptions, StateFields,
 };
 use fiberfold::studies::stability::{DispersionCurve, OnsetSummary, SweepStudy};
@@ -21,7 +21,7 @@ use fiberfold::Error;
 use numpy::ndarray::Array2;
 use numpy::{AllowTypeChange, IntoPyArray, PyArrayLike1};
 use pyo3::create_exception;
-use pyo3::exceptions::{PyKeyboardInterrupt, PyOSError, PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyOSError, PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
@@ -41,6 +41,7 @@ create_exception!(
 /// A library error as the matching Python exception (bad input: `ValueError`).
 fn to_py(error: Error) -> PyErr {
     match error {
+        e @ Error::WrongType { .. } => PyTypeError::new_err(e.to_string()),
         e if e.is_user_input() => PyValueError::new_err(e.to_string()),
         Error::Interrupted(m) => PyKeyboardInterrupt::new_err(m),
         e @ Error::Io { .. } => PyOSError::new_err(e.to_string()),
@@ -275,65 +276,20 @@ fn shaped<'py>(py: Python<'py>, array: &DataArray) -> Bound<'py, PyAny> {
     }
 }
 
-/// Runs `simulate` in memory. Returns `(columns, summary_json, state, stopped)`: the
-/// `amplitude.csv` columns as arrays, a JSON text with `onset`, `contact`, `secondary` and run
-/// facts, the last state, and why the path stopped early (None if it reached `d_max`).
+/// Runs `simulate` in memory with `options`, a JSON object of `fiberfold simulate`'s options
+/// (the library's names; the missing ones at its defaults, [`simulate_defaults`]). Returns
+/// `(columns, summary_json, state, stopped)`: the `amplitude.csv` columns as arrays, a JSON text
+/// with `onset`, `contact`, `secondary` and run facts, the last state, and why the path stopped
+/// early (None if it reached `d_max`).
 #[pyfunction]
-#[pyo3(signature = (params, mesh, nx, layer_elements, substrate_elements, h0, waves, k, d_max, imperfection,
-    max_step, min_step, max_newton_iterations, refine_troughs, refine_width, imperfection2, imperfection2_waves,
-    contact, eta, inertia, force, progress, element, stabilisation))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (params, options, progress))]
 fn simulate_run<'py>(
     py: Python<'py>,
     params: &PyParameters,
-    mesh: &str,
-    nx: Option<usize>,
-    layer_elements: Option<usize>,
-    substrate_elements: Option<usize>,
-    h0: Option<f64>,
-    waves: Option<f64>,
-    k: Option<f64>,
-    d_max: f64,
-    imperfection: f64,
-    max_step: f64,
-    min_step: f64,
-    max_newton_iterations: usize,
-    refine_troughs: Option<f64>,
-    refine_width: f64,
-    imperfection2: f64,
-    imperfection2_waves: f64,
-    contact: bool,
-    eta: f64,
-    inertia: bool,
-    force: bool,
+    options: &str,
     progress: Option<Py<PyAny>>,
-    element: &str,
-    stabilisation: &str,
 ) -> PyResult<(Bound<'py, PyDict>, String, PyState, Option<String>)> {
-    let spec = MeshSpec::preset(mesh)
-        .map_err(to_py)?
-        .with_overrides(nx, layer_elements, substrate_elements, h0)
-        .with_element(ElementKind::from_name(element).map_err(to_py)?);
-    let options = SimulateOptions {
-        mesh: spec,
-        waves,
-        k,
-        d_max,
-        imperfection,
-        max_step,
-        min_step,
-        max_newton_iterations,
-        refine_troughs,
-        refine_width,
-        imperfection2,
-        imperfection2_waves,
-        contact,
-        crossing: Crossing::from_name(stabilisation).map_err(to_py)?,
-        eta,
-        inertia,
-        force,
-        ..SimulateOptions::default()
-    };
+    let options = SimulateOptions::from_keywords(options).map_err(to_py)?;
     let study = options.study().map_err(to_py)?;
     let p = params.inner.clone();
     // The callback's or Ctrl-C's exception, raised once the library has stopped.
@@ -406,6 +362,12 @@ fn simulate_run<'py>(
         PyState { fields: solution.state },
         stopped,
     ))
+}
+
+/// Every option of `simulate` with its default, as a JSON object (the same as the CLI's).
+#[pyfunction]
+fn simulate_defaults() -> String {
+    SimulateOptions::default_keywords()
 }
 
 /// The exact bifurcation of the discretised perfect system (`fiberfold bifurcation`), written
@@ -481,6 +443,7 @@ fn _fiberfold(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(onset, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_run, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate_defaults, m)?)?;
     m.add_function(wrap_pyfunction!(bifurcation_run, m)?)?;
     m.add_function(wrap_pyfunction!(crease_run, m)?)?;
     Ok(())

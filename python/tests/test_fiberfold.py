@@ -292,3 +292,34 @@ def test_the_type_stub_matches_the_native_module():
     declared = [s.target.id for s in parameters.body if isinstance(s, ast.AnnAssign)]
     flat = [k for k in fiberfold.Parameters().to_dict() if "." not in k]
     assert declared == flat, (declared, flat)
+
+
+def test_the_stub_matches_the_compiled_module():
+    # Every function of the stub has the compiled function's parameters, in order.
+    import ast
+    import inspect
+
+    stub = ast.parse((Path(fiberfold.__file__).parent / "_fiberfold.pyi").read_text())
+    functions = [node for node in stub.body if isinstance(node, ast.FunctionDef)]
+    assert functions
+    for node in functions:
+        compiled = getattr(fiberfold._fiberfold, node.name)
+        names = [a.arg for a in node.args.args + node.args.kwonlyargs]
+        assert names == list(inspect.signature(compiled).parameters), node.name
+
+
+def test_simulate_takes_the_cli_options_with_the_cli_defaults():
+    defaults = fiberfold.simulate_defaults()
+    # The options of `fiberfold simulate --help`, by their flag names.
+    help_text = subprocess.run([str(cli_binary()), "simulate", "--help"], capture_output=True, text=True).stdout
+    negated = {"contact": "--no-contact", "inertia": "--no-inertia"}
+    for name in defaults:
+        flag = negated.get(name, "--" + name.replace("_", "-"))
+        assert flag in help_text, name
+    assert defaults["d_max"] == 0.3 and defaults["mesh"] == "coarse" and defaults["stabilisation"] == "viscous"
+    with pytest.raises(ValueError, match="bogus for `keyword`"):
+        fiberfold.simulate(fiberfold.Parameters(), 4.5, bogus=1)
+    with pytest.raises(TypeError, match="`d_max`"):
+        fiberfold.simulate(fiberfold.Parameters(), 4.5, d_max="far")
+    with pytest.raises(TypeError, match="`nx`"):
+        fiberfold.simulate(fiberfold.Parameters(), 4.5, nx=2.5)

@@ -3,17 +3,17 @@
 use super::common::{report_files, ParamArgs};
 use clap::{Args, ValueEnum};
 use fiberfold::fem::memory::{available_bytes, MemoryEstimate};
-use fiberfold::mesh::{ElementKind, MeshSpec};
+use fiberfold::mesh::{ElementKind, MeshPreset, MeshSpec};
 use fiberfold::protocol::mode_number;
 use fiberfold::protocol::secondary::BranchKind;
-use fiberfold::studies::simulate::{self, Crossing, Progress, SimulateOptions, SimulateStudy};
+use fiberfold::studies::simulate::{self, Crossing, MeshChoice, Progress, SimulateOptions, SimulateStudy};
 use fiberfold::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 
 /// The mesh presets (coarse, fine, extra).
 #[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum MeshPreset {
+pub enum MeshChoicePreset {
     /// 100 x (2 + 25) elements, h0 = 0.5: 22,110 unknowns.
     Coarse,
     /// 200 x (4 + 45) elements, h0 = 0.25: 79,398 unknowns.
@@ -30,6 +30,50 @@ pub enum ElementChoice {
     /// Q2 displacements with a discontinuous linear pressure condensed per element (Q2/P1disc):
     /// no locking up to K/mu = 10^6, same unknowns, about 5 % more time per iteration.
     Mixed,
+}
+
+impl From<MeshChoicePreset> for MeshPreset {
+    fn from(choice: MeshChoicePreset) -> Self {
+        match choice {
+            MeshChoicePreset::Coarse => MeshPreset::Coarse,
+            MeshChoicePreset::Fine => MeshPreset::Fine,
+            MeshChoicePreset::Extra => MeshPreset::Extra,
+        }
+    }
+}
+
+impl From<MeshPreset> for MeshChoicePreset {
+    fn from(preset: MeshPreset) -> Self {
+        match preset {
+            MeshPreset::Coarse => MeshChoicePreset::Coarse,
+            MeshPreset::Fine => MeshChoicePreset::Fine,
+            MeshPreset::Extra => MeshChoicePreset::Extra,
+        }
+    }
+}
+
+impl From<ElementKind> for ElementChoice {
+    fn from(kind: ElementKind) -> Self {
+        match kind {
+            ElementKind::Displacement => ElementChoice::Displacement,
+            ElementKind::Mixed => ElementChoice::Mixed,
+        }
+    }
+}
+
+impl From<Crossing> for CrossingChoice {
+    fn from(crossing: Crossing) -> Self {
+        match crossing {
+            Crossing::Snap => CrossingChoice::Snap,
+            Crossing::Viscous => CrossingChoice::Viscous,
+            Crossing::None => CrossingChoice::None,
+        }
+    }
+}
+
+/// The library's defaults, which every flag below shows.
+fn defaults() -> SimulateOptions {
+    SimulateOptions::default()
 }
 
 impl From<ElementChoice> for ElementKind {
@@ -63,8 +107,8 @@ impl From<CrossingChoice> for Crossing {
 #[derive(Args, Clone, Debug)]
 pub struct MeshArgs {
     /// Mesh preset.
-    #[arg(long, value_enum, default_value_t = MeshPreset::Coarse)]
-    pub mesh: MeshPreset,
+    #[arg(long, value_enum, default_value_t = defaults().mesh.preset.into())]
+    pub mesh: MeshChoicePreset,
     /// Elements along X (overrides the preset).
     #[arg(long)]
     pub nx: Option<usize>,
@@ -85,25 +129,28 @@ pub struct MeshArgs {
     /// about 5 % more time per Newton iteration, and the only one for incompressible = true.
     /// The default stays displacement, the paper's and the FEniCSx reference's element; it
     /// locks above K/mu ~ 100.
-    #[arg(long, value_enum, default_value_t = ElementChoice::Displacement)]
+    #[arg(long, value_enum, default_value_t = defaults().mesh.element.into())]
     pub element: ElementChoice,
 }
 
 impl MeshArgs {
+    /// The mesh as chosen, for the library to resolve.
+    pub fn choice(&self) -> MeshChoice {
+        MeshChoice {
+            preset: self.mesh.into(),
+            nx: self.nx,
+            layer_elements: self.layer_elements,
+            substrate_elements: self.substrate_elements,
+            h0: self.h0,
+            grading: self.grading,
+            element: self.element.into(),
+            ..MeshChoice::default()
+        }
+    }
+
     /// The validated mesh specification.
     pub fn resolve(&self) -> Result<MeshSpec> {
-        let mut spec = match self.mesh {
-            MeshPreset::Coarse => MeshSpec::coarse(),
-            MeshPreset::Fine => MeshSpec::fine(),
-            MeshPreset::Extra => MeshSpec::extra(),
-        }
-        .with_overrides(self.nx, self.layer_elements, self.substrate_elements, self.h0)
-        .with_element(self.element.into());
-        if let Some(r) = self.grading {
-            spec = spec.with_grading(r)?;
-        }
-        spec.validate()?;
-        Ok(spec)
+        self.choice().resolve()
     }
 }
 
@@ -129,27 +176,27 @@ pub struct SimulateArgs {
     pub k: Option<f64>,
 
     /// Final end-shortening d, in (0.005, 1).
-    #[arg(long, default_value_t = 0.3, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().d_max, allow_negative_numbers = true)]
     pub d_max: f64,
 
     /// Amplitude A_init of the seeded imperfection, in [0, 1) (0: the perfect system). The
     /// reference geometry is perturbed by Delta Y = A_init cos(k X) s(Y), s = 1 in the layer and
     /// sinh(k (Y + 50)) / sinh(50 k) in the substrate, after stage 1 (homogeneous to d = 0.005).
-    #[arg(long, default_value_t = 0.05, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().imperfection, allow_negative_numbers = true)]
     pub imperfection: f64,
 
     /// Largest step in d, also the largest gap between recorded states.
-    #[arg(long, default_value_t = 0.005, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().max_step, allow_negative_numbers = true)]
     pub max_step: f64,
 
     /// Smallest step in d; a failure at this step stops the run (snaps to a crease are
     /// crossed with steps down to about eta / 10).
-    #[arg(long, default_value_t = 1e-7, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().min_step, allow_negative_numbers = true)]
     pub min_step: f64,
 
     /// Newton steps with a newly factorised tangent allowed per load step before the step is
     /// cut, in [1, 100] (steps with the reused factorisation are bounded by twice this).
-    #[arg(long, default_value_t = 8)]
+    #[arg(long, default_value_t = defaults().max_newton_iterations)]
     pub max_newton_iterations: usize,
 
     /// Refine the mesh in X near the troughs of the seeded mode: elements RATIO times smaller
@@ -158,18 +205,18 @@ pub struct SimulateArgs {
     pub refine_troughs: Option<f64>,
 
     /// Width in X of the refinement around each trough.
-    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().refine_width, allow_negative_numbers = true)]
     pub refine_width: f64,
 
     /// Amplitude A2 of the long-wave imperfection -A2 cos(2 pi N2 X / 50) of the reference
     /// geometry, in [0, 1): it lets the pattern leave an unstable periodic branch (use the
     /// shape of the first secondary mode: its N2 is printed at the end of a periodic run).
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().imperfection2, allow_negative_numbers = true)]
     pub imperfection2: f64,
 
     /// Waves N2 of the long-wave imperfection across the domain, 2 N2 a positive integer
     /// (0.5: one half wave, deepest at X = 0; N/2: a period doubling).
-    #[arg(long, value_name = "N2", default_value_t = 0.5, allow_negative_numbers = true)]
+    #[arg(long, value_name = "N2", default_value_t = defaults().imperfection2_waves, allow_negative_numbers = true)]
     pub imperfection2_waves: f64,
 
     /// Turn off contact of the top surface with the symmetry planes and with itself.
@@ -183,12 +230,12 @@ pub struct SimulateArgs {
     /// reached (snaps.json: every recorded state an exact equilibrium; a snap onto a closing
     /// trough, with contact, is not yet found reliably and then stops the path); `none` stops
     /// where Newton's method fails.
-    #[arg(long, value_enum, default_value_t = CrossingChoice::Viscous)]
+    #[arg(long, value_enum, default_value_t = defaults().crossing.into())]
     pub stabilisation: CrossingChoice,
 
     /// Viscous stabilisation's damping eta / h relative to the reference stiffness on a step h
     /// in d, in (0, inf) (with --stabilisation viscous).
-    #[arg(long, default_value_t = 1e-6, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().eta, allow_negative_numbers = true)]
     pub eta: f64,
 
     /// Do not track the number of negative eigenvalues of the tangent at every converged state
@@ -198,7 +245,7 @@ pub struct SimulateArgs {
     pub no_inertia: bool,
 
     /// Spacing in d of the VTU snapshots.
-    #[arg(long, default_value_t = 0.01, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().vtu_every, allow_negative_numbers = true)]
     pub vtu_every: f64,
 
     /// Run even when the memory estimate (printed in the header) exceeds the memory available.
@@ -214,7 +261,7 @@ impl SimulateArgs {
     /// The validated study, built by the library from the flags.
     fn study(&self) -> Result<SimulateStudy> {
         SimulateOptions {
-            mesh: self.mesh.resolve()?,
+            mesh: self.mesh.choice(),
             waves: self.waves,
             k: self.k,
             d_max: self.d_max,

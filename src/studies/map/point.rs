@@ -4,13 +4,12 @@
 use super::MapSettings;
 use crate::error::{Error, Result};
 use crate::fem::ellipticity::EllipticityReport;
-use crate::mesh::MeshSpec;
 use crate::parameters::Parameters;
 use crate::protocol::secondary::{branch_kind, BranchKind};
 use crate::stability::{Method, Minimum, StabilityAnalysis};
 use crate::studies::crease::{crease, CreaseStudy, Scan};
 use crate::studies::orientation::{directed_onset, Modes};
-use crate::studies::simulate::{solve, solve_to_secondary, SimulateOptions, ToSecondary};
+use crate::studies::simulate::{solve, solve_to_secondary, MeshChoice, SimulateOptions, ToSecondary};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -146,18 +145,17 @@ pub struct MapPoint {
 
 /// The nonlinear run's mesh: `waves` wavelengths `2 pi / k0` across the half domain, `elements`
 /// per wavelength, and the coarse mesh's layers and depth.
-fn wave_mesh(settings: &MapSettings, k0: f64) -> MeshSpec {
-    let length = settings.waves * 2.0 * std::f64::consts::PI / k0;
-    let nx = (settings.elements_per_wave as f64 * settings.waves).ceil() as usize;
-    MeshSpec::new(
-        nx,
-        settings.layer_elements,
-        settings.substrate_elements,
-        1.0 / settings.layer_elements as f64,
-        length,
-        settings.depth,
-    )
-    .with_element(settings.crease_mesh.element)
+fn wave_mesh(settings: &MapSettings, k0: f64) -> MeshChoice {
+    MeshChoice {
+        nx: Some((settings.elements_per_wave as f64 * settings.waves).ceil() as usize),
+        layer_elements: Some(settings.layer_elements),
+        substrate_elements: Some(settings.substrate_elements),
+        h0: Some(1.0 / settings.layer_elements as f64),
+        element: settings.crease_mesh.element,
+        length: Some(settings.waves * 2.0 * std::f64::consts::PI / k0),
+        depth: Some(settings.depth),
+        ..MeshChoice::default()
+    }
 }
 
 /// Computes the point `(ix, iy)` with `parameters`: [`first_instability`], then the nonlinear

@@ -19,7 +19,7 @@ pub use crease::{crease_columns, ContactReport, CREASE_COLUMNS};
 pub use fig3::fig3;
 pub use fig4a::{fig4a, Fig4aOptions, Fig4aRow};
 pub use fig7::{fig7, CreaseSnapshots, Fig7Facts, Fig7State, FIG7_D};
-pub use options::{Crossing, SimulateOptions};
+pub use options::{Crossing, MeshChoice, SimulateOptions};
 pub use secondary::{SecondaryReport, SecondaryTracker};
 pub use solve::{solve, solve_to_secondary, Solution, StateFields, ToSecondary};
 pub use state_vtu::{cell_arrays, displacement_array, write_state};

@@ -1,17 +1,74 @@
-//! The options of one `simulate` run, with the command line's defaults, turned into a
-//! validated [`SimulateStudy`]: the CLI and the Python package build their runs here.
+//! The options of one `simulate` run and their defaults, turned into a validated
+//! [`SimulateStudy`]: the one source of both. The CLI's flags take their defaults from
+//! [`SimulateOptions::default`], and the Python package's keywords arrive as a JSON object read
+//! by [`SimulateOptions::from_keywords`] (same names, missing ones at these defaults).
 
 use super::SimulateStudy;
 use crate::error::{Error, Result};
 use crate::fem::memory::{available_bytes, MemoryEstimate};
-use crate::mesh::{MeshSpec, XRefinement};
+use crate::mesh::{ElementKind, MeshPreset, MeshSpec, XRefinement};
 use crate::protocol::{mode_number, wavenumber_of_waves, Protocol, SnapSettings, StabilisationSettings, StepControl};
+use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
+/// The mesh of a run as a user chooses it: a preset, and the numbers that replace its own.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct MeshChoice {
+    #[serde(rename = "mesh")]
+    pub preset: MeshPreset,
+    /// Elements along X.
+    pub nx: Option<usize>,
+    /// Elements through the layer.
+    pub layer_elements: Option<usize>,
+    /// Graded elements through the substrate.
+    pub substrate_elements: Option<usize>,
+    /// Thickness of the top substrate element at `Y = 0`.
+    pub h0: Option<f64>,
+    /// Growth ratio of consecutive substrate elements in `[1, 2]`, instead of `h0`.
+    pub grading: Option<f64>,
+    pub element: ElementKind,
+    /// Length and depth of the half domain, where a study sets them (the presets' 50 H
+    /// otherwise; not a user's option).
+    #[serde(skip)]
+    pub length: Option<f64>,
+    #[serde(skip)]
+    pub depth: Option<f64>,
+}
+
+impl MeshChoice {
+    /// The validated mesh specification.
+    pub fn resolve(&self) -> Result<MeshSpec> {
+        let mut spec = self
+            .preset
+            .spec()
+            .with_overrides(self.nx, self.layer_elements, self.substrate_elements, self.h0)
+            .with_element(self.element);
+        spec.length = self.length.unwrap_or(spec.length);
+        spec.depth = self.depth.unwrap_or(spec.depth);
+        if let Some(r) = self.grading {
+            if self.h0.is_some() {
+                return Err(Error::invalid(
+                    "grading",
+                    r,
+                    "absent when h0 is given (the one sets the other)",
+                ));
+            }
+            spec = spec.with_grading(r)?;
+        }
+        spec.validate()?;
+        Ok(spec)
+    }
+}
+
 /// Every option of `fiberfold simulate` (same names, units and defaults; see its `--help`).
-#[derive(Clone, Debug, PartialEq)]
+/// As keywords (JSON, Python) the mesh's are at the top level and `crossing` is
+/// `stabilisation`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct SimulateOptions {
-    pub mesh: MeshSpec,
+    #[serde(flatten)]
+    pub mesh: MeshChoice,
     /// Waves `N` across the half domain (`2N` a positive integer), or else `k`.
     pub waves: Option<f64>,
     pub k: Option<f64>,
@@ -27,6 +84,7 @@ pub struct SimulateOptions {
     pub imperfection2_waves: f64,
     pub contact: bool,
     /// How stage 3 crosses where the branch it follows has no nearby equilibrium.
+    #[serde(rename = "stabilisation")]
     pub crossing: Crossing,
     /// `eta` of the viscous stabilisation (with [`Crossing::Viscous`]).
     pub eta: f64,
@@ -39,7 +97,8 @@ pub struct SimulateOptions {
 
 /// How stage 3 crosses a snap: where the branch it follows has no nearby equilibrium (a limit
 /// point in `d`, a closing trough).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Crossing {
     /// Minimise the energy at the `d` of the failed step: the stable equilibrium the structure
     /// snaps to ([`crate::protocol::snap`]). Every recorded state is an exact equilibrium; a
@@ -70,7 +129,7 @@ impl Default for SimulateOptions {
     /// The command line's defaults on the coarse mesh (no wave chosen yet).
     fn default() -> Self {
         SimulateOptions {
-            mesh: MeshSpec::coarse(),
+            mesh: MeshChoice::default(),
             waves: None,
             k: None,
             d_max: 0.3,
@@ -92,11 +151,66 @@ impl Default for SimulateOptions {
     }
 }
 
+/// What a keyword with this default takes, in words.
+fn kind_of(default: &serde_json::Value) -> &'static str {
+    match default {
+        serde_json::Value::Bool(_) => "true or false",
+        serde_json::Value::Number(n) if n.is_u64() => "a whole number",
+        serde_json::Value::Number(_) => "a number",
+        serde_json::Value::String(_) => "one of its names",
+        _ => "a number or None",
+    }
+}
+
 impl SimulateOptions {
+    /// The options named in `keywords`, a JSON object of option names (the mesh's among them,
+    /// `stabilisation` for the crossing) and values; the others at their defaults. An unknown
+    /// name, or a value of the wrong type, is an error naming it.
+    pub fn from_keywords(keywords: &str) -> Result<Self> {
+        let given: serde_json::Map<String, serde_json::Value> = serde_json::from_str(keywords)
+            .map_err(|e| Error::invalid("options", keywords, &format!("a JSON object of keywords ({e})")))?;
+        let serde_json::Value::Object(defaults) = serde_json::to_value(Self::default()).expect("serialisable") else {
+            unreachable!("options serialise to an object")
+        };
+        let mut merged = defaults.clone();
+        for (name, value) in given {
+            if !defaults.contains_key(&name) {
+                let known: Vec<&str> = defaults.keys().map(String::as_str).collect();
+                return Err(Error::invalid(
+                    "keyword",
+                    &name,
+                    &format!("a keyword of simulate: {}", known.join(", ")),
+                ));
+            }
+            // Each value alone over the defaults, so that a wrong type names its keyword.
+            let mut alone = defaults.clone();
+            alone.insert(name.clone(), value.clone());
+            if let Err(e) = serde_json::from_value::<Self>(serde_json::Value::Object(alone)) {
+                if let (Some(text), serde_json::Value::String(_)) = (value.as_str(), &defaults[&name]) {
+                    // A name that is not one of the option's: serde lists the names it takes.
+                    let message = e.to_string();
+                    let names = message.split_once("expected ").map_or(message.as_str(), |(_, n)| n);
+                    return Err(Error::invalid(&name, text, names));
+                }
+                return Err(Error::WrongType {
+                    expected: kind_of(&defaults[&name]).into(),
+                    name,
+                    value: value.to_string(),
+                });
+            }
+            merged.insert(name, value);
+        }
+        Ok(serde_json::from_value(serde_json::Value::Object(merged)).expect("every value checked"))
+    }
+
+    /// The defaults as keywords (a JSON object).
+    pub fn default_keywords() -> String {
+        serde_json::to_string(&Self::default()).expect("serialisable")
+    }
+
     /// The validated study; a bad option is an [`Error::InvalidParameter`] naming it.
     pub fn study(&self) -> Result<SimulateStudy> {
-        let mut mesh = self.mesh;
-        mesh.validate()?;
+        let mut mesh = self.mesh.resolve()?;
         let k = match (self.waves, self.k) {
             (Some(waves), _) => wavenumber_of_waves(waves, mesh.length)?,
             (None, Some(k)) => mode_number(k, mesh.length)? as f64 * PI / mesh.length,
@@ -155,5 +269,69 @@ impl SimulateOptions {
             MemoryEstimate::of(&study.mesh).check(available_bytes())?;
         }
         Ok(study)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keywords_are_the_options_by_name_over_their_defaults() {
+        assert_eq!(
+            SimulateOptions::from_keywords("{}").unwrap(),
+            SimulateOptions::default()
+        );
+        let options = SimulateOptions::from_keywords(
+            r#"{"mesh": "fine", "nx": 300, "element": "mixed", "stabilisation": "snap", "waves": 4.5, "contact": false}"#,
+        )
+        .unwrap();
+        assert_eq!(options.mesh.preset, MeshPreset::Fine);
+        assert_eq!((options.mesh.nx, options.mesh.element), (Some(300), ElementKind::Mixed));
+        assert_eq!(
+            (options.crossing, options.waves, options.contact),
+            (Crossing::Snap, Some(4.5), false)
+        );
+        assert_eq!(options.d_max, SimulateOptions::default().d_max);
+        let message = |text: &str| SimulateOptions::from_keywords(text).unwrap_err().to_string();
+        assert!(message(r#"{"bogus": 1}"#).contains("bogus for `keyword`"));
+        assert!(message(r#"{"d_max": "far"}"#).contains("`d_max` takes a number"));
+        assert!(message(r#"{"mesh": "huge"}"#).contains("`coarse`, `fine`, `extra`"));
+        assert!(
+            message(r#"{"length": 20}"#).contains("`keyword`"),
+            "length is not a user's option"
+        );
+    }
+
+    #[test]
+    fn a_chosen_mesh_is_its_preset_with_the_numbers_replaced() {
+        let choice = MeshChoice {
+            nx: Some(40),
+            layer_elements: Some(3),
+            substrate_elements: Some(12),
+            h0: Some(1.0 / 3.0),
+            length: Some(23.7),
+            depth: Some(40.0),
+            ..MeshChoice::default()
+        };
+        assert_eq!(
+            choice.resolve().unwrap(),
+            MeshSpec::new(40, 3, 12, 1.0 / 3.0, 23.7, 40.0)
+        );
+        // (Through black_box: a constant-folded `powi` may differ from the run-time one in the last bit.)
+        let ratio = std::hint::black_box(1.2);
+        let graded = MeshChoice {
+            grading: Some(ratio),
+            ..MeshChoice::default()
+        };
+        assert_eq!(
+            graded.resolve().unwrap(),
+            MeshSpec::coarse().with_grading(ratio).unwrap()
+        );
+        let both = MeshChoice {
+            h0: Some(0.3),
+            ..graded
+        };
+        assert!(both.resolve().unwrap_err().to_string().contains("`grading`"));
     }
 }
