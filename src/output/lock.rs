@@ -1,9 +1,10 @@
-//! One writer per output folder: a run takes `DIR/.fiberfold.lock` (holding its pid) and
-//! releases it when it ends; a second run into a folder whose lock belongs to a live process is
-//! refused, and a lock left by a dead one (a killed run) is taken over.
+//! One writer per output folder: a run takes `DIR/.fiberfold.lock`, which names its host and
+//! pid, and releases it when it ends. A second run into a folder whose lock belongs to a live
+//! process is refused. A lock left by a dead process of this host (a killed run) is taken over;
+//! a lock from another host (a shared file system on a cluster) never is, since no process
+//! there can be checked: it is refused with the way to clear it.
 
 use crate::error::{Error, Result};
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// The lock of one output folder, released on drop.
@@ -24,17 +25,29 @@ impl OutputLock {
         super::ensure_dir(dir)?;
         let path = dir.join(name);
         for _ in 0..3 {
-            match std::fs::OpenOptions::new().write(true).create_new(true).open(&path) {
-                Ok(mut file) => {
-                    write!(file, "{}", std::process::id()).map_err(|e| Error::io(&path, e))?;
-                    return Ok(OutputLock { path });
-                }
+            // The lock appears whole or not at all: written aside, then hard-linked to its name
+            // (which fails if the name exists), so no reader ever sees it empty.
+            let staged = dir.join(format!("{name}.{}", std::process::id()));
+            std::fs::write(&staged, format!("{} {}", host(), std::process::id())).map_err(|e| Error::io(&staged, e))?;
+            let linked = std::fs::hard_link(&staged, &path);
+            let _ = std::fs::remove_file(&staged);
+            match linked {
+                Ok(()) => return Ok(OutputLock { path }),
                 Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
-                    let holder = std::fs::read_to_string(&path)
-                        .ok()
-                        .and_then(|t| t.trim().parse::<u32>().ok());
-                    match holder {
-                        Some(pid) if pid != std::process::id() && alive(pid) => {
+                    let text = std::fs::read_to_string(&path).unwrap_or_default();
+                    match Holder::parse(&text) {
+                        Some(Holder { host: Some(other), pid }) if other != host() => {
+                            return Err(Error::invalid(
+                                "out",
+                                dir.display(),
+                                &format!(
+                                    "a folder no other fiberfold writes to (process {pid} on host {other} holds {}; \
+                                     if that run has ended, delete the file)",
+                                    path.display()
+                                ),
+                            ))
+                        }
+                        Some(Holder { pid, .. }) if pid != std::process::id() && alive(pid) => {
                             return Err(Error::invalid(
                                 "out",
                                 dir.display(),
@@ -44,7 +57,7 @@ impl OutputLock {
                                 ),
                             ))
                         }
-                        // A stale lock (dead writer, or unreadable): take it over.
+                        // A stale lock (a dead writer of this host, or unreadable): take it over.
                         _ => {
                             let _ = std::fs::remove_file(&path);
                         }
@@ -64,6 +77,37 @@ impl Drop for OutputLock {
     fn drop(&mut self) {
         let _ = std::fs::remove_file(&self.path);
     }
+}
+
+/// What a lock file says: `host pid` (a bare `pid` from older versions has no host).
+struct Holder {
+    host: Option<String>,
+    pid: u32,
+}
+
+impl Holder {
+    fn parse(text: &str) -> Option<Self> {
+        match text.split_whitespace().collect::<Vec<_>>()[..] {
+            [pid] => Some(Holder {
+                host: None,
+                pid: pid.parse().ok()?,
+            }),
+            [host, pid] => Some(Holder {
+                host: Some(host.to_string()),
+                pid: pid.parse().ok()?,
+            }),
+            _ => None,
+        }
+    }
+}
+
+/// This machine's name (Linux: `/proc/sys/kernel/hostname`), without spaces.
+fn host() -> String {
+    std::fs::read_to_string("/proc/sys/kernel/hostname")
+        .map(|h| h.trim().replace(char::is_whitespace, "_"))
+        .ok()
+        .filter(|h| !h.is_empty())
+        .unwrap_or_else(|| "unknown-host".into())
 }
 
 /// Whether process `pid` exists (Linux: `/proc/<pid>`; elsewhere assumed alive).
@@ -93,8 +137,18 @@ mod tests {
         std::fs::write(dir.join(".fiberfold.lock"), "4294967295").unwrap();
         let taken = OutputLock::acquire(&dir).unwrap();
         let holder = std::fs::read_to_string(dir.join(".fiberfold.lock")).unwrap();
-        assert_eq!(holder, std::process::id().to_string());
+        assert_eq!(holder, format!("{} {}", host(), std::process::id()));
         drop(taken);
+        // Another host's lock, even of a pid that is dead here, is never taken over.
+        std::fs::write(dir.join(".fiberfold.lock"), "node-17-elsewhere 4294967295").unwrap();
+        let err = OutputLock::acquire(&dir).unwrap_err().to_string();
+        assert!(
+            err.contains("on host node-17-elsewhere") && err.contains("delete the file"),
+            "{err}"
+        );
+        // This host's lock of a dead pid is.
+        std::fs::write(dir.join(".fiberfold.lock"), format!("{} 4294967295", host())).unwrap();
+        drop(OutputLock::acquire(&dir).unwrap());
         assert!(!dir.join(".fiberfold.lock").exists());
         std::fs::remove_dir_all(&dir).unwrap();
     }
