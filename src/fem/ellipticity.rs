@@ -44,7 +44,7 @@ impl EllipticityReport {
                 .clone()
                 .filter(|(_, m)| margin(m) < 0.0)
                 .map(|(d, _)| d)
-                .fold(None, |least: Option<f64>, d| Some(least.map_or(d, |l| l.min(d))))
+                .reduce(f64::min)
         };
         let least = |margin: fn(&EllipticityMargins) -> f64| {
             states.clone().map(|(_, m)| margin(&m)).fold(f64::INFINITY, f64::min)
@@ -59,10 +59,10 @@ impl EllipticityReport {
 
     /// The first `d` at which either layer has lost strong ellipticity.
     pub fn d_loss(&self) -> Option<f64> {
-        match (self.d_loss_layer, self.d_loss_substrate) {
-            (Some(a), Some(b)) => Some(a.min(b)),
-            (a, b) => a.or(b),
-        }
+        [self.d_loss_layer, self.d_loss_substrate]
+            .into_iter()
+            .flatten()
+            .reduce(f64::min)
     }
 }
 

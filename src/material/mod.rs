@@ -119,15 +119,9 @@ pub fn stretch_invariant<D: DualNum<Primitive = f64> + Copy>(f: &[D; 9], n: [f64
     })
 }
 
-/// Energy, stress and tangent of a full 3x3 `F`.
-#[derive(Clone, Copy, Debug)]
-pub struct FullResponse {
-    pub energy: f64,
-    /// `P_iJ` at index `3 i + J`.
-    pub stress: [f64; 9],
-    /// `A_iJkL = d2W / dF_iJ dF_kL` at `[3 i + J][3 k + L]`.
-    pub tangent: [[f64; 9]; 9],
-}
+/// Energy, stress and tangent of a full 3x3 `F`: `P_iJ` at index `3 i + J`, `A_iJkL =
+/// d2W / dF_iJ dF_kL` at `[3 i + J][3 k + L]`.
+pub type FullResponse = ResponseOf<9>;
 
 /// `W`, `P` and `A` of a full 3x3 `F` (with `J > 0`): the moduli of any law at any state, for
 /// analyses beyond plane strain. A closed form where the law has one
@@ -155,29 +149,6 @@ pub fn differentiated_full_response<M: StrainEnergy + ?Sized>(m: &M, f: &[f64; 9
         energy,
         stress: std::array::from_fn(|a| g[a]),
         tangent: std::array::from_fn(|a| std::array::from_fn(|b| h[(a, b)])),
-    }
-}
-
-impl FullResponse {
-    /// `self + weight other` (a mixture of energies).
-    pub(crate) fn plus(self, other: FullResponse, weight: f64) -> FullResponse {
-        FullResponse {
-            energy: self.energy + weight * other.energy,
-            stress: std::array::from_fn(|a| self.stress[a] + weight * other.stress[a]),
-            tangent: std::array::from_fn(|a| {
-                std::array::from_fn(|b| self.tangent[a][b] + weight * other.tangent[a][b])
-            }),
-        }
-    }
-
-    /// This response times `weight`.
-    pub(crate) fn scaled(self, weight: f64) -> FullResponse {
-        FullResponse {
-            energy: 0.0,
-            stress: [0.0; 9],
-            tangent: [[0.0; 9]; 9],
-        }
-        .plus(self, weight)
     }
 }
 
@@ -226,10 +197,23 @@ pub(crate) fn cofactor(f: &Tensor2) -> Tensor2 {
     [f[3], -f[2], -f[1], f[0]]
 }
 
-impl Response {
-    /// The sum of two responses (a mixture of energies).
-    pub(crate) fn plus(self, other: Response, weight: f64) -> Response {
-        Response {
+/// Energy, stress and tangent at one deformation, of `N` gradient components.
+#[derive(Clone, Copy, Debug)]
+pub struct ResponseOf<const N: usize> {
+    pub energy: f64,
+    /// First Piola-Kirchhoff stress `P_iJ`.
+    pub stress: [f64; N],
+    /// `A_iJkL = dP_iJ / dF_kL`.
+    pub tangent: [[f64; N]; N],
+}
+
+/// Energy, stress and tangent in plane strain.
+pub type Response = ResponseOf<4>;
+
+impl<const N: usize> ResponseOf<N> {
+    /// `self + weight other` (a mixture of energies).
+    pub(crate) fn plus(self, other: Self, weight: f64) -> Self {
+        ResponseOf {
             energy: self.energy + weight * other.energy,
             stress: std::array::from_fn(|a| self.stress[a] + weight * other.stress[a]),
             tangent: std::array::from_fn(|a| {
@@ -239,24 +223,14 @@ impl Response {
     }
 
     /// This response times `weight`.
-    pub(crate) fn scaled(self, weight: f64) -> Response {
-        Response {
+    pub(crate) fn scaled(self, weight: f64) -> Self {
+        ResponseOf {
             energy: 0.0,
-            stress: [0.0; 4],
-            tangent: [[0.0; 4]; 4],
+            stress: [0.0; N],
+            tangent: [[0.0; N]; N],
         }
         .plus(self, weight)
     }
-}
-
-/// Energy, stress and tangent at one deformation.
-#[derive(Clone, Copy, Debug)]
-pub struct Response {
-    pub energy: f64,
-    /// First Piola-Kirchhoff stress `P_iJ`.
-    pub stress: Tensor2,
-    /// `A_iJkL = dP_iJ / dF_kL`.
-    pub tangent: Tensor4,
 }
 
 /// Cauchy stress `[sigma_11, sigma_12, sigma_22, sigma_33]` (symmetric, in-plane plus normal).

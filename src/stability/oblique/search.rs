@@ -28,11 +28,7 @@ impl StabilityAnalysis {
         }
         let samples = self.sample_directions(along_x.k0, along_x.d_c)?;
         let (best_theta, best) = lowest_sample(&samples);
-        let highest = samples
-            .iter()
-            .map(|s| s.1)
-            .filter(|d| d.is_finite())
-            .fold(best, f64::max);
+        let highest = highest_sample(&samples, best);
         if highest - best <= RISE_TOLERANCE {
             return Ok(SurfaceOnset {
                 onset: along_x,
@@ -76,11 +72,7 @@ impl StabilityAnalysis {
     fn directed(&self, k0: f64, theta0: f64, d_c: f64) -> Result<SurfaceOnset> {
         let samples = self.sample_directions(k0, d_c)?;
         let (_, lowest) = lowest_sample(&samples);
-        let highest = samples
-            .iter()
-            .map(|s| s.1)
-            .filter(|d| d.is_finite())
-            .fold(d_c, f64::max);
+        let highest = highest_sample(&samples, d_c);
         Ok(SurfaceOnset {
             onset: self.along(theta0).onset_at(k0, d_c, Minimum::Interior),
             theta0: if lowest < d_c - RISE_TOLERANCE {
@@ -225,6 +217,15 @@ impl StabilityAnalysis {
             })
             .collect()
     }
+}
+
+/// The largest finite `d_c` of the samples, at least `floor`.
+fn highest_sample(samples: &[(f64, f64)], floor: f64) -> f64 {
+    samples
+        .iter()
+        .map(|s| s.1)
+        .filter(|d| d.is_finite())
+        .fold(floor, f64::max)
 }
 
 /// The first sample within round-off of the lowest: of a mirror pair (`theta` and

@@ -375,10 +375,10 @@ fn nonlinear(
     point.trough_depths = depths;
     point.d_first_contact = solution.contact.d_first_contact;
     let run_loss = EllipticityReport::new(solution.curve.records.iter().map(|r| (r.d, r.ellipticity))).d_loss();
-    point.d_ellipticity_loss_fe = match (point.d_ellipticity_loss_fe, run_loss) {
-        (Some(a), Some(b)) => Some(a.min(b)),
-        (a, b) => a.or(b),
-    };
+    point.d_ellipticity_loss_fe = [point.d_ellipticity_loss_fe, run_loss]
+        .into_iter()
+        .flatten()
+        .reduce(f64::min);
     point.d_reached = Some(d);
     Ok(())
 }
