@@ -105,8 +105,11 @@ impl ElementKind {
 pub struct MeshSpec {
     /// Number of elements along X.
     pub nx: usize,
-    /// Number of (uniform) elements through the layer.
+    /// Number of elements through the layer (uniform unless [`MeshSpec::layer_grading`] > 1).
     pub layer_elements: usize,
+    /// Ratio of consecutive layer elements, from the top surface down (1: uniform; above 1 the
+    /// top element is the thinnest: the crease tip lies on the surface).
+    pub layer_grading: f64,
     /// Number of (geometrically graded) elements through the substrate.
     pub substrate_elements: usize,
     /// Thickness `h0` of the top substrate element, at the interface `Y = 0`.
@@ -192,6 +195,7 @@ impl MeshSpec {
         MeshSpec {
             nx,
             layer_elements,
+            layer_grading: 1.0,
             substrate_elements,
             top_substrate_thickness,
             length,
@@ -205,6 +209,22 @@ impl MeshSpec {
     pub fn with_element(mut self, element: ElementKind) -> Self {
         self.element = element;
         self
+    }
+
+    /// The same mesh with its layer elements growing by `ratio` from the top surface down.
+    pub fn with_layer_grading(mut self, ratio: f64) -> Self {
+        self.layer_grading = ratio;
+        self
+    }
+
+    /// Layer element thicknesses from the top surface down; they sum to the layer thickness.
+    pub fn layer_thicknesses(&self) -> Vec<f64> {
+        let (n, r) = (self.layer_elements, self.layer_grading);
+        let top = match r == 1.0 {
+            true => LAYER_THICKNESS / n as f64,
+            false => LAYER_THICKNESS * (r - 1.0) / (r.powi(n as i32) - 1.0),
+        };
+        (0..n).map(|k| top * r.powi(k as i32)).collect()
     }
 
     /// The same mesh refined in X by `refinement`.
@@ -313,6 +333,9 @@ impl MeshSpec {
         if let Some(r) = &self.x_refinement {
             r.validate()?;
         }
+        if !(self.layer_grading.is_finite() && (1.0..=4.0).contains(&self.layer_grading)) {
+            return Err(Error::invalid("mesh.layer_grading", self.layer_grading, "[1, 4]"));
+        }
         let h0 = self.top_substrate_thickness;
         let feasible = if self.substrate_elements == 1 {
             (h0 - self.depth).abs() <= 1e-12 * self.depth
@@ -356,8 +379,18 @@ impl MeshSpec {
         }
         *rows.last_mut().unwrap() = -self.depth;
         rows.reverse();
-        let nl = self.layer_elements as f64;
-        rows.extend((1..=self.layer_elements).map(|k| LAYER_THICKNESS * k as f64 / nl));
+        let nl = self.layer_elements;
+        if self.layer_grading == 1.0 {
+            rows.extend((1..=nl).map(|k| LAYER_THICKNESS * k as f64 / nl as f64));
+        } else {
+            // Up from the interface, the thickest element first; the top lies at exactly 1.
+            let mut y = 0.0;
+            for h in self.layer_thicknesses().iter().rev().take(nl - 1) {
+                y += h;
+                rows.push(y);
+            }
+            rows.push(LAYER_THICKNESS);
+        }
         rows
     }
 }

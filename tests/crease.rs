@@ -232,6 +232,7 @@ fn the_crease_onset_of_a_half_space_is_the_same_for_every_fold_length() {
             layer: 8,
             substrate: 20,
             ratio: 8.0,
+            layer_grading: 1.0,
             element: ElementKind::Displacement,
         },
         fold_lengths: vec![0.5, 1.0],
@@ -241,11 +242,11 @@ fn the_crease_onset_of_a_half_space_is_the_same_for_every_fold_length() {
             step: 0.04,
             tolerance: 1e-3,
         },
-        convergence: false,
+        refinement: None,
         lowest_only: false,
     };
     let report = crease(&params, &study, &|| {}).unwrap();
-    let thresholds: Vec<f64> = report.folds.iter().map(|f| f.d_threshold.unwrap()).collect();
+    let thresholds: Vec<f64> = report.folds.iter().map(|f| f.thresholds[0].unwrap()).collect();
     println!(
         "thresholds {thresholds:?}, d_crease {:?} at a = {:?}",
         report.d_crease, report.fold_length

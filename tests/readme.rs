@@ -59,6 +59,7 @@ const SMALL_MAP: &[(&str, &str)] = &[
     ("--crease-nx", "24"),
     ("--crease-layer-elements", "2"),
     ("--crease-substrate-elements", "10"),
+    ("--no-crease-convergence", ""),
 ];
 
 fn json(path: PathBuf) -> serde_json::Value {

@@ -6,6 +6,7 @@
 //! wrinkles reach the half-space crease strain. Nearly incompressible (K = 100 mu), no fibres.
 
 use fiberfold::stability::{Method, StabilityAnalysis};
+use fiberfold::studies::crease::CreaseStudy;
 use fiberfold::studies::map::{compute_point, first_instability, First, MapSettings, PostBuckling};
 use fiberfold::Parameters;
 
@@ -32,7 +33,13 @@ fn d_wrinkle(ratio: f64) -> f64 {
 
 #[test]
 fn a_soft_bilayer_creases_first_a_stiff_one_wrinkles_first_and_the_crossover_lies_between() {
-    let settings = MapSettings::default();
+    // The decision on one mesh, as fine as the base mesh's second: the convergence of the
+    // onset has its own tests (crease_convergence.rs).
+    let settings = MapSettings {
+        crease_refinement: None,
+        crease_mesh: CreaseStudy::default().mesh.scaled(2),
+        ..MapSettings::default()
+    };
     let crease = settings.crease_study();
     let first = |ratio: f64| first_instability(&crease, isotropic(ratio)).unwrap();
 
@@ -84,6 +91,7 @@ fn a_stiff_layer_goes_on_to_a_period_doubling_or_a_fold() {
     let settings = MapSettings {
         post_buckling_range: 0.3,
         fold_lengths: vec![1.0],
+        crease_refinement: None,
         ..MapSettings::default()
     };
     let parameters = Parameters {

@@ -236,23 +236,31 @@ def crease(
     d_from: float = 0.05,
     d_to: float = 0.7,
     d_step: float = 0.05,
-    tolerance: float = 1e-3,
+    tolerance: float = 1e-5,
     size: float = 12.0,
-    nx: int = 48,
-    layer_elements: int = 4,
-    substrate_elements: int = 20,
+    nx: int = 24,
+    layer_elements: int = 3,
+    substrate_elements: int = 10,
     ratio: float = 8.0,
+    layer_grading: float = 2.0,
     convergence: bool = True,
+    mesh_tolerance: float = 1e-3,
+    max_meshes: int = 4,
     element: str = "displacement",
 ) -> Dict[str, Any]:
     """The crease onset (``fiberfold crease``): where a seeded crease of reference length ``a``
     (each of ``folds``, units of H) first lowers the energy below the flat state's (Hong, Zhao
-    and Suo's criterion). The content of ``crease.json``: ``d_crease`` (the smallest threshold,
-    None if none within the scan), ``fold_length``, ``depth``, every fold's ``d_threshold`` and
-    energies, and ``d_crease_refined`` on a mesh refined twice (``convergence``)."""
+    and Suo's criterion). Each threshold is computed on the base mesh with its element counts
+    times 1, 2, 3, ... (at most ``max_meshes``) until it changes by less than ``mesh_tolerance``
+    in d, and extrapolated with the observed order (``convergence=False``: the base mesh alone).
+    The content of ``crease.json``: ``d_crease`` (the smallest extrapolated threshold, None if
+    none within the scan), ``d_crease_error`` (its uncertainty), ``order``, ``converged``,
+    ``fold_length``, ``depth``, ``meshes``, and every fold's ``thresholds`` per mesh,
+    ``extrapolated`` and energies."""
     return json.loads(
         _fiberfold.crease_run(
             _check_parameters(params), [float(a) for a in folds], d_from, d_to, d_step, tolerance, size, nx,
-            layer_elements, substrate_elements, ratio, convergence, element,
+            layer_elements, substrate_elements, ratio, layer_grading, convergence, mesh_tolerance, max_meshes,
+            element,
         )
     )

@@ -87,6 +87,9 @@ def crease_run(
     layer_elements: int,
     substrate_elements: int,
     ratio: float,
+    layer_grading: float,
     convergence: bool,
+    mesh_tolerance: float,
+    max_meshes: int,
     element: str,
 ) -> str: ...

@@ -389,7 +389,7 @@ fn bifurcation_run(py: Python<'_>, params: &PyParameters, out: PathBuf, mesh: &s
 
 /// The crease onset (`fiberfold crease`), in memory: `crease.json` as JSON text.
 #[pyfunction]
-#[pyo3(signature = (params, folds, d_from, d_to, d_step, tolerance, size, nx, layer_elements, substrate_elements, ratio, convergence, element))]
+#[pyo3(signature = (params, folds, d_from, d_to, d_step, tolerance, size, nx, layer_elements, substrate_elements, ratio, layer_grading, convergence, mesh_tolerance, max_meshes, element))]
 #[allow(clippy::too_many_arguments)]
 fn crease_run(
     py: Python<'_>,
@@ -404,10 +404,13 @@ fn crease_run(
     layer_elements: usize,
     substrate_elements: usize,
     ratio: f64,
+    layer_grading: f64,
     convergence: bool,
+    mesh_tolerance: f64,
+    max_meshes: usize,
     element: &str,
 ) -> PyResult<String> {
-    use fiberfold::studies::crease::{crease, CreaseMesh, CreaseStudy, Scan};
+    use fiberfold::studies::crease::{crease, CreaseMesh, CreaseStudy, Refinement, Scan};
     let study = CreaseStudy {
         mesh: CreaseMesh {
             size,
@@ -415,6 +418,7 @@ fn crease_run(
             layer: layer_elements,
             substrate: substrate_elements,
             ratio,
+            layer_grading,
             element: ElementKind::from_name(element).map_err(to_py)?,
         },
         fold_lengths: folds,
@@ -424,7 +428,10 @@ fn crease_run(
             step: d_step,
             tolerance,
         },
-        convergence,
+        refinement: convergence.then_some(Refinement {
+            tolerance: mesh_tolerance,
+            max_meshes,
+        }),
         lowest_only: false,
     };
     let p = params.inner.clone();

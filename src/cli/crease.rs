@@ -1,9 +1,9 @@
-//! `fiberfold crease`: the crease onset of the bilayer (energy criterion), with a mesh check.
+//! `fiberfold crease`: the crease onset of the bilayer (energy criterion), converged in the mesh.
 
 use super::common::{report_files, ParamArgs};
 use super::simulate::ElementChoice;
 use clap::Args;
-use fiberfold::studies::crease::{self, CreaseMesh, CreaseStudy, Scan};
+use fiberfold::studies::crease::{self, CreaseMesh, CreaseReport, CreaseStudy, Refinement, Scan};
 use fiberfold::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
@@ -15,51 +15,66 @@ pub struct CreaseArgs {
 
     /// Reference fold lengths a (units of H), comma separated: the onset is the smallest
     /// threshold over them, reported with its a.
-    #[arg(long, value_delimiter = ',', default_values_t = vec![0.5, 1.0, 2.0], allow_negative_numbers = true)]
+    #[arg(long, value_delimiter = ',', default_values_t = defaults().fold_lengths, allow_negative_numbers = true)]
     pub fold: Vec<f64>,
 
     /// First compression d scanned.
-    #[arg(long, default_value_t = 0.05, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().scan.from, allow_negative_numbers = true)]
     pub d_from: f64,
 
     /// Last compression d scanned (below 1).
-    #[arg(long, default_value_t = 0.7, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().scan.to, allow_negative_numbers = true)]
     pub d_to: f64,
 
     /// Step of the scan in d.
-    #[arg(long, default_value_t = 0.05, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().scan.step, allow_negative_numbers = true)]
     pub d_step: f64,
 
-    /// Width in d to which each threshold is located.
-    #[arg(long, default_value_t = 1e-3, allow_negative_numbers = true)]
+    /// Width in d to which each threshold is located on each mesh.
+    #[arg(long, default_value_t = defaults().scan.tolerance, allow_negative_numbers = true)]
     pub tolerance: f64,
 
     /// Side of the square block around the crease (units of H, at least 4).
-    #[arg(long, default_value_t = 12.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().mesh.size, allow_negative_numbers = true)]
     pub size: f64,
 
-    /// Elements along X (refined --ratio times near the crease).
-    #[arg(long, default_value_t = 48)]
+    /// Elements along X in the base mesh (refined --ratio times near the crease).
+    #[arg(long, default_value_t = defaults().mesh.nx)]
     pub nx: usize,
 
-    /// Elements through the layer.
-    #[arg(long, default_value_t = 4)]
+    /// Elements through the layer in the base mesh.
+    #[arg(long, default_value_t = defaults().mesh.layer)]
     pub layer_elements: usize,
 
-    /// Graded elements through the substrate.
-    #[arg(long, default_value_t = 20)]
+    /// Graded elements through the substrate in the base mesh.
+    #[arg(long, default_value_t = defaults().mesh.substrate)]
     pub substrate_elements: usize,
 
     /// Refinement near the crease: elements there this many times smaller.
-    #[arg(long, default_value_t = 8.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().mesh.ratio, allow_negative_numbers = true)]
     pub ratio: f64,
+
+    /// Ratio of consecutive layer elements from the surface down (1: uniform; up to 4): the
+    /// elements are smallest at the crease tip.
+    #[arg(long, default_value_t = defaults().mesh.layer_grading, allow_negative_numbers = true)]
+    pub layer_grading: f64,
 
     /// Finite element (mixed: the more accurate, and the only one for incompressible = true;
     /// displacement, the default, locks above K/mu ~ 100).
     #[arg(long, value_enum, default_value_t = ElementChoice::Displacement)]
     pub element: ElementChoice,
 
-    /// Skip the recomputation of the onset on a mesh refined twice in every direction.
+    /// Converge each threshold in the mesh: the base mesh (--nx, --layer-elements,
+    /// --substrate-elements) with its element counts times 1, 2, 3, ... until the threshold
+    /// changes by less than this (in d), then extrapolated with the observed order.
+    #[arg(long, default_value_t = refinement().tolerance, allow_negative_numbers = true)]
+    pub mesh_tolerance: f64,
+
+    /// Meshes of the sequence at most (3 to 6).
+    #[arg(long, default_value_t = refinement().max_meshes)]
+    pub max_meshes: usize,
+
+    /// The base mesh alone: no refinement, no uncertainty.
     #[arg(long)]
     pub no_convergence: bool,
 
@@ -77,6 +92,7 @@ pub fn run(args: &CreaseArgs) -> Result<()> {
             layer: args.layer_elements,
             substrate: args.substrate_elements,
             ratio: args.ratio,
+            layer_grading: args.layer_grading,
             element: args.element.into(),
         },
         fold_lengths: args.fold.clone(),
@@ -86,7 +102,10 @@ pub fn run(args: &CreaseArgs) -> Result<()> {
             step: args.d_step,
             tolerance: args.tolerance,
         },
-        convergence: !args.no_convergence,
+        refinement: (!args.no_convergence).then_some(Refinement {
+            tolerance: args.mesh_tolerance,
+            max_meshes: args.max_meshes,
+        }),
         lowest_only: false,
     };
     study.validate()?;
@@ -103,32 +122,7 @@ pub fn run(args: &CreaseArgs) -> Result<()> {
     );
     let (report, files) = crease::run(&params, &study, &args.out, &|| bar.inc(1))?;
     bar.finish_and_clear();
-    for fold in &report.folds {
-        match (fold.d_threshold, &fold.stopped) {
-            (Some(d), _) => println!("  a = {} H: the crease pays off from d = {d:.4}", fold.fold_length),
-            (None, Some(why)) => println!("  a = {} H: no threshold ({why})", fold.fold_length),
-            (None, None) => println!(
-                "  a = {} H: no crease pays off up to d = {}",
-                fold.fold_length, study.scan.to
-            ),
-        }
-    }
-    match (report.d_crease, report.fold_length) {
-        (Some(d), Some(a)) => {
-            println!(
-                "d_crease = {d:.4} at fold length a = {a} H (crease depth {:.3} H)",
-                report.depth.unwrap_or(f64::NAN)
-            );
-            if let (Some(r), Some(change)) = (report.d_crease_refined, report.mesh_change) {
-                println!(
-                    "  refined mesh ({} unknowns): {r:.4}, change {:.2} %",
-                    report.refined_unknowns.unwrap_or(0),
-                    100.0 * change
-                );
-            }
-        }
-        _ => println!("no crease pays off within the scan"),
-    }
+    print_onset(&report, &study);
     let e = &report.ellipticity;
     for (layer, d, smallest) in [
         ("layer", e.d_loss_layer, e.smallest_layer),
@@ -144,4 +138,66 @@ pub fn run(args: &CreaseArgs) -> Result<()> {
     }
     report_files(&files);
     Ok(())
+}
+
+fn defaults() -> CreaseStudy {
+    CreaseStudy::default()
+}
+
+fn refinement() -> Refinement {
+    defaults().refinement.expect("the default study converges in the mesh")
+}
+
+/// Each fold's threshold on each mesh and extrapolated, then the onset.
+fn print_onset(report: &CreaseReport, study: &CreaseStudy) {
+    for fold in &report.folds {
+        let a = fold.fold_length;
+        for (m, on_mesh) in fold.meshes.iter().enumerate() {
+            let mesh = format!(
+                "mesh x{} ({} unknowns)",
+                report.meshes[m].factor, report.meshes[m].unknowns
+            );
+            match (on_mesh.d_threshold, &on_mesh.stopped) {
+                (Some(d), _) => println!("  a = {a} H, {mesh}: the crease pays off from d = {d:.5}"),
+                (None, Some(why)) => println!("  a = {a} H, {mesh}: no threshold ({why})"),
+                (None, None) => println!(
+                    "  a = {a} H, {mesh}: no crease pays off up to d = {:.4}",
+                    on_mesh.cleared()
+                ),
+            }
+        }
+        if let (Some(e), true) = (fold.extrapolated, fold.meshes.len() > 1) {
+            let order = e
+                .order
+                .map_or("no order observed".to_string(), |p| format!("order {p:.2}"));
+            let error = e.error.map_or(String::new(), |x| format!(" +- {x:.1e}"));
+            let converged = if fold.converged {
+                ""
+            } else {
+                ", NOT converged to --mesh-tolerance"
+            };
+            println!(
+                "  a = {a} H: extrapolated d = {:.5}{error} ({order}{converged})",
+                e.value
+            );
+        }
+    }
+    match (report.d_crease, report.fold_length) {
+        (Some(d), Some(a)) => {
+            let error = report
+                .d_crease_error
+                .map_or(" (one mesh)".to_string(), |x| format!(" +- {x:.1e}"));
+            println!(
+                "d_crease = {d:.5}{error} at fold length a = {a} H (crease depth {:.3} H)",
+                report.depth.unwrap_or(f64::NAN)
+            );
+            if study.refinement.is_some() && !report.converged {
+                println!(
+                    "note: the threshold still changed by more than --mesh-tolerance on the last mesh: raise --max-meshes \
+                     or refine the base mesh"
+                );
+            }
+        }
+        _ => println!("no crease pays off within the scan"),
+    }
 }

@@ -59,6 +59,11 @@ pub struct MapArgs {
     #[arg(long)]
     pub free_bulk: bool,
 
+    /// Crease search on the base mesh alone: no mesh sequence, no uncertainty (faster; `first`
+    /// is then never too_close_to_call).
+    #[arg(long)]
+    pub no_crease_convergence: bool,
+
     /// Finite element of the crease search and the nonlinear runs (mixed: the more accurate,
     /// and the only one for incompressible = true; displacement, the default, locks above
     /// K/mu ~ 100).
@@ -89,14 +94,16 @@ pub struct MapArgs {
     /// Crease search: fold lengths a (units of H), comma separated.
     #[arg(long, value_delimiter = ',', default_values_t = vec![0.5, 1.0, 2.0], allow_negative_numbers = true)]
     pub fold: Vec<f64>,
-    /// Crease search: elements along X of its 12 H block (refined 8 times at the crease).
-    #[arg(long, default_value_t = 48)]
+    /// Crease search: elements along X of its 12 H base mesh (refined 8 times at the crease;
+    /// the onset is converged on the base mesh times 1, 2, 3).
+    #[arg(long, default_value_t = MapSettings::default().crease_mesh.nx)]
     pub crease_nx: usize,
-    /// Crease search: elements through the layer.
-    #[arg(long, default_value_t = 4)]
+    /// Crease search: elements through the layer of the base mesh (each twice as thick as the
+    /// one above it).
+    #[arg(long, default_value_t = MapSettings::default().crease_mesh.layer)]
     pub crease_layer_elements: usize,
-    /// Crease search: graded elements through the substrate.
-    #[arg(long, default_value_t = 20)]
+    /// Crease search: graded elements through the substrate of the base mesh.
+    #[arg(long, default_value_t = MapSettings::default().crease_mesh.substrate)]
     pub crease_substrate_elements: usize,
 
     /// Compute only the points with index % N == I (I/N; e.g. $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT),
@@ -144,6 +151,10 @@ impl MapArgs {
                 },
                 fold_lengths: self.fold.clone(),
                 keep_poisson: !self.free_bulk,
+                crease_refinement: match self.no_crease_convergence {
+                    true => None,
+                    false => defaults.crease_refinement,
+                },
                 biaxial: self.biaxial,
                 ..defaults
             },

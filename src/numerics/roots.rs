@@ -9,8 +9,17 @@ pub fn brent<F>(what: &str, mut f: F, a: f64, b: f64, tol: f64) -> Result<f64>
 where
     F: FnMut(f64) -> Result<f64>,
 {
+    let (fa, fb) = (f(a)?, f(b)?);
+    brent_from(what, f, (a, fa), (b, fb), tol)
+}
+
+/// [`brent`] from a bracket whose values `f(a)`, `f(b)` are known (e.g. from a scan).
+pub fn brent_from<F>(what: &str, mut f: F, (a, fa): (f64, f64), (b, fb): (f64, f64), tol: f64) -> Result<f64>
+where
+    F: FnMut(f64) -> Result<f64>,
+{
     let (mut a, mut b) = (a, b);
-    let (mut fa, mut fb) = (f(a)?, f(b)?);
+    let (mut fa, mut fb) = (fa, fb);
     if !(fa.is_finite() && fb.is_finite()) {
         return Err(Error::NonFinite(what.to_string()));
     }

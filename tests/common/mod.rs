@@ -115,6 +115,7 @@ pub fn tiny_map(out: &std::path::Path, extra: &[&str]) -> Vec<String> {
         "2",
         "--crease-substrate-elements",
         "10",
+        "--no-crease-convergence",
         "--out",
     ]
     .iter()

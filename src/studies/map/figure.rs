@@ -12,7 +12,7 @@ use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
 /// The regimes, in legend order, with their colours.
-const REGIMES: [(&str, RGBColor); 9] = [
+const REGIMES: [(&str, RGBColor); 10] = [
     ("crease first", RGBColor(214, 39, 40)),
     ("wrinkle, stays periodic", RGBColor(158, 202, 225)),
     ("wrinkle -> period doubling", RGBColor(49, 130, 189)),
@@ -22,6 +22,10 @@ const REGIMES: [(&str, RGBColor); 9] = [
     ("none in range", RGBColor(255, 255, 255)),
     ("undecided (crease search snapped)", RGBColor(120, 120, 120)),
     ("wrinkle -> unstable, unresolved", RGBColor(255, 221, 113)),
+    (
+        "too close to call (within the crease onset's uncertainty)",
+        RGBColor(148, 103, 189),
+    ),
 ];
 
 /// The regime of a point (an index into [`REGIMES`]).
@@ -36,6 +40,7 @@ pub fn regime(point: &MapPoint) -> usize {
         (First::None, _) => 6,
         (First::Undecided, _) => 7,
         (First::Wrinkle, Some(PostBuckling::Unresolved)) => 8,
+        (First::TooCloseToCall, _) => 9,
     }
 }
 

@@ -11,7 +11,7 @@ mod point;
 
 pub use point::{compute as compute_point, doubling, first_instability, post_buckling, First, MapPoint, PostBuckling};
 
-use super::crease::{CreaseMesh, CreaseStudy, Scan};
+use super::crease::{CreaseMesh, CreaseStudy, Refinement, Scan};
 use super::orientation::Modes;
 use super::{validate_points, Tick};
 use crate::error::{Error, Result};
@@ -112,6 +112,10 @@ pub struct MapSettings {
     pub crease_mesh: CreaseMesh,
     pub fold_lengths: Vec<f64>,
     pub crease_scan: Scan,
+    /// The mesh sequence that converges each point's crease onset (None in files written before
+    /// it existed: the base mesh alone).
+    #[serde(default)]
+    pub crease_refinement: Option<Refinement>,
     /// Scale the bulk modulus with a mapped shear modulus (`K_l` with `mu_l`, `K_s` with
     /// `mu_s`), keeping the base set's `K / mu`: the Poisson ratio stays Table 1's.
     pub keep_poisson: bool,
@@ -145,6 +149,8 @@ impl Default for MapSettings {
             crease_mesh: crease.mesh,
             fold_lengths: crease.fold_lengths,
             crease_scan: crease.scan,
+            // Three meshes at most: a point's crease search within about twice its cost on one.
+            crease_refinement: crease.refinement.map(|r| Refinement { max_meshes: 3, ..r }),
             keep_poisson: true,
             biaxial: None,
         }
@@ -159,7 +165,7 @@ impl MapSettings {
             mesh: self.crease_mesh,
             fold_lengths: self.fold_lengths.clone(),
             scan: self.crease_scan,
-            convergence: false,
+            refinement: self.crease_refinement,
             lowest_only: true,
         }
     }
@@ -406,8 +412,9 @@ pub struct MapReport {
 }
 
 const MAP_NOTE: &str = "d_wrinkle: minimum of the linear theory's d_c(k) (minimum: interior, long_wave or \
-    short_wave). d_crease: energy criterion of `fiberfold crease`, minimised over the fold lengths. first: the \
-    smaller of the two. d_wrinkle_biaxial and theta0 (with --biaxial R): the onset over \
+    short_wave). d_crease: energy criterion of `fiberfold crease`, minimised over the fold lengths and converged \
+    in the mesh, with its uncertainty d_crease_error. first: the smaller of the two, or too_close_to_call where they \
+    differ by less than d_crease_error. d_wrinkle_biaxial and theta0 (with --biaxial R): the onset over \
     wavenumbers and directions of the surface under d_3 = R d, and the direction of its wave vector from X towards \
     Z (radians; the crests run perpendicular to it; empty where no direction is preferred). d_ellipticity_loss_fe: \
     the first d at which a finite-element state (crease search or nonlinear run) has a Gauss point without strong \
@@ -472,6 +479,7 @@ fn write_csv(report: &MapReport, out: &Path) -> Result<PathBuf> {
             "k0",
             "minimum",
             "d_crease",
+            "d_crease_error",
             "crease_fold_length",
             "first",
             "becomes",
@@ -500,6 +508,7 @@ fn write_csv(report: &MapReport, out: &Path) -> Result<PathBuf> {
             number(p.k0),
             Cell::Text(&minimum),
             number(p.d_crease),
+            number(p.d_crease_error),
             number(p.crease_fold_length),
             Cell::Text(&first),
             Cell::Text(&becomes),

@@ -13,6 +13,10 @@ use crate::studies::simulate::{solve, solve_to_secondary, MeshChoice, SimulateOp
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
+/// How far beyond `d_wrinkle` a point's crease search goes (a few times the uncertainty of a
+/// converged crease onset).
+const BEYOND_WRINKLE: f64 = 0.01;
+
 /// The first instability under growing compression.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -25,6 +29,9 @@ pub enum First {
     None,
     /// No crease paid off, but its search ended (a fold that snapped) below `d_wrinkle`.
     Undecided,
+    /// `|d_crease - d_wrinkle|` is within the crease onset's uncertainty (`d_crease_error`):
+    /// the meshes cannot tell which comes first.
+    TooCloseToCall,
 }
 
 /// What the wrinkle becomes in the nonlinear run ([`post_buckling`]).
@@ -112,6 +119,9 @@ pub struct MapPoint {
     /// Energy criterion: the crease onset, its fold length and depth (units of H). Searched up
     /// to `d_wrinkle` only: beyond it the flat state the criterion compares with is unstable.
     pub d_crease: Option<f64>,
+    /// Its uncertainty from the mesh sequence ([`crate::studies::crease::convergence`]).
+    #[serde(default)]
+    pub d_crease_error: Option<f64>,
     pub crease_fold_length: Option<f64>,
     pub crease_depth: Option<f64>,
     pub first: First,
@@ -247,7 +257,11 @@ pub fn first_instability(crease_study: &CreaseStudy, parameters: Parameters) -> 
     let report = crease(&parameters, &crease_study, &|| {})?;
     let crease_seconds = clock.elapsed().as_secs_f64();
     if report.d_crease.is_none() {
-        let why = report.folds.iter().filter_map(|f| f.stopped.as_deref()).next();
+        let why = report
+            .folds
+            .iter()
+            .flat_map(|f| f.meshes.iter().filter_map(|m| m.stopped.as_deref()))
+            .next();
         notes.push(format!(
             "no crease pays off up to d = {:.4} (the search ends at d_wrinkle){}",
             crease_study.scan.to,
@@ -256,12 +270,10 @@ pub fn first_instability(crease_study: &CreaseStudy, parameters: Parameters) -> 
     }
     // Without a threshold, the crease is known not to pay off below the lowest d where a fold's
     // scan ended.
-    let cleared = report
-        .folds
-        .iter()
-        .map(|f| f.evaluations.iter().map(|e| e.strain).fold(0.0, f64::max))
-        .fold(crease_study.scan.to, f64::min);
+    let cleared = report.cleared();
+    let uncertainty = report.d_crease_error.unwrap_or(0.0);
     let first = match (d_wrinkle, report.d_crease) {
+        (Some(w), Some(c)) if (c - w).abs() <= uncertainty => First::TooCloseToCall,
         (Some(w), Some(c)) if c < w => First::Crease,
         (Some(_), Some(_)) => First::Wrinkle,
         (Some(w), None) if w <= cleared => First::Wrinkle,
@@ -281,6 +293,7 @@ pub fn first_instability(crease_study: &CreaseStudy, parameters: Parameters) -> 
         k0: onset.filter(|o| o.minimum == Minimum::Interior).map(|o| o.k0),
         minimum: onset.map(|o| o.minimum),
         d_crease: report.d_crease,
+        d_crease_error: report.d_crease_error,
         crease_fold_length: report.fold_length,
         crease_depth: report.depth,
         first,
@@ -299,9 +312,10 @@ pub fn first_instability(crease_study: &CreaseStudy, parameters: Parameters) -> 
     })
 }
 
-/// The crease search of a point: up to `d_wrinkle` (beyond it the flat state the criterion
-/// compares with is unstable, and which comes first is decided), in steps that land on it;
-/// without a wrinkle, `base`'s scan.
+/// The crease search of a point: up to `d_wrinkle + BEYOND_WRINKLE` (far beyond it the flat
+/// state the criterion compares with is unstable, and which comes first is decided; just beyond
+/// it a threshold may still be too close to call), in steps that land on `d_wrinkle`; without a
+/// wrinkle, `base`'s scan.
 fn crease_search(base: &CreaseStudy, d_wrinkle: Option<f64>) -> CreaseStudy {
     let mut study = base.clone();
     if let Some(w) = d_wrinkle.filter(|&w| w < base.scan.to) {
@@ -309,7 +323,7 @@ fn crease_search(base: &CreaseStudy, d_wrinkle: Option<f64>) -> CreaseStudy {
         study.scan = Scan {
             from: step,
             step,
-            to: w,
+            to: (w + BEYOND_WRINKLE).min(base.scan.to),
             tolerance: base.scan.tolerance.min(0.5 * step),
         };
     }
