@@ -421,7 +421,7 @@ fn crease_writes_its_onset_and_refuses_bad_folds() {
     );
     let table = std::fs::read_to_string(dir.join("crease_energy.csv")).unwrap();
     assert!(table
-        .starts_with("fold_length,d,difference,scaled_difference,depth,min_J,ellipticity_layer,ellipticity_substrate"));
+        .starts_with("fold_length,mesh,d,difference,scaled_difference,depth,min_J,tensile_nodes,ellipticity_layer,ellipticity_substrate"));
 }
 
 #[test]

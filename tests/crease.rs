@@ -283,6 +283,7 @@ fn a_creased_state_carries_the_ellipticity_margins_of_its_far_field() {
         nx: 24,
         layer: 2,
         substrate: 10,
+        layer_grading: 1.0,
         ..CreaseStudy::default().mesh
     };
     let materials = Bilayer::new(&params);
