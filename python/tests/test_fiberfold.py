@@ -247,7 +247,9 @@ def test_incompressible_tissue_with_the_mixed_element():
 
 def test_crease_onset_of_a_soft_layer():
     p = fiberfold.Parameters(mu_l=1.5, K_l=4.5)
-    r = fiberfold.crease(p, [1.0], d_from=0.2, d_to=0.3, nx=24, layer_elements=2, substrate_elements=12, convergence=False)
+    r = fiberfold.crease(
+        p, [1.0], d_from=0.2, d_to=0.3, nx=24, layer_elements=2, substrate_elements=12, layer_grading=1.0, convergence=False
+    )
     assert 0.2 < r["d_crease"] < 0.3 and r["fold_length"] == 1.0
     with pytest.raises(ValueError, match="fold"):
         fiberfold.crease(p, [0.0])
