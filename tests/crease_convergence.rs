@@ -9,18 +9,11 @@ use fiberfold::stability::{Method, StabilityAnalysis};
 use fiberfold::studies::crease::{crease, CreaseMesh, CreaseReport, CreaseStudy, Refinement, Scan};
 use fiberfold::Parameters;
 
+mod common;
+
 /// mu_l / mu_s = 3, K = 100 mu in both layers, no fibres.
 fn contrast_three() -> Parameters {
-    Parameters {
-        mu_l: 3.0,
-        K_l: 300.0,
-        mu_s: 1.0,
-        K_s: 100.0,
-        phi_m: 1.0,
-        phi_f: 0.0,
-        mu_f: 0.0,
-        ..Parameters::default()
-    }
+    common::isotropic(3.0)
 }
 
 /// The fold `a = 0.5` scanned over `[0.2, 0.26]`, on `mesh` and its multiples.

@@ -5,23 +5,13 @@
 //! confined to the layer, so the crossover cannot come before the ratio at which the layer's
 //! wrinkles reach the half-space crease strain. Nearly incompressible (K = 100 mu), no fibres.
 
+mod common;
+
+use common::isotropic;
 use fiberfold::stability::{Method, StabilityAnalysis};
 use fiberfold::studies::crease::CreaseStudy;
 use fiberfold::studies::map::{compute_point, first_instability, First, MapSettings, PostBuckling};
 use fiberfold::Parameters;
-
-fn isotropic(ratio: f64) -> Parameters {
-    Parameters {
-        mu_l: ratio,
-        K_l: 100.0 * ratio,
-        mu_s: 1.0,
-        K_s: 100.0,
-        phi_m: 1.0,
-        phi_f: 0.0,
-        mu_f: 0.0,
-        ..Parameters::default()
-    }
-}
 
 fn d_wrinkle(ratio: f64) -> f64 {
     StabilityAnalysis::new(&isotropic(ratio), Method::Exact)

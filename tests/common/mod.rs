@@ -256,3 +256,18 @@ pub fn rejected(args: &[&str], must_mention: &[&str]) {
         assert!(stderr.contains(word), "{args:?}: `{word}` missing from: {stderr}");
     }
 }
+
+/// An isotropic bilayer of stiffness ratio `mu_l / mu_s = ratio`, nearly incompressible
+/// (K = 100 mu in both layers), no fibres.
+pub fn isotropic(ratio: f64) -> Parameters {
+    Parameters {
+        mu_l: ratio,
+        K_l: 100.0 * ratio,
+        mu_s: 1.0,
+        K_s: 100.0,
+        phi_m: 1.0,
+        phi_f: 0.0,
+        mu_f: 0.0,
+        ..Parameters::default()
+    }
+}
