@@ -1,6 +1,9 @@
 //! The homogeneously compressed state (paper eq. 4, Fig. 2): `x = (lambda_1 X, lambda_2 Y)` in
 //! each layer with `lambda_1 = 1 - d` and `lambda_2` such that `sigma_22 = 0`; in incompressible
 //! layers `lambda_2 = 1 / lambda_1` and the pressure multiplier makes `sigma_22` vanish.
+//! Under a growth load ([`Bilayer::at_load`]) the ends are held, `lambda_1 = 1`, the growing
+//! layers' energies are `Jg W(Fe)`, and an incompressible layer keeps `det Fe = 1`, so
+//! `lambda_2 = Jg / lambda_1`.
 
 use crate::error::{Error, Result};
 use crate::material::{Bilayer, CauchyStress, Hyperelastic, StrainEnergy, Tensor2};
@@ -9,13 +12,17 @@ use crate::parameters::validate_compression;
 use num_dual::Dual64;
 use serde::Serialize;
 
-/// Both layers at one end-shortening `d`.
+/// Both layers at one load: the end-shortening `d`, or under growth the strain `d = 1 - 1/g`.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct HomogeneousState {
     pub d: f64,
     pub lambda1: f64,
     pub lambda2_layer: f64,
     pub lambda2_substrate: f64,
+    /// The growth `g` of the layer along `X` (1 without growth).
+    pub growth_layer: f64,
+    /// The growth of the substrate along `X`.
+    pub growth_substrate: f64,
 }
 
 impl HomogeneousState {
@@ -80,23 +87,26 @@ fn transverse_root(what: &str, p22: impl Fn(f64) -> Result<f64>) -> Result<f64> 
     brent(&what, p22, lower, upper, 1e-15)
 }
 
-/// The homogeneous state of both layers at end-shortening `d` (eq. 4).
+/// The homogeneous state of both layers at the load's strain `d` (eq. 4).
 pub fn homogeneous_state(materials: &Bilayer, d: f64) -> Result<HomogeneousState> {
     validate_compression("d", d)?;
-    let lambda1 = 1.0 - d;
-    if materials.incompressible {
-        return Ok(HomogeneousState {
-            d,
-            lambda1,
-            lambda2_layer: 1.0 / lambda1,
-            lambda2_substrate: 1.0 / lambda1,
-        });
-    }
+    let (loaded, lambda1) = materials.at_load(d);
+    let (layer_growth, substrate_growth) = (loaded.layer.growth, loaded.substrate.growth);
+    let (lambda2_layer, lambda2_substrate) = if materials.incompressible {
+        (layer_growth.jacobian() / lambda1, substrate_growth.jacobian() / lambda1)
+    } else {
+        (
+            transverse_stretch(&loaded.layer, lambda1)?,
+            transverse_stretch(&loaded.substrate, lambda1)?,
+        )
+    };
     Ok(HomogeneousState {
         d,
         lambda1,
-        lambda2_layer: transverse_stretch(&materials.layer, lambda1)?,
-        lambda2_substrate: transverse_stretch(&materials.substrate, lambda1)?,
+        lambda2_layer,
+        lambda2_substrate,
+        growth_layer: layer_growth.stretches[0],
+        growth_substrate: substrate_growth.stretches[0],
     })
 }
 
@@ -124,18 +134,25 @@ impl BiaxialState {
     }
 }
 
-/// The biaxial homogeneous state at `(d, d_3)`.
+/// The biaxial homogeneous state at `(d, d_3)`, under compression (a fixed growth included).
 pub fn biaxial_state(materials: &Bilayer, d: f64, d3: f64) -> Result<BiaxialState> {
     validate_compression("d", d)?;
     validate_compression("d_3", d3)?;
+    if materials.load.is_growth() {
+        return Err(crate::error::Error::invalid(
+            "load",
+            materials.load.name(),
+            "compression for modes oblique to the compression (a fixed growth_layer may prestress the layer)",
+        ));
+    }
     let (lambda1, lambda3) = (1.0 - d, 1.0 - d3);
     if materials.incompressible {
-        let lambda2 = 1.0 / (lambda1 * lambda3);
+        let volume = |g: crate::material::Growth| g.jacobian() / (lambda1 * lambda3);
         return Ok(BiaxialState {
             d,
             d3,
-            lambda2_layer: lambda2,
-            lambda2_substrate: lambda2,
+            lambda2_layer: volume(materials.layer.growth),
+            lambda2_substrate: volume(materials.substrate.growth),
         });
     }
     let solve = |material: &dyn Fn(f64) -> Result<f64>| {
@@ -174,8 +191,8 @@ pub fn constraint_pressure<M: Hyperelastic>(rest: &M, f: &Tensor2) -> Result<f64
 fn homogeneous_cauchy<M: Hyperelastic>(material: &M, f: &Tensor2, incompressible: bool) -> Result<CauchyStress> {
     let mut sigma = material.cauchy(f)?;
     if incompressible {
-        // sigma = sigma_rest + p / J I, J = 1.
-        let p = constraint_pressure(material, f)?;
+        // sigma = sigma_rest + p / J I (J = Jg under growth).
+        let p = constraint_pressure(material, f)? / crate::material::jacobian(f);
         for i in [0, 2, 3] {
             sigma[i] += p;
         }
@@ -195,10 +212,11 @@ impl HomogeneousRow {
     pub fn new(materials: &Bilayer, d: f64) -> Result<Self> {
         let state = homogeneous_state(materials, d)?;
         let incompressible = materials.incompressible;
+        let (loaded, _) = materials.at_load(d);
         Ok(HomogeneousRow {
             state,
-            layer_stress: homogeneous_cauchy(&materials.layer, &state.layer_gradient(), incompressible)?,
-            substrate_stress: homogeneous_cauchy(&materials.substrate, &state.substrate_gradient(), incompressible)?,
+            layer_stress: homogeneous_cauchy(&loaded.layer, &state.layer_gradient(), incompressible)?,
+            substrate_stress: homogeneous_cauchy(&loaded.substrate, &state.substrate_gradient(), incompressible)?,
         })
     }
 }

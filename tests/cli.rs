@@ -449,3 +449,63 @@ fn a_second_run_into_a_folder_being_written_is_refused() {
     let again = fiberfold(&["simulate", "--waves", "4.5", "--d-max", "0.01", "--out", out]);
     assert!(again.status.success(), "{}", String::from_utf8_lossy(&again.stderr));
 }
+
+#[test]
+fn growth_is_a_load_of_the_linear_theory_and_bad_growth_is_refused() {
+    let dir = scratch("growth");
+    let out = fiberfold(&["onset", "--load", "growth", "--out", dir.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("onset.json")).unwrap()).unwrap();
+    assert_eq!(json["load"], "growth");
+    let (d_c, g_c) = (json["d_c"].as_f64().unwrap(), json["g_c"].as_f64().unwrap());
+    assert!(
+        g_c > 1.0 && (g_c - 1.0 / (1.0 - d_c)).abs() < 1e-12,
+        "g_c {g_c}, d_c {d_c}"
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).contains("g_c = "));
+    let out = fiberfold(&[
+        "dispersion",
+        "--points",
+        "5",
+        "--load",
+        "growth",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let csv = std::fs::read_to_string(dir.join("dispersion.csv")).unwrap();
+    assert!(csv.starts_with("k,theta,d_c,lambda1_c,g_c\n"), "{csv}");
+
+    for bad in [
+        "growth_layer=0",
+        "growth_layer=-1",
+        "growth_substrate=inf",
+        "growth_layer=nan",
+        "growth_layer=11",
+    ] {
+        let name = bad.split('=').next().unwrap();
+        rejected(&["onset", "--set", bad], &[name, "[0.1, 10]"]);
+    }
+    rejected(
+        &["onset", "--load", "growth", "--set", "growth_layer=1.2"],
+        &["growth_layer", "load = growth"],
+    );
+    rejected(
+        &["onset", "--load", "uniform_growth", "--set", "growth_substrate=1.1"],
+        &["growth_substrate"],
+    );
+    rejected(
+        &["onset", "--load", "grow"],
+        &["load", "compression, growth, uniform_growth"],
+    );
+    // The finite elements do not model growth yet, and say so at once.
+    rejected(
+        &["simulate", "--waves", "5", "--load", "growth"],
+        &["load", "finite elements"],
+    );
+    rejected(
+        &["crease", "--set", "growth_layer=1.1"],
+        &["growth_layer", "finite elements"],
+    );
+}

@@ -17,6 +17,12 @@ pub struct ParamArgs {
     /// (`--help` lists every key with its default and units).
     #[arg(long = "set", value_name = "KEY=VALUE", long_help = fiberfold::parameters::set_help())]
     pub set: Vec<String>,
+
+    /// What loads the bilayer, the parameter `load`: compression (the end-shortening d) |
+    /// growth (the layer's growth g from 1, both ends held; d = 1 - 1/g in tables) |
+    /// uniform_growth (both layers grow by g). Overrides the file's and `--set`'s.
+    #[arg(long, value_name = "LOAD")]
+    pub load: Option<String>,
 }
 
 impl ParamArgs {
@@ -28,6 +34,9 @@ impl ParamArgs {
         };
         for assignment in &self.set {
             params.set(assignment)?;
+        }
+        if let Some(load) = &self.load {
+            params.set_value("load", &toml::Value::String(load.clone()))?;
         }
         params.validate()?;
         Ok(params)

@@ -11,7 +11,8 @@ pub struct HomogeneousArgs {
     #[command(flatten)]
     pub params: ParamArgs,
 
-    /// Largest end-shortening d = 1 - lambda_1 (dimensionless, in [0, 1)).
+    /// Largest end-shortening d = 1 - lambda_1 (dimensionless, in [0, 1)); under --load growth
+    /// the strain d = 1 - 1/g of the largest growth g.
     #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
     pub d_max: f64,
 

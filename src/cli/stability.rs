@@ -139,7 +139,17 @@ pub fn onset(args: &OnsetArgs) -> Result<()> {
             "  no finite k0: d_c(k) decreases all the way to k -> infinity (short_wave): the layer's own surface instability comes first"
         ),
     }
-    println!("  d_c = {:.6}  (lambda1_c = {:.6})", onset.d_c, onset.lambda1_c);
+    let load = params.load;
+    match onset.g_c {
+        Some(g_c) => println!(
+            "  g_c = {g_c:.6}  (the critical growth, load = {}; the strain d_c = 1 - 1/g_c = {:.6})",
+            load.name(),
+            onset.d_c
+        ),
+        None => println!("  d_c = {:.6}  (lambda1_c = {:.6})", onset.d_c, onset.lambda1_c),
+    }
+    // A strain d of the searches, as the load's parameter.
+    let at = |d: f64| format!("{} = {:.6}", load.parameter_name(), load.parameter(d));
     if let Some(spread) = onset.direction_spread {
         match onset.theta0.is_finite() {
             true => println!(
@@ -154,13 +164,17 @@ pub fn onset(args: &OnsetArgs) -> Result<()> {
         }
     }
     match onset.d_ellipticity_loss {
-        Some(d) => println!("  strong ellipticity is lost at d = {d:.6}; beyond it wrinkling results are meaningless"),
+        Some(d) => println!(
+            "  strong ellipticity is lost at {}; beyond it wrinkling results are meaningless",
+            at(d)
+        ),
         None => match onset.d_domain_end {
             Some(d) => println!(
-                "  the homogeneous state reaches a Gent law's limiting extensibility at d = {d:.6}, where the search \
-                 ends; both layers stay strongly elliptic up to it"
+                "  the homogeneous state reaches a Gent law's limiting extensibility at {}, where the search \
+                 ends; both layers stay strongly elliptic up to it",
+                at(d)
             ),
-            None => println!("  both layers stay strongly elliptic up to d = 0.95"),
+            None => println!("  both layers stay strongly elliptic up to {}", at(0.95)),
         },
     }
     report_files(&files);

@@ -118,11 +118,35 @@ pub struct System {
     entries: Vec<f64>,
 }
 
+/// The finite elements model ungrown tissue under compression only, so far: their boundary
+/// conditions follow `d`, and the mixed element's volumetric split has no growth.
+fn refuse_growth(materials: &Bilayer) -> Result<()> {
+    const ALLOWED: &str = "compression of ungrown tissue in the finite elements (simulate, bifurcation, crease); \
+        the linear theory (homogeneous, dispersion, onset, sweep) models growth";
+    if materials.load.is_growth() {
+        return Err(Error::invalid("load", materials.load.name(), ALLOWED));
+    }
+    for (name, growth) in [
+        ("growth_layer", materials.layer.growth),
+        ("growth_substrate", materials.substrate.growth),
+    ] {
+        if !growth.is_identity() {
+            return Err(Error::invalid_number(
+                name,
+                growth.stretches[0],
+                &format!("1 ({ALLOWED})"),
+            ));
+        }
+    }
+    Ok(())
+}
+
 impl System {
     /// The layer's material in layer elements, the substrate's in substrate elements, with the
     /// element the mesh's spec names. Incompressible tissue needs the mixed element.
     pub fn new(mesh: Mesh, materials: &Bilayer) -> Result<Self> {
         mesh.spec().element.check_for(materials.incompressible)?;
+        refuse_growth(materials)?;
         let tissues: Vec<Tissue> = mesh
             .regions()
             .iter()

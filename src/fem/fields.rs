@@ -30,7 +30,7 @@ pub struct CellFields {
 
 /// Evaluates [`CellFields`] of the displacement `u` (full vector) on every element of `system`.
 pub fn cell_fields(system: &System, materials: &Bilayer, u: &[f64]) -> Result<CellFields> {
-    let fibres: &[Fibre; 2] = &materials.substrate.fibres;
+    let fibres: &[Fibre; 2] = &materials.substrate.energy.fibres;
     let mut fields = CellFields::default();
     for (e, (geometry, material)) in system.geometry().iter().zip(system.materials()).enumerate() {
         let u_e = system.element_displacements(e, u);

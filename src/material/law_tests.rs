@@ -147,10 +147,10 @@ fn gent_beyond_its_limit_is_an_error_not_a_nan() {
 fn parameters_build_the_laws_they_name_and_keep_table_1_by_default() {
     let table_1 = Bilayer::new(&Parameters::default());
     assert!(matches!(
-        table_1.layer,
+        table_1.layer.energy,
         Matrix::NeoHookean(NeoHookean { mu: 10.0, bulk: 30.0 })
     ));
-    assert!(matches!(table_1.substrate.fibres[0], Fibre::Quadratic(_)));
+    assert!(matches!(table_1.substrate.energy.fibres[0], Fibre::Quadratic(_)));
     for (name, settings) in super::tests::other_laws() {
         let mut p = Parameters::default();
         for s in &settings {
@@ -159,8 +159,11 @@ fn parameters_build_the_laws_they_name_and_keep_table_1_by_default() {
         p.validate().unwrap();
         let b = Bilayer::new(&p);
         // The flat shear moduli are the laws' own.
-        assert!((b.layer.shear_modulus() - p.mu_l).abs() < 1e-12, "{name}");
-        assert!((b.substrate.matrix.shear_modulus() - p.mu_s).abs() < 1e-12, "{name}");
+        assert!((b.layer.energy.shear_modulus() - p.mu_l).abs() < 1e-12, "{name}");
+        assert!(
+            (b.substrate.energy.matrix.shear_modulus() - p.mu_s).abs() < 1e-12,
+            "{name}"
+        );
         let round_trip = Parameters::from_toml_str(&p.to_toml()).unwrap();
         assert_eq!(round_trip, p, "{name}: {}", p.to_toml());
     }

@@ -14,6 +14,7 @@
 pub mod ellipticity;
 mod fibre;
 mod gent;
+mod growth;
 mod hgo;
 pub mod isotropic;
 mod laws;
@@ -24,6 +25,7 @@ mod tissue;
 
 pub use fibre::FibreFamily;
 pub use gent::Gent;
+pub use growth::{Grown, Growth};
 pub use hgo::HgoFamily;
 pub use laws::{Fibre, Matrix};
 pub use mooney_rivlin::MooneyRivlin;

@@ -152,7 +152,7 @@ pub(super) fn other_laws() -> Vec<(&'static str, Vec<&'static str>)> {
 /// Whether a tension-only fibre sits at its kink `I4 = lambda_f^2`, where `A` jumps.
 fn at_fibre_kink(m: &Tissue, f: &Tensor2) -> bool {
     match m {
-        Tissue::Substrate(s) => s.fibres.iter().any(|fam| fam.near_kink(f, 1e-4)),
+        Tissue::Substrate(s) => s.energy.fibres.iter().any(|fam| fam.near_kink(f, 1e-4)),
         Tissue::Layer(_) => false,
     }
 }
@@ -286,7 +286,7 @@ fn tension_only_fibres_are_unloaded_in_compression() {
         mu_f: 50.0,
         ..Parameters::default()
     };
-    let Fibre::Quadratic(fibres) = Bilayer::new(&p).substrate.fibres[0] else {
+    let Fibre::Quadratic(fibres) = Bilayer::new(&p).substrate.energy.fibres[0] else {
         panic!("the paper's fibres are quadratic")
     };
     assert_eq!(fibres.energy(&[0.8, 0.0, 0.0, 1.2]).unwrap(), 0.0);

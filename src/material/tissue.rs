@@ -2,12 +2,13 @@
 //! here) and the fibre-reinforced substrate (white matter, eq. 3 mixture
 //! `phi_m W_m + phi_f (f1 + f2)`), built from `Parameters`.
 
+use super::growth::{Grown, Growth};
 use super::laws::{Fibre, Matrix};
 use super::{
     FibreFamily, FullResponse, Gent, HgoFamily, MooneyRivlin, NeoHookean, Ogden, Response, StrainEnergy, Tensor2,
 };
 use crate::error::Result;
-use crate::parameters::{FibreLaw, MatrixLaw, Parameters};
+use crate::parameters::{FibreLaw, Load, MatrixLaw, Parameters};
 use num_dual::DualNum;
 
 /// Substrate: a matrix plus two fibre families at `+-beta`.
@@ -66,8 +67,8 @@ impl StrainEnergy for FibreReinforced {
 /// Either tissue, so that code looping over elements of both layers needs one type.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Tissue {
-    Layer(Matrix),
-    Substrate(FibreReinforced),
+    Layer(Grown<Matrix>),
+    Substrate(Grown<FibreReinforced>),
 }
 
 impl StrainEnergy for Tissue {
@@ -114,29 +115,69 @@ impl StrainEnergy for Tissue {
     }
 }
 
-/// The materials of both layers, from the parameters.
+/// The materials of both layers, from the parameters, with their growth.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Bilayer {
-    pub layer: Matrix,
-    pub substrate: FibreReinforced,
-    /// Both layers exactly incompressible: `J = 1` is a constraint, and the energies above are
-    /// the parts without bulk term (their bulk moduli are zero).
+    pub layer: Grown<Matrix>,
+    pub substrate: Grown<FibreReinforced>,
+    /// Both layers exactly incompressible: `Je = det Fe = 1` is a constraint, and the energies
+    /// above are the parts without bulk term (their bulk moduli are zero).
     pub incompressible: bool,
+    /// What loads the bilayer; under a growth load the growths above are those at `g = 1`.
+    pub load: Load,
+    /// Whether a growth factor is of the in-plane area (else tangential).
+    area_growth: bool,
 }
 
 impl Bilayer {
     pub fn new(p: &Parameters) -> Self {
         let bulk = |k: f64| if p.incompressible { 0.0 } else { k };
-        Bilayer {
-            layer: matrix_law(&p.layer, p.mu_l, bulk(p.K_l)),
-            substrate: FibreReinforced {
+        let mut materials = Bilayer {
+            layer: Grown::ungrown(matrix_law(&p.layer, p.mu_l, bulk(p.K_l))),
+            substrate: Grown::ungrown(FibreReinforced {
                 matrix: matrix_law(&p.substrate, p.mu_s, bulk(p.K_s)),
                 matrix_fraction: p.phi_m,
                 fibre_fraction: p.phi_f,
                 fibres: [fibre_law(p, 1.0), fibre_law(p, -1.0)],
-            },
+            }),
             incompressible: p.incompressible,
+            load: p.load,
+            area_growth: p.area_growth,
+        };
+        materials.layer.growth = materials.growth(p.growth_layer);
+        materials.substrate.growth = materials.growth(p.growth_substrate);
+        materials
+    }
+
+    /// The growth tensor of a growth factor `g`, of the kind the parameters chose.
+    fn growth(&self, g: f64) -> Growth {
+        if self.area_growth {
+            Growth::area(g)
+        } else {
+            Growth::tangential(g)
         }
+    }
+
+    /// The materials at the load's strain `d` and the stretch `lambda_1` of both layers along
+    /// `X`: under compression the same materials at `lambda_1 = 1 - d`; under growth the growing
+    /// layers at `g = 1 / (1 - d)`, with the ends held (`lambda_1 = 1`).
+    pub fn at_load(&self, d: f64) -> (Bilayer, f64) {
+        let g = self.load.parameter(d);
+        let mut loaded = *self;
+        match self.load {
+            Load::Compression => return (loaded, 1.0 - d),
+            Load::Growth => loaded.layer.growth = self.growth(g),
+            Load::UniformGrowth => {
+                loaded.layer.growth = self.growth(g);
+                loaded.substrate.growth = self.growth(g);
+            }
+        }
+        (loaded, 1.0)
+    }
+
+    /// Whether either layer grows, or growth is the load.
+    pub fn grows(&self) -> bool {
+        self.load.is_growth() || !(self.layer.growth.is_identity() && self.substrate.growth.is_identity())
     }
 
     pub fn layer_tissue(&self) -> Tissue {
@@ -153,15 +194,22 @@ impl Tissue {
     /// same tissue with a zero bulk modulus, `kappa` the bulk modulus it carries (`phi_m K_s` in
     /// the substrate). Exact for the energies of `docs/model.md` ("Strain energies"), whose only
     /// `J`-term is `K/2 (ln J)^2`.
+    /// Ungrown tissue only: the finite elements refuse growth ([`Bilayer::grows`]).
     pub fn volumetric_split(&self) -> (Tissue, f64) {
         match *self {
-            Tissue::Layer(m) => (Tissue::Layer(m.with_bulk_modulus(0.0)), m.bulk_modulus()),
+            Tissue::Layer(m) => (
+                Tissue::Layer(Grown::ungrown(m.energy.with_bulk_modulus(0.0))),
+                m.energy.bulk_modulus(),
+            ),
             Tissue::Substrate(s) => {
                 let rest = FibreReinforced {
-                    matrix: s.matrix.with_bulk_modulus(0.0),
-                    ..s
+                    matrix: s.energy.matrix.with_bulk_modulus(0.0),
+                    ..s.energy
                 };
-                (Tissue::Substrate(rest), s.matrix_fraction * s.matrix.bulk_modulus())
+                (
+                    Tissue::Substrate(Grown::ungrown(rest)),
+                    s.energy.matrix_fraction * s.energy.matrix.bulk_modulus(),
+                )
             }
         }
     }

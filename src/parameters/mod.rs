@@ -55,6 +55,72 @@ pub struct Parameters {
     pub substrate: MatrixLaw,
     /// The fibres' law (`[fibres]`; the paper's quadratic one by default).
     pub fibres: FibreLaw,
+    /// Growth of the layer, fixed (a prestress before a compression) unless it is the load.
+    pub growth_layer: f64,
+    /// Growth of the substrate, fixed.
+    pub growth_substrate: f64,
+    /// When true, growth is of the in-plane area, `Fg = diag(g, g)` (the layer thickens);
+    /// otherwise tangential, `Fg = diag(g, 1)`.
+    pub area_growth: bool,
+    /// What loads the bilayer: the end-shortening `d` or the growth `g` (`load`).
+    pub load: Load,
+}
+
+/// What loads the bilayer (`docs/model.md`, "Growth"). Every analysis follows one load
+/// parameter; the linear theory searches it through the strain `d`: `d = 1 - lambda_1` under
+/// compression and `d = 1 - 1/g` under growth.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Load {
+    /// The end-shortening `d = 1 - lambda_1` of both layers (the paper's load).
+    #[default]
+    Compression,
+    /// The layer's growth `g` from 1 upwards, with the ends held (`lambda_1 = 1`): differential
+    /// growth on a substrate that grows by `growth_substrate` only.
+    Growth,
+    /// Both layers growing by `g`, with the ends held: the grown body compressed by `1/g`.
+    UniformGrowth,
+}
+
+/// The names of the loads, as `load` takes them.
+pub const LOADS: [&str; 3] = ["compression", "growth", "uniform_growth"];
+
+impl Load {
+    pub fn name(self) -> &'static str {
+        LOADS[self as usize]
+    }
+
+    pub fn named(name: &str) -> Result<Self> {
+        match name {
+            "compression" => Ok(Load::Compression),
+            "growth" => Ok(Load::Growth),
+            "uniform_growth" => Ok(Load::UniformGrowth),
+            other => Err(Error::invalid("load", other, &LOADS.join(", "))),
+        }
+    }
+
+    /// Whether the load is a growth (its parameter is `g`, not `d`).
+    pub fn is_growth(self) -> bool {
+        self != Load::Compression
+    }
+
+    /// The load parameter at the strain `d` of the searches: `d` itself, or `g = 1/(1 - d)`.
+    pub fn parameter(self, d: f64) -> f64 {
+        if self.is_growth() {
+            1.0 / (1.0 - d)
+        } else {
+            d
+        }
+    }
+
+    /// The name of the load parameter, as in CSV and JSON columns.
+    pub fn parameter_name(self) -> &'static str {
+        if self.is_growth() {
+            "g"
+        } else {
+            "d"
+        }
+    }
 }
 
 impl Default for Parameters {
@@ -76,6 +142,10 @@ impl Default for Parameters {
             layer: MatrixLaw::NeoHookean,
             substrate: MatrixLaw::NeoHookean,
             fibres: FibreLaw::Quadratic,
+            growth_layer: 0.0,
+            growth_substrate: 0.0,
+            area_growth: false,
+            load: Load::Compression,
         };
         for s in &TABLE {
             match s.kind {
@@ -160,6 +230,13 @@ impl Parameters {
 
     /// Sets `key` (flat, dotted or a whole law table) from a TOML value.
     pub fn set_value(&mut self, key: &str, value: &toml::Value) -> Result<()> {
+        if key == "load" {
+            let toml::Value::String(name) = value else {
+                return Err(Error::invalid(key, value, &LOADS.join(", ")));
+            };
+            self.load = Load::named(name)?;
+            return Ok(());
+        }
         if let Some((table, name)) = key.split_once('.') {
             return self.set_law_key(table, name, value);
         }
@@ -315,6 +392,7 @@ impl Parameters {
                 (s.name.to_string(), value)
             })
             .collect();
+        entries.push(("load".into(), toml::Value::String(self.load.name().into())));
         entries.extend(self.law_entries());
         entries
     }
@@ -337,9 +415,32 @@ impl Parameters {
     /// Checks every range; the message names the parameter and its allowed range.
     pub fn validate(&self) -> Result<()> {
         table::validate(self)?;
+        self.validate_load()?;
         self.layer.validate("layer", "mu_l", self.mu_l)?;
         self.substrate.validate("substrate", "mu_s", self.mu_s)?;
         self.fibres.validate()
+    }
+
+    /// A growth that is the load cannot also be fixed.
+    fn validate_load(&self) -> Result<()> {
+        let loaded: &[(&str, f64)] = match self.load {
+            Load::Compression => &[],
+            Load::Growth => &[("growth_layer", self.growth_layer)],
+            Load::UniformGrowth => &[
+                ("growth_layer", self.growth_layer),
+                ("growth_substrate", self.growth_substrate),
+            ],
+        };
+        for &(name, g) in loaded {
+            if g != 1.0 {
+                return Err(Error::invalid_number(
+                    name,
+                    g,
+                    &format!("1 under load = {} (the load is that growth)", self.load.name()),
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// The resolved set as TOML that `--params` reads back.

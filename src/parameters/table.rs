@@ -46,6 +46,8 @@ pub enum Range {
     Stretch,
     /// Any finite angle.
     Angle,
+    /// A growth stretch in `[0.1, 10]`.
+    Growth,
 }
 
 impl Range {
@@ -57,6 +59,7 @@ impl Range {
                 Range::Fraction => (0.0..=1.0).contains(&x),
                 Range::Stretch => x > 0.0 && x <= 10.0,
                 Range::Angle => true,
+                Range::Growth => (0.1..=10.0).contains(&x),
             }
     }
 
@@ -68,6 +71,7 @@ impl Range {
             Range::Fraction => "[0, 1]",
             Range::Stretch => "(0, 10]",
             Range::Angle => "finite",
+            Range::Growth => "[0.1, 10]",
         }
     }
 
@@ -81,6 +85,7 @@ impl Range {
             Range::Fraction => "[0, 1]",
             Range::Stretch => "(0, 10]",
             Range::Angle => "a finite angle in radians",
+            Range::Growth => "a growth stretch in [0.1, 10] (1: no growth)",
         }
     }
 }
@@ -113,7 +118,7 @@ const fn flag(
 }
 
 /// The flat parameters in the order they are printed, with the paper's Table 1 as defaults.
-pub const TABLE: [Spec; 12] = [
+pub const TABLE: [Spec; 15] = [
     number("mu_l", 10.0, Range::Modulus, |p| &mut p.mu_l, "shear modulus of the layer, whatever its law (units of mu_s)"),
     number("K_l", 30.0, Range::BulkModulus, |p| &mut p.K_l, "bulk modulus of the layer (units of mu_s)"),
     number("mu_s", 1.0, Range::Modulus, |p| &mut p.mu_s, "shear modulus of the substrate matrix, the unit of stress"),
@@ -154,6 +159,20 @@ pub const TABLE: [Spec; 12] = [
         |p| &mut p.incompressible,
         "both layers exactly incompressible (J = 1; K_l, K_s unused; finite elements need --element mixed)",
     ),
+    number(
+        "growth_layer",
+        1.0,
+        Range::Growth,
+        |p| &mut p.growth_layer,
+        "growth of the layer, F = Fe Fg (1 under load = growth, whose load it is)",
+    ),
+    number("growth_substrate", 1.0, Range::Growth, |p| &mut p.growth_substrate, "growth of the substrate"),
+    flag(
+        "area_growth",
+        false,
+        |p| &mut p.area_growth,
+        "growth of the in-plane area, Fg = diag(g, g) (the layer thickens); false: tangential, Fg = diag(g, 1)",
+    ),
 ];
 
 /// The row of `name`.
@@ -193,7 +212,8 @@ pub fn help() -> String {
          of 1 to 3 terms) | gent (layer.jm); mu_l, mu_s stay each law's shear modulus and K_l, K_s its bulk \
          modulus. fibres.law = quadratic (default: mu_f, lambda_f) | hgo (fibres.k1, fibres.k2, fibres.kappa \
          in [0, 1/3], default 0). Set a law before its constants, e.g. `--set layer.law=ogden --set \
-         layer.alpha=-25`.",
+         layer.alpha=-25`. load = compression (default: the end-shortening d) | growth (the layer's growth g \
+         from 1, ends held) | uniform_growth (both layers grow by g, ends held).",
         rows.join("; ")
     )
 }

@@ -77,8 +77,9 @@ impl Augmentation {
         let mesh = system.mesh();
         let mu = materials
             .layer
+            .energy
             .shear_modulus()
-            .max(materials.substrate.matrix.shear_modulus());
+            .max(materials.substrate.energy.matrix.shear_modulus());
         let planes = vec![Plane::left(0.0), Plane::right(mesh.spec().length)];
         Ok(Augmentation {
             contact: contact.then(|| Contact::new(mesh, planes, ContactSettings::for_mesh(mesh, mu))),

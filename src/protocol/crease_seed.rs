@@ -60,7 +60,7 @@ pub struct CreaseEnergy {
 /// a mesh of `spec` (one material, shear modulus `mu`).
 pub fn crease_energy(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_length: f64) -> Result<CreaseEnergy> {
     let mesh = Mesh::new(spec)?;
-    let mu = materials.layer.shear_modulus();
+    let mu = materials.layer.energy.shear_modulus();
     let state = homogeneous_state(materials, strain)?;
     let model = model_conditions(&mesh, strain)?;
     let folded: Vec<usize> = mesh

@@ -136,16 +136,17 @@ impl StabilityAnalysis {
     pub fn moduli(&self, d: f64) -> Result<(IncrementalModuli, IncrementalModuli)> {
         let state = homogeneous_state(&self.materials, d)?;
         let (layer, substrate) = (state.layer_gradient(), state.substrate_gradient());
+        let (loaded, _) = self.materials.at_load(d);
         if self.materials.incompressible {
-            let (l, s) = (&self.materials.layer, &self.materials.substrate);
+            let (l, s) = (&loaded.layer, &loaded.substrate);
             return Ok((
                 IncrementalModuli::incompressible(l, &layer, constraint_pressure(l, &layer)?)?,
                 IncrementalModuli::incompressible(s, &substrate, constraint_pressure(s, &substrate)?)?,
             ));
         }
         Ok((
-            IncrementalModuli::at(&self.materials.layer, &layer)?,
-            IncrementalModuli::at(&self.materials.substrate, &substrate)?,
+            IncrementalModuli::at(&loaded.layer, &layer)?,
+            IncrementalModuli::at(&loaded.substrate, &substrate)?,
         ))
     }
 

@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 /// Range of the homogeneous-state table.
 #[derive(Clone, Copy, Debug)]
 pub struct HomogeneousStudy {
-    /// Largest end-shortening d.
+    /// Largest end-shortening d (under a growth load the strain `1 - 1/g`).
     pub d_max: f64,
     /// Number of equally spaced d values from 0 to `d_max`.
     pub points: usize,
@@ -39,7 +39,7 @@ struct Summary<'a> {
     files: Vec<String>,
 }
 
-pub const CSV_HEADER: [&str; 12] = [
+pub const CSV_HEADER: [&str; 14] = [
     "d",
     "lambda1",
     "lambda2_layer",
@@ -52,6 +52,8 @@ pub const CSV_HEADER: [&str; 12] = [
     "sigma11_substrate",
     "sigma22_substrate",
     "sigma33_substrate",
+    "growth_layer",
+    "growth_substrate",
 ];
 
 impl HomogeneousStudy {
@@ -62,7 +64,7 @@ impl HomogeneousStudy {
 }
 
 /// One row of `homogeneous.csv`, in the order of [`CSV_HEADER`].
-pub fn columns(r: &HomogeneousRow) -> [f64; 12] {
+pub fn columns(r: &HomogeneousRow) -> [f64; 14] {
     let s = &r.state;
     let (l, m) = (&r.layer_stress, &r.substrate_stress);
     [
@@ -78,6 +80,8 @@ pub fn columns(r: &HomogeneousRow) -> [f64; 12] {
         m[0],
         m[2],
         m[3],
+        s.growth_layer,
+        s.growth_substrate,
     ]
 }
 
@@ -132,8 +136,28 @@ pub fn run(params: &Parameters, study: &HomogeneousStudy, out: &Path, tick: Tick
 }
 
 /// Fig. 2: substrate stretch `lambda_2s` against `lambda_1`, compressible (eq. 4a) and
-/// incompressible (`1/lambda_1`).
+/// incompressible (`1/lambda_1`). Under a growth load, both layers' `lambda_2` against `g`.
 fn fig2(params: &Parameters, rows: &[HomogeneousRow]) -> Figure {
+    if params.load.is_growth() {
+        let against = |of: fn(&HomogeneousRow) -> f64| rows.iter().map(|r| (r.state.growth_layer, of(r))).collect();
+        return Figure::new(
+            format!("Homogeneous state under growth, beta = {:.4}", params.beta),
+            "growth of the layer g",
+            "vertical stretch lambda_2",
+        )
+        .with(Series::new(
+            "layer",
+            against(|r| r.state.lambda2_layer),
+            LineStyle::Solid,
+            0,
+        ))
+        .with(Series::new(
+            "substrate",
+            against(|r| r.state.lambda2_substrate),
+            LineStyle::Dashed,
+            1,
+        ));
+    }
     let compressible = rows
         .iter()
         .map(|r| (r.state.lambda1, r.state.lambda2_substrate))

@@ -5,7 +5,7 @@ use super::{linspace, validate_points, Tick};
 use crate::error::{Error, Result};
 use crate::output::table::{variant_name, Cell};
 use crate::output::{ensure_dir, plot::save_panels, write_json, CsvWriter, Figure, LineStyle, Series};
-use crate::parameters::Parameters;
+use crate::parameters::{Load, Parameters};
 use crate::stability::{Method, Minimum, Onset, StabilityAnalysis, SurfaceOnset, K_MAX};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -99,30 +99,50 @@ pub fn dispersion(params: &Parameters, study: &DispersionStudy, out: &Path, tick
     let onset = analysis.onset()?;
     let theta = modes.theta.unwrap_or(0.0);
     let csv = out.join("dispersion.csv");
-    let mut table = CsvWriter::create(&csv, &["k", "theta", "d_c", "lambda1_c"])?;
+    // Under growth the critical growth g_c = 1 / (1 - d_c) is the load, and is plotted.
+    let load = params.load;
+    let mut header = vec!["k", "theta", "d_c", "lambda1_c"];
+    header.extend(load.is_growth().then_some("g_c"));
+    let mut table = CsvWriter::create(&csv, &header)?;
     for &(k, d) in &curve.points {
-        table.append(&[k, theta, d, 1.0 - d])?;
+        let row = [k, theta, d, 1.0 - d, load.parameter(d)];
+        table.append(&row[..header.len()])?;
     }
+    let (name, critical) = if load.is_growth() {
+        ("g_c", load.parameter(onset.d_c))
+    } else {
+        ("d_c", onset.d_c)
+    };
+    let points: Vec<(f64, f64)> = curve.points.iter().map(|&(k, d)| (k, load.parameter(d))).collect();
     let figure = Figure::new(
-        format!("Critical compression, beta = {:.4}, {}", params.beta, modes.describe()),
+        format!(
+            "Critical {}, beta = {:.4}, {}",
+            if load.is_growth() { "growth" } else { "compression" },
+            params.beta,
+            modes.describe()
+        ),
         "wavenumber k H",
-        "critical compression d_c",
+        if load.is_growth() {
+            "critical growth g_c"
+        } else {
+            "critical compression d_c"
+        },
     )
-    .with(Series::new("d_c(k)", curve.points.clone(), LineStyle::Solid, 0))
+    .with(Series::new(format!("{name}(k)"), points, LineStyle::Solid, 0))
     .with(match onset.minimum {
         Minimum::Interior => Series::new(
-            format!("k0 = {:.4}, d_c = {:.4}", onset.k0, onset.d_c),
-            vec![(onset.k0, onset.d_c)],
+            format!("k0 = {:.4}, {name} = {critical:.4}", onset.k0),
+            vec![(onset.k0, critical)],
             LineStyle::Crosses,
             1,
         ),
         limit => Series::new(
             match limit {
-                Minimum::Flat => format!("flat: d_c = {:.4} at every k", onset.d_c),
-                Minimum::LongWave => format!("no interior minimum: d_c -> {:.4} as k -> 0", onset.d_c),
-                _ => format!("no interior minimum: d_c -> {:.4} as k -> inf", onset.d_c),
+                Minimum::Flat => format!("flat: {name} = {critical:.4} at every k"),
+                Minimum::LongWave => format!("no interior minimum: {name} -> {critical:.4} as k -> 0"),
+                _ => format!("no interior minimum: {name} -> {critical:.4} as k -> inf"),
             },
-            vec![(study.k_min, onset.d_c), (study.k_max, onset.d_c)],
+            vec![(study.k_min, critical), (study.k_max, critical)],
             LineStyle::Dashed,
             1,
         ),
@@ -146,8 +166,13 @@ pub fn dispersion(params: &Parameters, study: &DispersionStudy, out: &Path, tick
 /// The content of `onset.json`.
 #[derive(Clone, Debug, Serialize)]
 pub struct OnsetSummary {
+    /// What loads the bilayer: `compression`, `growth` or `uniform_growth`.
+    pub load: Load,
     pub k0: f64,
+    /// The critical strain: the end-shortening under compression, `1 - 1/g_c` under growth.
     pub d_c: f64,
+    /// The critical growth `1 / (1 - d_c)` under a growth load (null under compression).
+    pub g_c: Option<f64>,
     pub lambda1_c: f64,
     pub d_ellipticity_loss: Option<f64>,
     /// Where the homogeneous state leaves a law's domain (Gent), if before 0.95.
@@ -179,8 +204,10 @@ impl OnsetSummary {
     fn of(params: &Parameters, method: Method, modes: &Modes, directed: &DirectedOnset) -> Self {
         let onset = directed.onset;
         OnsetSummary {
+            load: params.load,
             k0: onset.k0,
             d_c: onset.d_c,
+            g_c: params.load.is_growth().then(|| params.load.parameter(onset.d_c)),
             lambda1_c: onset.lambda1_c,
             d_ellipticity_loss: onset.d_ellipticity_loss,
             d_domain_end: onset.d_domain_end,

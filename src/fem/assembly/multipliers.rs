@@ -30,8 +30,9 @@ const STABILITY_PENALTY: f64 = 1e4;
 pub(super) fn augmentation(materials: &Bilayer, tissue: &Tissue) -> Option<Volumetric> {
     let shear = materials
         .layer
+        .energy
         .shear_modulus()
-        .max(materials.substrate.matrix.shear_modulus());
+        .max(materials.substrate.energy.matrix.shear_modulus());
     let (_, bulk) = tissue.volumetric_split();
     let bulk = if materials.incompressible { f64::INFINITY } else { bulk };
     (bulk > AUGMENTED_BULK * shear).then_some(Volumetric::Augmented {

@@ -1,0 +1,125 @@
+//! Growth, `F = Fe Fg`, in the linear theory: independent facts it must reproduce.
+
+use fiberfold::homogeneous::HomogeneousRow;
+use fiberfold::material::Bilayer;
+use fiberfold::parameters::Load;
+use fiberfold::stability::{discrete::DiscreteOptions, Method, Minimum, StabilityAnalysis};
+use fiberfold::Parameters;
+
+fn with_load(mut p: Parameters, load: Load) -> Parameters {
+    p.load = load;
+    p
+}
+
+/// Both layers grown by `g` with the ends held are the grown body compressed by `1/g`, whose
+/// referential wavenumber is `k/g`: `g_c(k) = 1 / (1 - d_c(k / g_c))`, i.e. the strain
+/// `1 - 1/g_c(k)` equals `d_c(k / g_c)`, by either method, with the fibres.
+#[test]
+fn uniform_growth_is_compression_of_the_grown_body() {
+    let base = Parameters {
+        beta: std::f64::consts::FRAC_PI_4,
+        ..Parameters::default()
+    };
+    let discrete = Method::Discrete(DiscreteOptions {
+        layer_elements: 8,
+        substrate_elements: 80,
+        depth_decay_lengths: 20.0,
+    });
+    for (method, tolerance) in [(Method::Exact, 1e-10), (discrete, 1e-9)] {
+        let growing = StabilityAnalysis::new(&with_load(base.clone(), Load::UniformGrowth), method).unwrap();
+        let compressed = StabilityAnalysis::new(&base, method).unwrap();
+        for k in [0.3, 0.7, 1.6] {
+            let strain = growing.critical_compression(k).unwrap();
+            let g_c = 1.0 / (1.0 - strain);
+            let d_c = compressed.critical_compression(k / g_c).unwrap();
+            assert!(
+                (strain - d_c).abs() < tolerance,
+                "{method:?}, k = {k}: 1 - 1/g_c = {strain}, d_c(k/g_c) = {d_c}"
+            );
+        }
+    }
+}
+
+/// The homogeneous state of the uniformly grown body is the compressed one: the same
+/// transverse stretch and the same Cauchy stresses, since both have the same `Fe`.
+#[test]
+fn uniformly_grown_state_is_the_compressed_state() {
+    for incompressible in [false, true] {
+        let base = Parameters {
+            beta: 0.6,
+            incompressible,
+            ..Parameters::default()
+        };
+        let growing = Bilayer::new(&with_load(base.clone(), Load::UniformGrowth));
+        let compressed = Bilayer::new(&base);
+        for d in [0.05, 0.2, 0.4] {
+            let (g, c) = (
+                HomogeneousRow::new(&growing, d).unwrap(),
+                HomogeneousRow::new(&compressed, d).unwrap(),
+            );
+            assert_eq!(g.state.lambda1, 1.0);
+            assert!((g.state.growth_layer - 1.0 / (1.0 - d)).abs() < 1e-14);
+            assert!(
+                (g.state.lambda2_layer - c.state.lambda2_layer).abs() < 1e-12,
+                "{incompressible} {d}"
+            );
+            assert!((g.state.lambda2_substrate - c.state.lambda2_substrate).abs() < 1e-12);
+            for i in 0..4 {
+                assert!(
+                    (g.layer_stress[i] - c.layer_stress[i]).abs() < 1e-9,
+                    "{incompressible} {d} layer {i}"
+                );
+                assert!((g.substrate_stress[i] - c.substrate_stress[i]).abs() < 1e-10);
+            }
+        }
+    }
+}
+
+/// A thin stiff film growing on an unstressed substrate: the classical wrinkling strain
+/// `(1/4)(3 mu_s / mu_l)^(2/3)` and wavenumber `k0 H = (3 mu_s / mu_l)^(1/3)` (plane-strain
+/// moduli `4 mu` of incompressible or nearly incompressible layers), within 2 %.
+#[test]
+fn a_thin_stiff_growing_film_wrinkles_at_the_thin_film_law() {
+    let ratio: f64 = 1000.0;
+    let strain = 0.25 * (3.0 / ratio).powf(2.0 / 3.0);
+    let k0 = (3.0 / ratio).cbrt();
+    for incompressible in [true, false] {
+        let p = Parameters {
+            mu_l: ratio,
+            K_l: 1e4 * ratio,
+            K_s: 1e4,
+            phi_m: 1.0,
+            phi_f: 0.0,
+            incompressible,
+            load: Load::Growth,
+            ..Parameters::default()
+        };
+        let onset = StabilityAnalysis::new(&p, Method::Exact).unwrap().onset().unwrap();
+        assert_eq!(onset.minimum, Minimum::Interior);
+        assert!(
+            (onset.d_c / strain - 1.0).abs() < 0.02,
+            "{incompressible}: 1 - 1/g_c = {}, thin film {strain}",
+            onset.d_c
+        );
+        assert!(
+            (onset.k0 / k0 - 1.0).abs() < 0.02,
+            "{incompressible}: k0 = {}, thin film {k0}",
+            onset.k0
+        );
+    }
+}
+
+/// A fixed growth of 1 is no growth: the same onset to the last bit.
+#[test]
+fn unit_growth_changes_nothing() {
+    let mut p = Parameters {
+        beta: 0.7,
+        ..Parameters::default()
+    };
+    let plain = StabilityAnalysis::new(&p, Method::Exact).unwrap().onset().unwrap();
+    p.growth_layer = 1.0;
+    p.growth_substrate = 1.0;
+    p.area_growth = true;
+    let grown = StabilityAnalysis::new(&p, Method::Exact).unwrap().onset().unwrap();
+    assert_eq!((plain.k0, plain.d_c), (grown.k0, grown.d_c));
+}
