@@ -50,8 +50,9 @@ def _check_parameters(params: Any) -> Parameters:
 
 
 class Onset(types.SimpleNamespace):
-    """The onset of wrinkling: the keys of ``onset.json`` as attributes (``k0``, ``d_c``,
-    ``lambda1_c``, ``d_ellipticity_loss``, ``d_domain_end``, ``wavelength``, ``minimum``,
+    """The onset of wrinkling: the keys of ``onset.json`` as attributes (``load``, ``k0``,
+    ``d_c`` (under growth the strain ``1 - 1/g_c``), ``g_c`` (the critical growth, None under
+    compression), ``lambda1_c``, ``d_ellipticity_loss``, ``d_domain_end``, ``wavelength``, ``minimum``,
     ``biaxial``, ``theta0``, ``direction_spread``, ``method``, ``parameters``)."""
 
     def as_dict(self) -> Dict[str, Any]:

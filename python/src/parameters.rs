@@ -18,7 +18,7 @@ pub(crate) struct PyParameters {
 
 /// Sets `key` of `p` from a Python value: a number (not a bool) for the moduli, fractions,
 /// angle and law constants, a bool for `tension_only` and `incompressible`, a string for a law
-/// (`"layer.law": "ogden"`), a list of numbers for an N-term Ogden law, or a dict for a whole
+/// (`"layer.law": "ogden"`) or the load (`load="growth"`), a list of numbers for an N-term Ogden law, or a dict for a whole
 /// law table (`layer={"law": "ogden", "alpha": -25}`).
 fn set_parameter(p: &mut Parameters, key: &str, value: &Bound<'_, PyAny>) -> PyResult<()> {
     let is_bool = value.is_instance_of::<PyBool>();
@@ -28,6 +28,8 @@ fn set_parameter(p: &mut Parameters, key: &str, value: &Bound<'_, PyAny>) -> PyR
         (is_bool, "a bool")
     } else if key.ends_with(".law") {
         (value.is_instance_of::<pyo3::types::PyString>(), "a law name (str)")
+    } else if key == "load" {
+        (value.is_instance_of::<pyo3::types::PyString>(), "a load name (str)")
     } else if LAW_TABLES.contains(&key) {
         (value.is_instance_of::<PyDict>(), "a dict of law constants")
     } else if key.ends_with(".mu") || key.ends_with(".alpha") {

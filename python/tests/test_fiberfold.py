@@ -41,6 +41,20 @@ def test_onset_without_fibre_stiffness_matches_the_paper():
     assert o.lambda1_c == pytest.approx(1.0 - o.d_c, abs=1e-15)
 
 
+def test_growth_is_a_load_uniform_growth_the_compression_of_the_grown_body():
+    compressed = fiberfold.onset(fiberfold.Parameters(beta=0.5))
+    grown = fiberfold.onset(fiberfold.Parameters(beta=0.5, load="uniform_growth"))
+    assert compressed.load == "compression" and compressed.g_c is None
+    assert grown.load == "uniform_growth" and grown.g_c == pytest.approx(1.0 / (1.0 - grown.d_c), rel=1e-14)
+    # The grown body compressed by 1/g: the same strain, at the wavenumber k/g.
+    assert grown.d_c == pytest.approx(compressed.d_c, abs=1e-9)
+    assert grown.k0 / grown.g_c == pytest.approx(compressed.k0, rel=1e-6)
+    with pytest.raises(ValueError, match="growth_layer"):
+        fiberfold.onset(fiberfold.Parameters(load="growth", growth_layer=1.3))
+    with pytest.raises(TypeError, match="load"):
+        fiberfold.Parameters(load=1.0)
+
+
 def test_equibiaxial_half_space_is_biot_in_every_direction_and_inclined_fibres_orient_the_crests():
     # Incompressible neo-Hookean half-space, equibiaxial: x^3 + x^2 + 3x - 1 = 0, x = lambda^3.
     roots = np.roots([1.0, 1.0, 3.0, -1.0])

@@ -121,7 +121,7 @@ pub struct System {
 /// The finite elements model ungrown tissue under compression only, so far: their boundary
 /// conditions follow `d`, and the mixed element's volumetric split has no growth.
 fn refuse_growth(materials: &Bilayer) -> Result<()> {
-    const ALLOWED: &str = "compression of ungrown tissue in the finite elements (simulate, bifurcation, crease); \
+    const ALLOWED: &str = "compression of ungrown tissue in the finite elements (simulate, bifurcation, crease, map); \
         the linear theory (homogeneous, dispersion, onset, sweep) models growth";
     if materials.load.is_growth() {
         return Err(Error::invalid("load", materials.load.name(), ALLOWED));
