@@ -8,7 +8,7 @@
 use crate::error::{Error, Result};
 use crate::material::{Bilayer, CauchyStress, Hyperelastic, StrainEnergy, Tensor2};
 use crate::numerics::roots::brent;
-use crate::parameters::validate_compression;
+use crate::parameters::{validate_compression, Load};
 use num_dual::Dual64;
 use serde::Serialize;
 
@@ -23,9 +23,21 @@ pub struct HomogeneousState {
     pub growth_layer: f64,
     /// The growth of the substrate along `X`.
     pub growth_substrate: f64,
+    /// What loads the bilayer.
+    pub load: Load,
 }
 
 impl HomogeneousState {
+    /// How far the right end has moved in, as a fraction of the length: `d` under
+    /// compression, 0 under growth (the ends are held).
+    pub fn end_shortening(&self) -> f64 {
+        if self.load.is_growth() {
+            0.0
+        } else {
+            self.d
+        }
+    }
+
     /// Deformation gradient of the layer, `diag(lambda_1, lambda_2l)`.
     pub fn layer_gradient(&self) -> Tensor2 {
         [self.lambda1, 0.0, 0.0, self.lambda2_layer]
@@ -107,6 +119,7 @@ pub fn homogeneous_state(materials: &Bilayer, d: f64) -> Result<HomogeneousState
         lambda2_substrate,
         growth_layer: layer_growth.stretches[0],
         growth_substrate: substrate_growth.stretches[0],
+        load: materials.load,
     })
 }
 

@@ -121,7 +121,7 @@ fn failure_at_the_minimum_step_keeps_the_curve_and_names_d() {
     assert_eq!(
         lines.next().unwrap(),
         "d,A,strain_energy,newton_iterations,residual,min_J,step_seconds,in_contact,contact_length,penetration,\
-         stabilisation_energy_fraction,snap,ellipticity_layer,ellipticity_substrate"
+         stabilisation_energy_fraction,snap,ellipticity_layer,ellipticity_substrate,growth_layer"
     );
     let rows: Vec<Vec<f64>> = lines
         .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())

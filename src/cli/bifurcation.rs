@@ -50,12 +50,20 @@ pub fn run(args: &BifurcationArgs) -> Result<()> {
         "d_bifurcation = {:.7} (bracket [{:.7}, {:.7}], {} negative pivot(s) past it), mode: {} half waves, k = {:.5}",
         r.d_bifurcation, r.bracket.0, r.bracket.1, r.negative_pivots_past_bifurcation, r.mode_number, r.k_mode
     );
+    if let (Some(g), Some(theory)) = (r.g_bifurcation, r.g_linear_theory_min) {
+        println!(
+            "under {}: g_bifurcation = {g:.7}, the linear theory's min over k = m pi/50 of g_c = {theory:.7}; \
+             relative difference {:+.3e}",
+            r.load.name(),
+            r.relative_difference
+        );
+    }
     println!(
-        "linear theory: min over k = m pi/50 of d_c = {:.7} at k = {:.5}; relative difference {:+.3e} \
+        "linear theory: min over k = m pi/50 of d_c = {:.7} at k = {:.5}; relative difference in d {:+.3e} \
          (d_c at k_mode {:.7}, {:+.3e}); {} inertia evaluations, {:.1} s",
         r.d_linear_theory_min,
         r.k_linear_theory_min,
-        r.relative_difference,
+        r.d_bifurcation / r.d_linear_theory_min - 1.0,
         r.d_linear_theory_at_k_mode,
         r.relative_difference_at_k_mode,
         r.inertia_evaluations,

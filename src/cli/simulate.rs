@@ -175,7 +175,8 @@ pub struct SimulateArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub k: Option<f64>,
 
-    /// Final end-shortening d, in (0.005, 1).
+    /// Final end-shortening d, in (0.005, 1); under --load growth the strain d = 1 - 1/g of the
+    /// final growth g (0.2: g = 1.25).
     #[arg(long, default_value_t = defaults().d_max, allow_negative_numbers = true)]
     pub d_max: f64,
 
@@ -341,9 +342,14 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
                         )
                     });
                 }
+                let growth = if params.load.is_growth() {
+                    format!("g = {:.6}  ", r.growth_layer)
+                } else {
+                    String::new()
+                };
                 bar.suspend(|| {
                     println!(
-                        "d = {:.6}  step {:.1e}  A = {:.6}  {} it  |r| {}  min J {:.4}{inertia}{augmented}  {:.2} s",
+                        "{growth}d = {:.6}  step {:.1e}  A = {:.6}  {} it  |r| {}  min J {:.4}{inertia}{augmented}  {:.2} s",
                         r.d,
                         r.step,
                         r.amplitude,

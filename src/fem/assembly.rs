@@ -15,6 +15,7 @@
 use super::added::{AddedEnergy, Block, NoAddedEnergy};
 use super::boundary::Dirichlet;
 use super::element::{self, ElementGeometry, ElementMatrix, ElementState, ElementVector, DOFS};
+use super::load_path::LoadPath;
 use super::mixed::{MixedElement, Volumetric, PRESSURES};
 use crate::error::{Error, Result};
 use crate::material::{Bilayer, Tissue};
@@ -105,6 +106,9 @@ pub fn norm(v: &[f64]) -> f64 {
 /// A mesh with its materials and element geometry, ready to assemble.
 pub struct System {
     mesh: Mesh,
+    /// What the load does to the bilayer, and the strain `d` the tissues are at.
+    load_path: LoadPath,
+    load: f64,
     materials: Vec<Tissue>,
     geometry: Vec<ElementGeometry>,
     /// Pressure spaces of the mixed element (empty for the displacement element).
@@ -118,36 +122,36 @@ pub struct System {
     entries: Vec<f64>,
 }
 
-/// The finite elements model ungrown tissue under compression only, so far: their boundary
-/// conditions follow `d`, and the mixed element's volumetric split has no growth.
-fn refuse_growth(materials: &Bilayer) -> Result<()> {
-    const ALLOWED: &str = "compression of ungrown tissue in the finite elements (simulate, bifurcation, crease, map); \
-        the linear theory (homogeneous, dispersion, onset, sweep) models growth";
-    if materials.load.is_growth() {
-        return Err(Error::invalid("load", materials.load.name(), ALLOWED));
-    }
-    for (name, growth) in [
-        ("growth_layer", materials.layer.growth),
-        ("growth_substrate", materials.substrate.growth),
-    ] {
-        if !growth.is_identity() {
-            return Err(Error::invalid_number(
-                name,
-                growth.stretches[0],
-                &format!("1 ({ALLOWED})"),
-            ));
-        }
-    }
-    Ok(())
-}
-
 impl System {
     /// The layer's material in layer elements, the substrate's in substrate elements, with the
     /// element the mesh's spec names. Incompressible tissue needs the mixed element.
     pub fn new(mesh: Mesh, materials: &Bilayer) -> Result<Self> {
         mesh.spec().element.check_for(materials.incompressible)?;
-        refuse_growth(materials)?;
-        let tissues: Vec<Tissue> = mesh
+        let coordinates = mesh.coordinates();
+        let geometry = mesh
+            .elements()
+            .iter()
+            .map(|nodes| ElementGeometry::new(&nodes.map(|n| coordinates[n])))
+            .collect::<Result<Vec<_>>>()?;
+        let mut system = System {
+            mesh,
+            load_path: LoadPath::new(materials),
+            load: 0.0,
+            materials: Vec::new(),
+            geometry,
+            mixed: Vec::new(),
+            multipliers: false,
+            pattern: None,
+            entries: Vec::new(),
+        };
+        system.set_materials(materials);
+        Ok(system)
+    }
+
+    /// Gives every element its tissue from `materials`, and the mixed element its pressure space.
+    fn set_materials(&mut self, materials: &Bilayer) {
+        self.materials = self
+            .mesh
             .regions()
             .iter()
             .map(|region| match region {
@@ -155,32 +159,41 @@ impl System {
                 Region::Substrate => materials.substrate_tissue(),
             })
             .collect();
-        let coordinates = mesh.coordinates();
-        let geometry = mesh
-            .elements()
-            .iter()
-            .map(|nodes| ElementGeometry::new(&nodes.map(|n| coordinates[n])))
-            .collect::<Result<Vec<_>>>()?;
-        let mixed: Vec<MixedElement> = match mesh.spec().element {
+        self.mixed = match self.mesh.spec().element {
             ElementKind::Displacement => Vec::new(),
-            ElementKind::Mixed => geometry
+            ElementKind::Mixed => self
+                .geometry
                 .iter()
-                .zip(&tissues)
+                .zip(&self.materials)
                 .map(|(g, t)| MixedElement::new(g, t, multipliers::augmentation(materials, t)))
                 .collect(),
         };
-        let multipliers = mixed
+        self.multipliers = self
+            .mixed
             .iter()
             .any(|m| matches!(m.volumetric(), Volumetric::Augmented { .. }));
-        Ok(System {
-            mesh,
-            materials: tissues,
-            geometry,
-            mixed,
-            multipliers,
-            pattern: None,
-            entries: Vec::new(),
-        })
+    }
+
+    /// Puts the system at the load's strain `d`: under growth its tissues grow to `g = 1/(1 - d)`
+    /// (under compression they stay). Returns the boundary conditions at `d`.
+    pub fn load_to(&mut self, d: f64) -> Result<Dirichlet> {
+        let conditions = self.load_path.conditions(&self.mesh, d)?;
+        if self.load_path.grows() && d != self.load {
+            let materials = self.load_path.materials_at(d);
+            self.set_materials(&materials);
+        }
+        self.load = d;
+        Ok(conditions)
+    }
+
+    /// What the load does to the bilayer.
+    pub fn load_path(&self) -> &LoadPath {
+        &self.load_path
+    }
+
+    /// The layer's growth `g` along `X` at the current load.
+    pub fn layer_growth(&self) -> f64 {
+        self.load_path.materials_at(self.load).layer.growth.stretches[0]
     }
 
     /// The system of the same elements on `mesh`, whose nodes have moved (an imperfect
@@ -189,6 +202,7 @@ impl System {
     pub fn with_moved_nodes(self, mesh: Mesh, materials: &Bilayer) -> Result<Self> {
         assert_eq!(mesh.elements(), self.mesh.elements(), "the same elements");
         let mut moved = System::new(mesh, materials)?;
+        moved.load_to(self.load)?;
         moved.pattern = self.pattern;
         Ok(moved)
     }

@@ -75,7 +75,7 @@ pub fn ellipticity_margins(system: &System, u: &[f64]) -> Result<EllipticityMarg
         .with_min_len(64)
         .map(|e| {
             let (geometry, tissue) = (&system.geometry()[e], &system.materials()[e]);
-            let incompressible = tissue.volumetric_split().1 == 0.0;
+            let incompressible = tissue.volumetric_split().bulk == 0.0;
             let u_e = system.element_displacements(e, u);
             let mut smallest = f64::INFINITY;
             for g in 0..GAUSS_POINTS {

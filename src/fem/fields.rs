@@ -21,9 +21,14 @@ pub struct CellFields {
     /// Hydrostatic pressure `-(s11 + s22 + s33) / 3`; with the mixed element, from its
     /// condensed pressure.
     pub pressure: Vec<f64>,
-    /// Stretch `sqrt(I4_i) = |F N_i|` along each fibre direction `N_{1,2} = (cos beta, +-sin beta)`;
-    /// kinematic, so defined in the layer too (which carries no fibres).
+    /// Elastic stretch `sqrt(I4_i) = |Fe N_i|` along each fibre direction `N_{1,2} = (cos beta,
+    /// +-sin beta)` (`Fe = F Fg^-1`, `F` without growth); kinematic, so defined in the layer too
+    /// (which carries no fibres).
     pub fibre_stretch: [Vec<f64>; 2],
+    /// The growth `g` along `X` (`Fg_11`; 1 without growth).
+    pub growth: Vec<f64>,
+    /// The elastic volume change `Je = J / Jg`.
+    pub elastic_jacobian: Vec<f64>,
     /// 1 in the layer, 0 in the substrate.
     pub layer: Vec<f64>,
 }
@@ -38,7 +43,7 @@ pub fn cell_fields(system: &System, materials: &Bilayer, u: &[f64]) -> Result<Ce
         let sigma = match system.mixed_elements().get(e) {
             None => material.cauchy(&f)?,
             Some(mixed) => {
-                // sigma = sigma_rest + p / J I, `p` the condensed `kappa ln J` (`fem::mixed`).
+                // sigma = sigma_rest + p / J I, `p` the condensed `kappa ln Je` (`fem::mixed`).
                 let pressure = mixed
                     .evaluate(geometry, &u_e, &system.element_multipliers(e, u), 1.0, None)?
                     .pressure;
@@ -54,9 +59,13 @@ pub fn cell_fields(system: &System, materials: &Bilayer, u: &[f64]) -> Result<Ce
         fields.cauchy.push(sigma);
         fields.von_mises.push(von_mises(&sigma));
         fields.pressure.push(-(sigma[0] + sigma[2] + sigma[3]) / 3.0);
+        let growth = material.growth();
+        let elastic = growth.elastic_plane(&f);
         for (stretch, family) in fields.fibre_stretch.iter_mut().zip(fibres) {
-            stretch.push(family.stretch_invariant(&f).sqrt());
+            stretch.push(family.stretch_invariant(&elastic).sqrt());
         }
+        fields.growth.push(growth.stretches[0]);
+        fields.elastic_jacobian.push(jacobian(&elastic));
         let in_layer = system.mesh().regions()[e] == Region::Layer;
         fields.layer.push(if in_layer { 1.0 } else { 0.0 });
     }

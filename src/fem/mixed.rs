@@ -85,6 +85,8 @@ pub struct MixedElement {
     mass_inverse: [[f64; PRESSURES]; PRESSURES],
     /// The tissue without its bulk term.
     rest: Tissue,
+    /// `ln Jg`: the volume measure is `ln J - ln Jg` (zero without growth).
+    log_volume: f64,
     volumetric: Volumetric,
 }
 
@@ -116,12 +118,13 @@ impl MixedElement {
         let mass: [[f64; PRESSURES]; PRESSURES] = std::array::from_fn(|i| {
             std::array::from_fn(|j| (0..GAUSS_POINTS).map(|g| weights[g] * basis[g][i] * basis[g][j]).sum())
         });
-        let (rest, bulk) = tissue.volumetric_split();
+        let split = tissue.volumetric_split();
         MixedElement {
             basis,
             mass_inverse: inverse3(&mass),
-            rest,
-            volumetric: constraint.unwrap_or(Volumetric::Bulk(bulk)),
+            rest: split.rest,
+            log_volume: split.log_volume,
+            volumetric: constraint.unwrap_or(Volumetric::Bulk(split.bulk)),
         }
     }
 
@@ -176,7 +179,7 @@ impl MixedElement {
                 }
             }
             for (moment, &phi_i) in moments.iter_mut().zip(phi) {
-                *moment += w * phi_i * j.ln();
+                *moment += w * phi_i * (j.ln() - self.log_volume);
             }
             (gradients[g], jacobians[g]) = (f, j);
         }

@@ -57,7 +57,7 @@ impl Growth {
     }
 
     /// `Fe = F Fg^-1` of a plane gradient.
-    fn elastic_plane(&self, f: &Tensor2) -> Tensor2 {
+    pub fn elastic_plane(&self, f: &Tensor2) -> Tensor2 {
         std::array::from_fn(|a| f[a] / self.stretches[a % 2])
     }
 }

@@ -31,7 +31,7 @@ pub use laws::{Fibre, Matrix};
 pub use mooney_rivlin::MooneyRivlin;
 pub use neo_hookean::NeoHookean;
 pub use ogden::{Ogden, MAX_TERMS as OGDEN_MAX_TERMS};
-pub use tissue::{Bilayer, FibreReinforced, Tissue};
+pub use tissue::{Bilayer, FibreReinforced, Tissue, VolumetricSplit};
 
 use crate::error::{Error, Result};
 use nalgebra::SVector;

@@ -189,17 +189,40 @@ impl Bilayer {
     }
 }
 
+/// A tissue's energy split as `W(F) = W_rest(F) + kappa/2 (ln J - ln Jg)^2` ([`Tissue::volumetric_split`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VolumetricSplit {
+    /// The tissue with a zero bulk modulus (grown as the tissue is).
+    pub rest: Tissue,
+    /// `kappa`: the bulk modulus the tissue carries (`phi_m K_s` in the substrate), times `Jg`.
+    pub bulk: f64,
+    /// `ln Jg`, the volume the tissue is free of stress at.
+    pub log_volume: f64,
+}
+
 impl Tissue {
-    /// The split `W(F) = W_rest(F) + kappa/2 (ln J)^2` of this tissue's energy: `W_rest` is the
-    /// same tissue with a zero bulk modulus, `kappa` the bulk modulus it carries (`phi_m K_s` in
-    /// the substrate). Exact for the energies of `docs/model.md` ("Strain energies"), whose only
-    /// `J`-term is `K/2 (ln J)^2`.
-    /// Ungrown tissue only: the finite elements refuse growth ([`Bilayer::grows`]).
-    pub fn volumetric_split(&self) -> (Tissue, f64) {
-        match *self {
+    /// The tissue's growth `Fg`.
+    pub fn growth(&self) -> Growth {
+        match self {
+            Tissue::Layer(m) => m.growth,
+            Tissue::Substrate(m) => m.growth,
+        }
+    }
+
+    /// The split `W(F) = W_rest(F) + kappa/2 (ln J - ln Jg)^2` of this tissue's energy:
+    /// `W_rest` is the same tissue with a zero bulk modulus, `kappa` the bulk modulus it
+    /// carries (`phi_m K_s` in the substrate) times `Jg`. Exact for the energies of
+    /// `docs/model.md` ("Strain energies"), whose only `J`-term is `K/2 (ln J)^2`: grown, it is
+    /// `Jg K/2 (ln Je)^2` with `ln Je = ln J - ln Jg`.
+    pub fn volumetric_split(&self) -> VolumetricSplit {
+        let (rest, bulk, growth) = match *self {
             Tissue::Layer(m) => (
-                Tissue::Layer(Grown::ungrown(m.energy.with_bulk_modulus(0.0))),
+                Tissue::Layer(Grown {
+                    energy: m.energy.with_bulk_modulus(0.0),
+                    growth: m.growth,
+                }),
                 m.energy.bulk_modulus(),
+                m.growth,
             ),
             Tissue::Substrate(s) => {
                 let rest = FibreReinforced {
@@ -207,10 +230,19 @@ impl Tissue {
                     ..s.energy
                 };
                 (
-                    Tissue::Substrate(Grown::ungrown(rest)),
+                    Tissue::Substrate(Grown {
+                        energy: rest,
+                        growth: s.growth,
+                    }),
                     s.energy.matrix_fraction * s.energy.matrix.bulk_modulus(),
+                    s.growth,
                 )
             }
+        };
+        VolumetricSplit {
+            rest,
+            bulk: bulk * growth.jacobian(),
+            log_volume: growth.jacobian().ln(),
         }
     }
 }

@@ -258,7 +258,10 @@ fn prepare_contact(
     let Some(contact) = contact else {
         return false;
     };
-    contact.set_plane(RIGHT_PLANE, Plane::right(system.mesh().spec().length * (1.0 - d)));
+    contact.set_plane(
+        RIGHT_PLANE,
+        Plane::right(system.load_path().right_plane(system.mesh(), d)),
+    );
     let mut probe = contact.clone();
     probe.search(u);
     if !system.keeps_structure(bc, probe.groups()) {

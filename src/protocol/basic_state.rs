@@ -7,16 +7,16 @@ use crate::error::Result;
 use crate::fem::boundary::{dof, X, Y};
 use crate::fem::System;
 use crate::homogeneous::{constraint_pressure, HomogeneousState};
-use crate::material::{jacobian, Bilayer};
+use crate::material::{jacobian, Bilayer, VolumetricSplit};
 use crate::mesh::Mesh;
 
-/// The homogeneous displacement of `state` on `mesh`: `u_x = -d X`, `u_y = (lambda_2s - 1)(Y + D)`
+/// The homogeneous displacement of `state` on `mesh`: `u_x = -d X` (0 under growth), `u_y = (lambda_2s - 1)(Y + D)`
 /// in the substrate and `(lambda_2s - 1) D + (lambda_2l - 1) Y` in the layer.
 pub fn homogeneous_displacement(mesh: &Mesh, state: &HomogeneousState) -> Vec<f64> {
     let depth = mesh.spec().depth;
     let mut u = vec![0.0; mesh.num_dofs()];
     for (n, &[x, y]) in mesh.coordinates().iter().enumerate() {
-        u[dof(n, X)] = -state.d * x;
+        u[dof(n, X)] = -state.end_shortening() * x;
         u[dof(n, Y)] =
             (state.lambda2_substrate - 1.0) * (y.min(0.0) + depth) + (state.lambda2_layer - 1.0) * y.max(0.0);
     }
@@ -31,19 +31,19 @@ pub fn homogeneous_unknowns(system: &System, materials: &Bilayer, state: &Homoge
     if !system.has_multipliers() {
         return Ok(u);
     }
+    let (loaded, _) = materials.at_load(state.d);
     let (layer, substrate) = (state.layer_gradient(), state.substrate_gradient());
     let (p_layer, p_substrate) = if materials.incompressible {
         (
-            constraint_pressure(&materials.layer, &layer)?,
-            constraint_pressure(&materials.substrate, &substrate)?,
+            constraint_pressure(&loaded.layer, &layer)?,
+            constraint_pressure(&loaded.substrate, &substrate)?,
         )
     } else {
-        // K ln J, with the bulk modulus each tissue carries.
-        let (_, layer_bulk) = materials.layer_tissue().volumetric_split();
-        let (_, substrate_bulk) = materials.substrate_tissue().volumetric_split();
+        // kappa (ln J - ln Jg), with the bulk modulus each tissue carries.
+        let pressure = |split: VolumetricSplit, f: &[f64; 4]| split.bulk * (jacobian(f).ln() - split.log_volume);
         (
-            layer_bulk * jacobian(&layer).ln(),
-            substrate_bulk * jacobian(&substrate).ln(),
+            pressure(loaded.layer_tissue().volumetric_split(), &layer),
+            pressure(loaded.substrate_tissue().volumetric_split(), &substrate),
         )
     };
     Ok(system.with_homogeneous_multipliers(u, p_layer, p_substrate))

@@ -13,7 +13,7 @@ use crate::error::{Error, Result};
 use crate::fem::added::NoAddedEnergy;
 use crate::fem::boundary::{dof, Y};
 use crate::fem::lanczos::inverse_lanczos;
-use crate::fem::{model_conditions, Assembled, SparseLdlt, System, Tangent};
+use crate::fem::{Assembled, SparseLdlt, System, Tangent};
 use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
 use crate::mesh::{Mesh, MeshSpec};
@@ -85,7 +85,7 @@ impl HomogeneousPath<'_> {
 
     /// Assembles and factorises `K_ff` at the homogeneous state `d`: negative pivots and `K_ff`.
     fn factorise(&mut self, d: f64) -> Result<(usize, Tangent)> {
-        let bc = model_conditions(self.system.mesh(), d)?;
+        let bc = self.system.load_to(d)?;
         let u = homogeneous_unknowns(&self.system, self.materials, &homogeneous_state(self.materials, d)?)?;
         let assembled = self.system.assemble_for_stability(&u, &bc, &NoAddedEnergy)?;
         // The equilibrium check with the iteration's penalty: the stability penalty amplifies the
@@ -149,10 +149,8 @@ pub fn find_bifurcation(materials: &Bilayer, spec: MeshSpec, settings: &Bifurcat
     }
     let (_, k) = path.factorise(stable)?;
     let (free_mode, eigenvalue) = path.smallest_mode(settings.mode_solves, &k)?;
-    let free = path
-        .system
-        .free_dofs(&model_conditions(path.system.mesh(), stable)?)?
-        .to_vec();
+    let bc = path.system.load_to(stable)?;
+    let free = path.system.free_dofs(&bc)?.to_vec();
     let mut mode = vec![0.0; path.system.num_dofs()];
     for (&dof, &v) in free.iter().zip(&free_mode) {
         mode[dof] = v;

@@ -24,7 +24,7 @@ use crate::error::{Error, Result};
 use crate::fem::added::NoAddedEnergy;
 use crate::fem::ellipticity::{ellipticity_margins, EllipticityMargins};
 use crate::fem::equilibrium;
-use crate::fem::{model_conditions, Dirichlet, Newton, NewtonPolicy, NewtonReport, Reuse, System, Timings};
+use crate::fem::{Dirichlet, Newton, NewtonPolicy, NewtonReport, Reuse, System, Timings};
 use serde::Serialize;
 use std::collections::VecDeque;
 use std::time::Instant;
@@ -122,13 +122,16 @@ pub struct StepRecord {
     pub snap: Option<SnapRecord>,
     /// The smallest strong-ellipticity margin of each layer over its Gauss points.
     pub ellipticity: EllipticityMargins,
+    /// The layer's growth `g` along `X` (the load under growth; 1 without growth).
+    pub growth_layer: f64,
 }
 
 impl StepRecord {
-    /// The record of a converged Newton solve, the state's `amplitude` and `ellipticity`.
+    /// The record of a converged Newton solve of `system`, with the state's `amplitude` and
+    /// `ellipticity`.
     pub(super) fn new(
         (d, step): (f64, f64),
-        (amplitude, ellipticity): (f64, EllipticityMargins),
+        (system, amplitude, ellipticity): (&System, f64, EllipticityMargins),
         report: &NewtonReport,
         seconds: f64,
     ) -> Self {
@@ -149,6 +152,7 @@ impl StepRecord {
             augmented: None,
             snap: None,
             ellipticity,
+            growth_layer: system.layer_growth(),
         }
     }
 }
@@ -353,6 +357,7 @@ impl Continuation {
         observer: &mut dyn FnMut(Event<'_>) -> Result<()>,
     ) -> Result<()> {
         let state = (
+            &self.system,
             amplitude(self.system.mesh(), &u),
             ellipticity_margins(&self.system, &u)?,
         );
@@ -397,6 +402,8 @@ impl Continuation {
     ) -> Result<()> {
         let c = self.control;
         if step <= c.min * (1.0 + 1e-9) {
+            // The system stays at the last equilibrium's load, for what is written of it.
+            self.system.load_to(self.d())?;
             return Err(Error::Solver(format!(
                 "continuation stopped at d = {d:.6} (last converged d = {:.6}) with the minimum step {step:.3e}: {reason}",
                 self.d()
@@ -438,7 +445,7 @@ impl Continuation {
     /// displacement, or why it failed. From a single state, Newton's first (lifted) step is
     /// the predictor: the tangent one.
     fn attempt(&mut self, d: f64, step: f64) -> Result<Solved> {
-        let bc = model_conditions(self.system.mesh(), d)?;
+        let bc = self.system.load_to(d)?;
         let mut u = self.predict(d);
         if self.history.len() > 1 || self.slope.is_some() {
             for (&dof, &value) in bc.dofs().iter().zip(bc.values()) {
@@ -481,15 +488,13 @@ impl Continuation {
     fn snap(&mut self, d: f64) -> Result<(Solved, SnapRecord)> {
         let started = Instant::now();
         let (d0, u0) = self.history.back().expect("never empty").clone();
-        let (before, bc) = (
-            model_conditions(self.system.mesh(), d0)?,
-            model_conditions(self.system.mesh(), d)?,
-        );
+        let before = self.system.load_to(d0)?;
+        let energy_before = self.energy(&u0, &before)?;
+        let bc = self.system.load_to(d)?;
         let mut u = u0.clone();
         for (&dof, &value) in bc.dofs().iter().zip(bc.values()) {
             u[dof] = value;
         }
-        let energy_before = self.energy(&u0, &before)?;
         let energy_start = self.energy(&u, &bc)?;
         let policy = NewtonPolicy {
             inertia_at_solution: true,

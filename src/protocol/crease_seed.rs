@@ -59,6 +59,13 @@ pub struct CreaseEnergy {
 /// `U_crease - U_flat` at compression `strain` for a fold of reference length `fold_length` on
 /// a mesh of `spec` (one material, shear modulus `mu`).
 pub fn crease_energy(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_length: f64) -> Result<CreaseEnergy> {
+    if materials.load.is_growth() {
+        return Err(Error::invalid(
+            "load",
+            materials.load.name(),
+            "compression for the crease criterion (a fixed growth_layer prestresses the layer before it)",
+        ));
+    }
     let mesh = Mesh::new(spec)?;
     let mu = materials.layer.energy.shear_modulus();
     let state = homogeneous_state(materials, strain)?;

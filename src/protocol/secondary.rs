@@ -14,7 +14,7 @@ use super::surface::surface_profile;
 use crate::error::Result;
 use crate::fem::added::NoAddedEnergy;
 use crate::fem::lanczos::inverse_lanczos;
-use crate::fem::{model_conditions, Dirichlet, SparseLdlt, System};
+use crate::fem::{Dirichlet, SparseLdlt, System};
 use crate::material::Bilayer;
 use crate::mesh::Mesh;
 use serde::Serialize;
@@ -64,18 +64,16 @@ pub fn modes_nearest_zero(
     let mut solvers: Vec<SparseLdlt> = Vec::new();
     let mut modes = Vec::with_capacity(states.len());
     for pair in states.chunks(2) {
-        let bcs = pair
+        let (bcs, tangents): (Vec<Dirichlet>, Vec<_>) = pair
             .iter()
-            .map(|&(d, _)| model_conditions(system.mesh(), d))
-            .collect::<Result<Vec<_>>>()?;
-        let tangents = pair
-            .iter()
-            .zip(&bcs)
-            .map(|(&(_, u), bc)| {
-                let assembled = system.assemble_for_stability(u, bc, &NoAddedEnergy)?;
-                Ok(assembled.tangent.expect("assembled with the tangent"))
+            .map(|&(d, u)| {
+                let bc = system.load_to(d)?;
+                let assembled = system.assemble_for_stability(u, &bc, &NoAddedEnergy)?;
+                Ok((bc, assembled.tangent.expect("assembled with the tangent")))
             })
-            .collect::<Result<Vec<_>>>()?;
+            .collect::<Result<Vec<_>>>()?
+            .into_iter()
+            .unzip();
         while solvers.len() < tangents.len() {
             let solver = match solvers.first() {
                 Some(first) => first.sibling(),

@@ -12,7 +12,7 @@ use super::stabilisation::StabilisationSettings;
 use super::surface::amplitude;
 use crate::error::{Error, Result};
 use crate::fem::equilibrium;
-use crate::fem::{model_conditions, Newton, NewtonPolicy, Reuse, Stall, System};
+use crate::fem::{Newton, NewtonPolicy, Reuse, Stall, System};
 use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
 use crate::mesh::{Mesh, MeshSpec};
@@ -200,8 +200,8 @@ pub fn run(
     let perfect = Mesh::new(spec)?;
     let mut system = System::new(perfect.clone(), materials)?;
     // From the homogeneous state itself (eq. 4), which the perfect mesh reproduces to round-off.
+    let bc = system.load_to(d0)?;
     let mut u = homogeneous_unknowns(&system, materials, &homogeneous_state(materials, d0)?)?;
-    let bc = model_conditions(&perfect, d0)?;
     let imperfect = protocol.imperfection > 0.0 || protocol.imperfection2 > 0.0;
     // Stage 2 reports the inertia of its own state (stage 1's is not reported then).
     let stage_one = NewtonPolicy {
@@ -243,7 +243,7 @@ pub fn run(
             .map_err(|e| stage_failure(2, e.into()))?;
     }
     let a = amplitude(system.mesh(), &u);
-    let state = (a, crate::fem::ellipticity::ellipticity_margins(&system, &u)?);
+    let state = (&system, a, crate::fem::ellipticity::ellipticity_margins(&system, &u)?);
     let record = StepRecord::new((d0, d0), state, &report, start.elapsed().as_secs_f64());
     observer(Event::Step {
         record: &record,

@@ -200,7 +200,7 @@ pub struct Kernels {
 
 /// Times the kernels on each mesh, with the displacement and the mixed element.
 pub fn kernels(params: &Parameters, meshes: &[(&str, MeshSpec)]) -> Result<Kernels> {
-    use crate::fem::{model_conditions, SparseLdlt, System};
+    use crate::fem::{SparseLdlt, System};
     use crate::homogeneous::homogeneous_state;
     use crate::material::Bilayer;
     use crate::protocol::basic_state::homogeneous_unknowns;
@@ -213,7 +213,7 @@ pub fn kernels(params: &Parameters, meshes: &[(&str, MeshSpec)]) -> Result<Kerne
     for (&(name, spec), &element) in meshes.iter().flat_map(|m| elements.iter().map(move |e| (m, e))) {
         let mut system = System::new(crate::mesh::Mesh::new(spec.with_element(element))?, &materials)?;
         let d = 0.1;
-        let bc = model_conditions(system.mesh(), d)?;
+        let bc = system.load_to(d)?;
         let u = homogeneous_unknowns(&system, &materials, &homogeneous_state(&materials, d)?)?;
         let assembled = system.assemble(&u, &bc, None, true)?;
         let k = assembled.tangent.expect("assembled with the tangent");

@@ -12,7 +12,7 @@ use crate::material::Bilayer;
 use crate::mesh::{Mesh, MeshSpec};
 use crate::output::vtu::DataArray;
 use crate::output::{write_json, CsvWriter, Figure, LineStyle, Series};
-use crate::parameters::Parameters;
+use crate::parameters::{Load, Parameters};
 use crate::protocol::basic_state::homogeneous_unknowns;
 use crate::protocol::{find_bifurcation, Bifurcation, BifurcationSettings};
 use crate::stability::{Method, StabilityAnalysis};
@@ -66,7 +66,11 @@ pub struct BifurcationReport {
     pub command: &'static str,
     pub parameters: Parameters,
     pub mesh: MeshSummary,
+    /// What loads the bilayer; under growth `d` is the strain `1 - 1/g`.
+    pub load: Load,
     pub d_bifurcation: f64,
+    /// The growth at the bifurcation (null under compression).
+    pub g_bifurcation: Option<f64>,
     pub bracket: (f64, f64),
     pub k_mode: f64,
     pub waves: f64,
@@ -75,6 +79,10 @@ pub struct BifurcationReport {
     pub smallest_eigenvalue_before: f64,
     pub d_linear_theory_min: f64,
     pub k_linear_theory_min: f64,
+    /// The theory's smallest critical growth (null under compression).
+    pub g_linear_theory_min: Option<f64>,
+    /// The FE bifurcation over the theory's minimum, minus 1, in the load's parameter (`d`,
+    /// or `g` under growth).
     pub relative_difference: f64,
     pub d_linear_theory_at_k_mode: f64,
     pub relative_difference_at_k_mode: f64,
@@ -100,11 +108,15 @@ pub fn run(params: &Parameters, study: &BifurcationStudy, out: &Path) -> Result<
     files.extend(write_mode(out, &materials, study.mesh, &found)?);
     let json = out.join("bifurcation.json");
     files.push(json.clone());
+    let load = params.load;
+    let growth = |d: f64| load.is_growth().then(|| load.parameter(d));
     let report = BifurcationReport {
         command: "bifurcation",
         parameters: params.clone(),
         mesh: MeshSummary::from(&study.mesh),
+        load,
         d_bifurcation: found.d,
+        g_bifurcation: growth(found.d),
         bracket: found.bracket,
         k_mode: found.k_mode,
         waves: found.mode_number as f64 / 2.0,
@@ -113,7 +125,8 @@ pub fn run(params: &Parameters, study: &BifurcationStudy, out: &Path) -> Result<
         smallest_eigenvalue_before: found.eigenvalue,
         d_linear_theory_min: theory.d_c,
         k_linear_theory_min: theory.k,
-        relative_difference: found.d / theory.d_c - 1.0,
+        g_linear_theory_min: growth(theory.d_c),
+        relative_difference: load.parameter(found.d) / load.parameter(theory.d_c) - 1.0,
         d_linear_theory_at_k_mode: at_k_mode,
         relative_difference_at_k_mode: found.d / at_k_mode - 1.0,
         inertia_evaluations: found.path.len(),
@@ -149,7 +162,8 @@ fn write_mode(out: &Path, materials: &Bilayer, spec: MeshSpec, found: &Bifurcati
     for &(x, uy) in &surface {
         table.append(&[x, uy])?;
     }
-    let system = System::new(mesh, materials)?;
+    let mut system = System::new(mesh, materials)?;
+    system.load_to(found.d)?;
     let u = homogeneous_unknowns(&system, materials, &homogeneous_state(materials, found.d)?)?;
     let vtu = out.join("mode.vtu");
     let nodal = &found.mode[..system.mesh().num_dofs()];

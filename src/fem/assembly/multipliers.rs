@@ -33,7 +33,7 @@ pub(super) fn augmentation(materials: &Bilayer, tissue: &Tissue) -> Option<Volum
         .energy
         .shear_modulus()
         .max(materials.substrate.energy.matrix.shear_modulus());
-    let (_, bulk) = tissue.volumetric_split();
+    let bulk = tissue.volumetric_split().bulk;
     let bulk = if materials.incompressible { f64::INFINITY } else { bulk };
     (bulk > AUGMENTED_BULK * shear).then_some(Volumetric::Augmented {
         penalty: AUGMENTATION_PENALTY * shear,

@@ -1,54 +1,67 @@
 //! Fig. 3: the amplitude `A(d)` with the maximal-curvature onset (open circle and vertical line)
 //! and the linear theory's `d_c(k)` (cross); beside it, on its own axis, the curvature of `A(d)`
-//! whose first peak is the paper's onset rule.
+//! whose first peak is the paper's onset rule. Under a growth load the abscissa is the
+//! layer's growth `g = 1 / (1 - d)`.
 
 use super::{Curve, OnsetReport};
 use crate::output::{Figure, LineStyle, Series};
+use crate::parameters::Load;
 use crate::protocol::onset::curvature;
 
-/// Fig. 3 of a run: `[A(d) panel, curvature panel]`.
-pub fn fig3(curve: &Curve, onset: &OnsetReport) -> [Figure; 2] {
+/// Fig. 3 of a run under `load`: `[A panel, curvature panel]`.
+pub fn fig3(curve: &Curve, onset: &OnsetReport, load: Load) -> [Figure; 2] {
     let (d, a) = curve.points();
     let a_max = a.iter().fold(0.0f64, |m, &v| m.max(v));
+    let (name, axis, against) = match load.is_growth() {
+        true => ("g", "growth of the layer g", "growth"),
+        false => ("d", "end-shortening d = 1 - lambda_1", "compression"),
+    };
+    // A strain `d` of the path as the abscissa.
+    let x = |d: f64| load.parameter(d);
     let mut amplitude = Figure::new(
-        format!("Fig. 3: amplitude against compression, k H = {:.4}", onset.k),
-        "end-shortening d = 1 - lambda_1",
+        format!("Fig. 3: amplitude against {against}, k H = {:.4}", onset.k),
+        axis,
         "amplitude A / H",
     )
     .with(Series::new(
-        "A(d), computed",
-        d.iter().copied().zip(a.iter().copied()).collect(),
+        format!("A({name}), computed"),
+        d.iter().map(|&d| x(d)).zip(a.iter().copied()).collect(),
         LineStyle::DotsAndLine,
         0,
     ));
     let mut kappa_panel = Figure::new(
-        "curvature of A(d): the paper's onset rule",
-        "end-shortening d = 1 - lambda_1",
+        format!("curvature of A({name}): the paper's onset rule"),
+        axis,
         "kappa = A'' / (1 + A'^2)^(3/2)",
     )
-    .with(Series::new("kappa(d)", curvature(&d, &a), LineStyle::Solid, 1));
+    .with(Series::new(
+        format!("kappa({name})"),
+        curvature(&d, &a).into_iter().map(|(d, k)| (x(d), k)).collect(),
+        LineStyle::Solid,
+        1,
+    ));
     if let Some(dc) = onset.estimates.d_max_curvature {
         amplitude = amplitude
             .with(Series::new(
-                format!("d_c = {dc:.4} (max curvature)"),
-                vec![(dc, interpolate(&d, &a, dc))],
+                format!("{name}_c = {:.4} (max curvature)", x(dc)),
+                vec![(x(dc), interpolate(&d, &a, dc))],
                 LineStyle::Circles,
                 5,
             ))
-            .with(Series::new("", vec![(dc, 0.0), (dc, a_max)], LineStyle::Solid, 5));
+            .with(Series::new("", vec![(x(dc), 0.0), (x(dc), a_max)], LineStyle::Solid, 5));
         let peak = curvature(&d, &a);
         let top = peak.iter().fold(0.0f64, |m, &(_, k)| m.max(k));
         kappa_panel = kappa_panel.with(Series::new(
-            format!("first peak, d = {dc:.4}"),
-            vec![(dc, 0.0), (dc, top)],
+            format!("first peak, {name} = {:.4}", x(dc)),
+            vec![(x(dc), 0.0), (x(dc), top)],
             LineStyle::Dashed,
             5,
         ));
     }
     let theory = onset.d_linear_theory;
     amplitude = amplitude.with(Series::new(
-        format!("linear theory d_c(k) = {theory:.4}"),
-        vec![(theory, interpolate(&d, &a, theory))],
+        format!("linear theory {name}_c(k) = {:.4}", x(theory)),
+        vec![(x(theory), interpolate(&d, &a, theory))],
         LineStyle::Crosses,
         3,
     ));

@@ -31,7 +31,7 @@ use crate::material::Bilayer;
 use crate::mesh::MeshSpec;
 use crate::output::vtu::Collection;
 use crate::output::{write_json, CsvWriter};
-use crate::parameters::Parameters;
+use crate::parameters::{Load, Parameters};
 use crate::protocol::onset::A2_FIT_WINDOW;
 use crate::protocol::{
     mode_number, stages, surface_profile, Cut, Event, OnsetEstimates, Protocol, SnapRecord, StepRecord,
@@ -62,9 +62,10 @@ pub enum Progress<'a> {
     Cut(&'a Cut),
 }
 
-/// The last columns of `amplitude.csv`: `snap` (1 where a snap reached the state) and the
-/// smallest strong-ellipticity margin of each layer over its Gauss points.
-pub const STATE_COLUMNS: [&str; 3] = ["snap", "ellipticity_layer", "ellipticity_substrate"];
+/// The last columns of `amplitude.csv`: `snap` (1 where a snap reached the state), the
+/// smallest strong-ellipticity margin of each layer over its Gauss points, and the layer's
+/// growth `g` (the load under growth; 1 without growth).
+pub const STATE_COLUMNS: [&str; 4] = ["snap", "ellipticity_layer", "ellipticity_substrate", "growth_layer"];
 
 /// Every column of `amplitude.csv`: [`AMPLITUDE_HEADER`], [`CREASE_COLUMNS`], [`STATE_COLUMNS`].
 pub fn amplitude_header() -> Vec<&'static str> {
@@ -89,7 +90,14 @@ pub fn amplitude_row(record: &StepRecord) -> Vec<f64> {
     ];
     let snap = if record.snap.is_some() { 1.0 } else { 0.0 };
     let margins = [record.ellipticity.layer, record.ellipticity.substrate];
-    [&columns[..], &crease_columns(record), &[snap], &margins].concat()
+    [
+        &columns[..],
+        &crease_columns(record),
+        &[snap],
+        &margins,
+        &[record.growth_layer],
+    ]
+    .concat()
 }
 
 /// Receives [`Progress`] (prints, drives a progress bar, or ignores it); an error it returns
@@ -276,6 +284,10 @@ impl PhaseTotals {
 pub struct SimulationSummary {
     pub command: &'static str,
     pub parameters: Parameters,
+    /// What loads the bilayer; under growth every `d` is the strain `1 - 1/g`.
+    pub load: Load,
+    /// The layer's growth reached (null under compression).
+    pub g_reached: Option<f64>,
     pub mesh: MeshSummary,
     pub k: f64,
     pub imperfection: f64,
@@ -390,7 +402,11 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
     .map(|f| out.join(f))
     .collect();
     files.extend(snap_files);
-    files.extend(crate::output::plot::save_panels(&fig3(&curve, &onset), out, "fig3")?);
+    files.extend(crate::output::plot::save_panels(
+        &fig3(&curve, &onset, params.load),
+        out,
+        "fig3",
+    )?);
     files.extend(secondary_files);
     if let Some(crease) = crease {
         files.extend(crease.draw(&system, &materials, params.beta, out)?.1);
@@ -398,6 +414,8 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
     let summary = SimulationSummary {
         command: "simulate",
         parameters: params.clone(),
+        load: params.load,
+        g_reached: params.load.is_growth().then(|| params.load.parameter(d_reached)),
         mesh: MeshSummary::from(&study.mesh),
         k: study.protocol.k,
         imperfection: study.protocol.imperfection,

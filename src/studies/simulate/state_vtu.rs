@@ -34,5 +34,7 @@ pub fn cell_arrays(fields: CellFields) -> Vec<DataArray> {
         DataArray::scalars("fibre_stretch_1", stretch_1),
         DataArray::scalars("fibre_stretch_2", stretch_2),
         DataArray::scalars("layer", fields.layer),
+        DataArray::scalars("growth", fields.growth),
+        DataArray::scalars("elastic_J", fields.elastic_jacobian),
     ]
 }
