@@ -116,6 +116,16 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                 let discrete = d_c(run(command, &[("--method", "discrete")]).0);
                 assert!((exact - discrete).abs() < 1e-4, "{exact} vs {discrete}");
             }
+            "onset" if command.contains("--load growth") => {
+                // A growing layer: the discrete solver, from the same grown moduli, agrees, and
+                // g_c is the growth of the strain d_c = 1 - 1/g_c.
+                let onset = |dir: PathBuf| json(dir.join("onset.json"));
+                let exact = onset(run(command, &[]).0);
+                let discrete = onset(run(command, &[("--method", "discrete")]).0);
+                let g_c = |o: &serde_json::Value| o["g_c"].as_f64().unwrap();
+                assert!((g_c(&exact) - g_c(&discrete)).abs() < 1e-4, "{exact} vs {discrete}");
+                assert!((g_c(&exact) - 1.0 / (1.0 - exact["d_c"].as_f64().unwrap())).abs() < 1e-12);
+            }
             "onset" => {
                 // Paper, section 3.1: unloaded fibres (mu_f = 0) give k0 = 0.5515.
                 let (dir, _) = run(command, &[]);
