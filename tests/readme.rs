@@ -219,6 +219,25 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                 );
                 assert!(dir.join("map.png").exists());
             }
+            "map" if command.contains("growth_layer") => {
+                // A layer prestressed by growth wrinkles earlier; without prestress the map's
+                // onset is the linear theory's of the same bilayer.
+                let (dir, _) = run(command, &[&[("--x-points", "2")][..], SMALL_MAP].concat());
+                let points = &json(dir.join("map.json"))["points"];
+                let d = |i: usize| points[i]["d_wrinkle"].as_f64().unwrap();
+                let plain: fiberfold::Parameters = serde_json::from_value(points[0]["parameters"].clone()).unwrap();
+                let theory = fiberfold::stability::StabilityAnalysis::new(&plain, fiberfold::stability::Method::Exact)
+                    .unwrap()
+                    .onset()
+                    .unwrap()
+                    .d_c;
+                assert!(
+                    (d(0) - theory).abs() < 1e-9 && d(1) < d(0),
+                    "{} {} {theory}",
+                    d(0),
+                    d(1)
+                );
+            }
             "map" => {
                 // One point, the stiffest layer at beta = 0, on small meshes: it wrinkles first,
                 // near the thin-film law d_c = (1/4) (3 mu_s / mu_l)^(2/3) = 0.054.

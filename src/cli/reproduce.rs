@@ -43,6 +43,14 @@ pub fn run(args: &ReproduceArgs) -> Result<()> {
             "false for reproduce (the paper's compressible model; use the other commands)",
         ));
     }
+    if params.load.is_growth() {
+        // The paper compresses: its figures and numbers are those of `d`.
+        return Err(Error::invalid(
+            "load",
+            params.load.name(),
+            "compression for reproduce (the paper's load; the other commands take --load growth)",
+        ));
+    }
     let jobs = args
         .jobs
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));

@@ -7,12 +7,13 @@ use super::{First, MapPoint, MapReport, PostBuckling};
 use crate::error::Result;
 use crate::output::plot::{save_canvas, Canvas, FONT};
 use crate::parameters::Parameters;
+use crate::stability::Minimum;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
 /// The regimes, in legend order, with their colours.
-const REGIMES: [(&str, RGBColor); 10] = [
+const REGIMES: [(&str, RGBColor); 11] = [
     ("crease first", RGBColor(214, 39, 40)),
     ("wrinkle, stays periodic", RGBColor(158, 202, 225)),
     ("wrinkle -> period doubling", RGBColor(49, 130, 189)),
@@ -26,6 +27,7 @@ const REGIMES: [(&str, RGBColor); 10] = [
         "too close to call (within the crease onset's uncertainty)",
         RGBColor(148, 103, 189),
     ),
+    ("wrinkle, the nonlinear run failed (see notes)", RGBColor(140, 86, 75)),
 ];
 
 /// The regime of a point (an index into [`REGIMES`]).
@@ -36,6 +38,7 @@ pub fn regime(point: &MapPoint) -> usize {
         (First::Wrinkle, Some(PostBuckling::PeriodDoubling)) => 2,
         (First::Wrinkle, Some(PostBuckling::Fold)) => 3,
         (First::Wrinkle, Some(PostBuckling::Crease)) => 4,
+        (First::Wrinkle, None) if point.minimum == Some(Minimum::Interior) => 10,
         (First::Wrinkle, None) => 5,
         (First::None, _) => 6,
         (First::Undecided, _) => 7,
