@@ -499,16 +499,11 @@ fn growth_is_a_load_of_the_linear_theory_and_bad_growth_is_refused() {
         &["onset", "--load", "grow"],
         &["load", "compression, growth, uniform_growth"],
     );
-    // The crease criterion follows a compression (of a grown layer, too), not a growth.
-    rejected(
-        &["crease", "--load", "growth"],
-        &["load", "compression for the crease criterion"],
-    );
 }
 
-/// `simulate` under growth: the layer's growth is the load, written beside `d = 1 - 1/g`.
+/// `simulate` and `map` under growth: the layer's growth is the load, written beside `d = 1 - 1/g`.
 #[test]
-fn simulate_follows_a_growth_of_the_layer() {
+fn simulate_and_map_follow_a_growth_of_the_layer() {
     let dir = scratch("simulate-growth");
     let out = fiberfold(&[
         "simulate",
@@ -546,6 +541,20 @@ fn simulate_follows_a_growth_of_the_layer() {
             row[g],
             row[d]
         );
+    }
+    // The map follows a growth load too: its wrinkle onset is the linear theory's strain.
+    let map_dir = scratch("map-growth");
+    let out = fiberfold(&common::tiny_map(&map_dir, &["--load", "growth"]));
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for point in common::map_points(&map_dir) {
+        let p: fiberfold::Parameters = serde_json::from_value(point["parameters"].clone()).unwrap();
+        assert_eq!(p.load, fiberfold::parameters::Load::Growth);
+        let theory = fiberfold::stability::StabilityAnalysis::new(&p, fiberfold::stability::Method::Exact)
+            .unwrap()
+            .onset()
+            .unwrap()
+            .d_c;
+        assert!((point["d_wrinkle"].as_f64().unwrap() - theory).abs() < 1e-9, "{point}");
     }
     // Wrinkles grow past the linear theory's g_c(k = 0.628) = 1.1415: A at g = 1.25 is of order H.
     let last = rows.last().unwrap();

@@ -153,3 +153,33 @@ fn fe_bifurcation_under_growth_meets_the_linear_theory_on_the_fine_mesh() {
         );
     }
 }
+
+/// A half-space has no length scale: grown uniformly with the ends held, it creases at the
+/// strain at which it creases when compressed (the grown body's mesh is stretched by `g` along
+/// `X`, so the two agree within the mesh's error, not to round-off).
+#[test]
+fn a_uniformly_grown_half_space_creases_at_the_compressed_one_s_strain() {
+    let crease = |load: &str| -> serde_json::Value {
+        let dir = std::env::temp_dir().join(format!("fiberfold-growth-crease-{load}-{}", std::process::id()));
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_fiberfold"))
+            .args([
+                "crease", "--set", "mu_l=1", "--set", "K_l=100", "--set", "K_s=100", "--set", "phi_m=1",
+            ])
+            .args([
+                "--set", "phi_f=0", "--fold", "1", "--d-from", "0.3", "--d-to", "0.38", "--d-step", "0.04",
+            ])
+            .args(["--no-convergence", "--load", load, "--out", dir.to_str().unwrap()])
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let report = std::fs::read_to_string(dir.join("crease.json")).unwrap();
+        std::fs::remove_dir_all(&dir).ok();
+        serde_json::from_str(&report).unwrap()
+    };
+    let (compressed, grown) = (crease("compression"), crease("uniform_growth"));
+    let d = |r: &serde_json::Value| r["d_crease"].as_f64().unwrap();
+    println!("d_crease: compressed {}, grown {}", d(&compressed), d(&grown));
+    assert!((d(&compressed) - d(&grown)).abs() < 1e-3);
+    assert!(compressed["g_crease"].is_null());
+    assert!((grown["g_crease"].as_f64().unwrap() - 1.0 / (1.0 - d(&grown))).abs() < 1e-12);
+}

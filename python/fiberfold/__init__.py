@@ -63,7 +63,8 @@ def homogeneous(params: Parameters, d: ArrayLike) -> Dict[str, np.ndarray]:
     """The homogeneous state at each end-shortening ``d`` (each in [0, 1)): the columns of
     ``homogeneous.csv`` (``d``, ``lambda1``, ``lambda2_layer``, ``lambda2_substrate``,
     ``J_layer``, ``J_substrate``, Cauchy stresses ``sigma11/22/33_layer`` and ``_substrate`` in
-    units of mu_s), each a float64 array of the length of ``d``."""
+    units of mu_s, and each layer's growth ``growth_layer``, ``growth_substrate``), each a
+    float64 array of the length of ``d``. Under a growth load ``d`` is the strain ``1 - 1/g``."""
     return _fiberfold.homogeneous(_check_parameters(params), np.atleast_1d(np.asarray(d, dtype=float)))
 
 
@@ -124,7 +125,8 @@ class Simulation:
     Attributes:
         amplitude: the columns of ``amplitude.csv`` (``d``, ``A``, ``strain_energy``,
             ``newton_iterations``, ``residual``, ``min_J``, ``step_seconds``, ``in_contact``,
-            ``contact_length``, ``penetration``, ``stabilisation_energy_fraction``), one float64
+            ``contact_length``, ``penetration``, ``stabilisation_energy_fraction``, ``snap``,
+            ``ellipticity_layer``, ``ellipticity_substrate``, ``growth_layer``), one float64
             array each, one entry per accepted state.
         onset: the content of ``onset.json`` (the three estimates and the linear theory).
         contact: the content of ``contact.json``.

@@ -28,6 +28,10 @@ class Parameters:
     psi: float
     tension_only: bool
     incompressible: bool
+    growth_layer: float
+    growth_substrate: float
+    area_growth: bool
+    load: str
     def __init__(self, **overrides: Union[float, int, bool, str, List[float], Dict[str, Any]]) -> None: ...
     @staticmethod
     def from_toml(path: Union[str, PathLike[str]]) -> Parameters: ...

@@ -77,6 +77,7 @@ def test_homogeneous_state_is_stress_free_at_rest_and_has_the_csv_columns():
         "d", "lambda1", "lambda2_layer", "lambda2_substrate", "J_layer", "J_substrate",
         "sigma11_layer", "sigma22_layer", "sigma33_layer",
         "sigma11_substrate", "sigma22_substrate", "sigma33_substrate",
+        "growth_layer", "growth_substrate",
     ]
     assert all(v.dtype == np.float64 and v.shape == (3,) for v in h.values())
     assert np.allclose(h["lambda1"], [1.0, 0.9, 0.8])

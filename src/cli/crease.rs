@@ -191,6 +191,12 @@ fn print_onset(report: &CreaseReport, study: &CreaseStudy) {
                 "d_crease = {d:.5}{error} at fold length a = {a} H (crease depth {:.3} H)",
                 report.depth.unwrap_or(f64::NAN)
             );
+            if let Some(g) = report.g_crease {
+                println!(
+                    "  under {}: the layer's growth at the crease onset g_crease = {g:.5}",
+                    report.load.name()
+                );
+            }
             if study.refinement.is_some() && !report.converged {
                 println!(
                     "note: the threshold still changed by more than --mesh-tolerance on the last mesh: raise --max-meshes \

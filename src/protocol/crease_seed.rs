@@ -2,7 +2,7 @@
 //! (Hong, Zhao & Suo 2009, Appl. Phys. Lett. 95, 111901).
 //!
 //! The solid is first compressed homogeneously to the end-shortening `eps` (the Q2 elements
-//! represent that state exactly). Then the top-surface nodes with `0 < X <= a` are carried onto
+//! represent that state exactly), or grown to `g = 1/(1 - eps)` under a growth load. Then the top-surface nodes with `0 < X <= a` are carried onto
 //! the symmetry plane `x = 0` (their `u_x` ramped to `-X`, `u_y` free: frictionless), while every
 //! other surface node may touch the plane but not cross it (contact, [`crate::fem::contact`]).
 //! By the mirror symmetry this is a crease whose two faces are in self-contact over the
@@ -18,7 +18,7 @@ use crate::fem::boundary::{dof, X};
 use crate::fem::contact::{Contact, ContactSettings, Plane};
 use crate::fem::ellipticity::{ellipticity_margins, EllipticityMargins};
 use crate::fem::equilibrium::solve_with_contact;
-use crate::fem::{model_conditions, Dirichlet, Newton, NewtonPolicy, System};
+use crate::fem::{Dirichlet, Newton, NewtonPolicy, System};
 use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
 use crate::mesh::{Mesh, MeshSpec};
@@ -56,20 +56,13 @@ pub struct CreaseEnergy {
     pub surface: Vec<(f64, f64)>,
 }
 
-/// `U_crease - U_flat` at compression `strain` for a fold of reference length `fold_length` on
-/// a mesh of `spec` (one material, shear modulus `mu`).
+/// `U_crease - U_flat` at the load's strain `strain` (the compression, or `1 - 1/g` under
+/// growth) for a fold of reference length `fold_length` on a mesh of `spec` (one material,
+/// shear modulus `mu`).
 pub fn crease_energy(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_length: f64) -> Result<CreaseEnergy> {
-    if materials.load.is_growth() {
-        return Err(Error::invalid(
-            "load",
-            materials.load.name(),
-            "compression for the crease criterion (a fixed growth_layer prestresses the layer before it)",
-        ));
-    }
     let mesh = Mesh::new(spec)?;
     let mu = materials.layer.energy.shear_modulus();
     let state = homogeneous_state(materials, strain)?;
-    let model = model_conditions(&mesh, strain)?;
     let folded: Vec<usize> = mesh
         .top()
         .into_iter()
@@ -84,6 +77,7 @@ pub fn crease_energy(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_leng
         settings
     });
     let mut system = System::new(mesh, materials)?;
+    let model = system.load_to(strain)?;
     let mut u = homogeneous_unknowns(&system, materials, &state)?;
     let flat_energy = system.assemble(&u, &model, None, false)?.energy;
     let mut newton = Newton::new();

@@ -25,7 +25,7 @@ use crate::error::{Error, Result};
 use crate::fem::ellipticity::EllipticityReport;
 use crate::material::Bilayer;
 use crate::mesh::{ElementKind, MeshSpec, XRefinement};
-use crate::parameters::Parameters;
+use crate::parameters::{Load, Parameters};
 use convergence::{extrapolate, Extrapolated};
 use serde::{Deserialize, Serialize};
 
@@ -275,8 +275,12 @@ pub struct CreaseReport {
     /// The base mesh, and its unknowns.
     pub mesh: CreaseMesh,
     pub unknowns: usize,
+    /// What loads the bilayer; under growth every `d` is the strain `1 - 1/g`.
+    pub load: Load,
     /// `min_a d(a)`, extrapolated in the mesh: the crease onset (None if no fold paid off).
     pub d_crease: Option<f64>,
+    /// The growth of the layer at the crease onset under a growth load (None otherwise).
+    pub g_crease: Option<f64>,
     /// Its uncertainty (None from a single mesh).
     pub d_crease_error: Option<f64>,
     /// The order of convergence observed for that fold.
@@ -431,7 +435,11 @@ pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<Cr
         parameters: params.clone(),
         mesh: study.mesh,
         unknowns: meshes[0].unknowns,
+        load: params.load,
         d_crease: best.map(|(e, _)| e.value),
+        g_crease: best
+            .filter(|_| params.load.is_growth())
+            .map(|(e, _)| params.load.parameter(e.value)),
         d_crease_error: best.and_then(|(e, _)| e.error),
         order: best.and_then(|(e, _)| e.order),
         converged: best.is_some_and(|(_, i)| folds[i].converged),
