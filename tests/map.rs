@@ -1,9 +1,13 @@
 //! `fiberfold map` end to end on a tiny map: shards collected equal the unsharded map, finished
-//! points are reused, and a folder of another map or with missing points is refused.
+//! points are reused, a folder of another map or with missing points is refused, and of two runs
+//! given the same shard one computes it and the other is refused.
 
 mod common;
 
-use common::{fiberfold, map_points as points, scratch, tiny_map};
+use common::files::check_complete;
+use common::{fiberfold, map_points as points, scratch, tiny_map, tiny_map_of};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
 
 fn run(args: &[String]) -> (bool, String, String) {
     let out = fiberfold(args);
@@ -66,4 +70,60 @@ fn shards_collected_equal_the_whole_map_and_finished_points_are_reused() {
     }
     let _ = std::fs::remove_dir_all(&whole);
     let _ = std::fs::remove_dir_all(&sharded);
+}
+
+#[test]
+fn of_two_runs_given_the_same_shard_one_computes_it_and_the_other_says_so() {
+    let dir = scratch("map-same-shard");
+    let args = tiny_map_of(8, &dir, &["--shard", "0/2"]);
+    // One thread: the first run's 4 points take a few seconds, long enough to be caught at work.
+    let mut first = Command::new(env!("CARGO_BIN_EXE_fiberfold"))
+        .args(&args)
+        .env("RAYON_NUM_THREADS", "1")
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("binary runs");
+    let lock = dir.join(".fiberfold-shard-0-of-2.lock");
+    let start = Instant::now();
+    while !lock.exists() {
+        assert!(
+            start.elapsed() < Duration::from_secs(60),
+            "the first run never took its lock"
+        );
+        std::thread::sleep(Duration::from_millis(10));
+    }
+    let second = fiberfold(&args);
+    let refused_while_running = first.try_wait().unwrap().is_none();
+    let stderr = String::from_utf8_lossy(&second.stderr);
+    assert_eq!(second.status.code(), Some(2), "{stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains(&format!("process {}", first.id())) && stderr.contains(".fiberfold-shard-0-of-2.lock"),
+        "{stderr}"
+    );
+    let first = first.wait_with_output().unwrap();
+    assert!(first.status.success(), "{}", String::from_utf8_lossy(&first.stderr));
+    assert!(
+        refused_while_running,
+        "the first run ended before the second was refused: a slower map is needed"
+    );
+    assert!(String::from_utf8_lossy(&first.stdout).contains("4 points computed, 0 reused"));
+    let mut written: Vec<_> = std::fs::read_dir(dir.join("points"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    written.sort();
+    assert_eq!(
+        written,
+        [
+            "point-00000.json",
+            "point-00002.json",
+            "point-00004.json",
+            "point-00006.json"
+        ],
+        "the shard's points and no temporary left"
+    );
+    assert_eq!(check_complete(&dir), 5, "map-spec.json and the 4 points, each complete");
+    let _ = std::fs::remove_dir_all(&dir);
 }

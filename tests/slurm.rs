@@ -1,13 +1,16 @@
 //! The map as a SLURM job array on a real single-node SLURM (`ci/slurm.sh`, as root): two array
-//! tasks compute their shards into one folder, `--collect` assembles them, and the result equals
-//! the unsharded map. Ignored by a plain `cargo test` (it installs and starts daemons); `.ci/run`
-//! runs it with `--ignored`.
+//! tasks compute their shards into one folder; one of them is killed (`scancel --signal=KILL`)
+//! while it computes a point and requeued (`scontrol requeue`), and resumes from the points it
+//! had written; `--collect` assembles the shards, and the result equals the unsharded map.
+//! Ignored by a plain `cargo test` (it installs and starts daemons); `.ci/run` runs it with
+//! `--ignored`.
 
 mod common;
 
-use common::{fiberfold, map_points, scratch, tiny_map};
+use common::{fiberfold, map_points, scratch, tiny_map_of};
 use std::path::Path;
 use std::process::Command;
+use std::time::{Duration, Instant};
 
 fn slurm(action: &str, dir: &Path) {
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("ci/slurm.sh");
@@ -20,15 +23,53 @@ fn slurm(action: &str, dir: &Path) {
     assert!(status.success(), "ci/slurm.sh {action} failed");
 }
 
+/// Runs a SLURM client of the cluster in `state`; its standard output.
+fn client(state: &Path, program: &str, args: &[&str]) -> String {
+    let out = Command::new(program)
+        .env("SLURM_CONF", state.join("slurm.conf"))
+        .args(args)
+        .output()
+        .unwrap_or_else(|e| panic!("{program} runs: {e}"));
+    assert!(
+        out.status.success(),
+        "{program} {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).trim().to_string()
+}
+
+/// Waits (up to `seconds`) until `done` holds.
+fn wait_until(seconds: u64, what: &str, mut done: impl FnMut() -> bool) {
+    let start = Instant::now();
+    while !done() {
+        assert!(
+            start.elapsed() < Duration::from_secs(seconds),
+            "waited {seconds} s for {what}"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+/// The point files of shard 0 of 2 (the even indices) in `dir`.
+fn shard_zero_points(dir: &Path) -> usize {
+    std::fs::read_dir(dir.join("points")).map_or(0, |entries| {
+        entries
+            .filter_map(|e| e.ok()?.file_name().into_string().ok())
+            .filter_map(|n| n.strip_prefix("point-")?.strip_suffix(".json")?.parse::<usize>().ok())
+            .filter(|index| index % 2 == 0)
+            .count()
+    })
+}
+
 #[test]
 #[ignore = "starts a real SLURM as root: run by .ci/run with --ignored"]
-fn a_job_array_computes_the_same_map() {
+fn a_killed_and_requeued_array_task_resumes_and_the_array_computes_the_same_map() {
     let state = scratch("slurm-state");
     slurm("start", &state);
     let outcome = std::panic::catch_unwind(|| {
         let sharded = scratch("slurm-map");
         std::fs::create_dir_all(&sharded).unwrap();
-        let mut shard_args = tiny_map(&sharded, &[]);
+        let mut shard_args = tiny_map_of(8, &sharded, &[]);
         shard_args.push("--shard".into());
         shard_args.push("${SLURM_ARRAY_TASK_ID}/${SLURM_ARRAY_TASK_COUNT}".into());
         let command: Vec<String> = std::iter::once(env!("CARGO_BIN_EXE_fiberfold").to_string())
@@ -41,24 +82,74 @@ fn a_job_array_computes_the_same_map() {
             }))
             .collect();
         let job = sharded.join("job.sh");
-        std::fs::write(&job, format!("#!/bin/bash\nset -e\n{}\n", command.join(" "))).unwrap();
-        let submitted = Command::new("sbatch")
-            .env("SLURM_CONF", state.join("slurm.conf"))
-            .args(["--parsable", "--wait", "--array=0-1", "-o"])
-            .arg(sharded.join("task_%a.log"))
-            .arg(&job)
-            .output()
-            .expect("sbatch runs");
-        let logs: String = (0..2)
+        // One thread a task: each takes a few seconds for its 4 points, one after the other.
+        std::fs::write(
+            &job,
+            format!(
+                "#!/bin/bash\nset -e\nexport RAYON_NUM_THREADS=1\n{}\n",
+                command.join(" ")
+            ),
+        )
+        .unwrap();
+        let log = sharded.join("task_%a.log");
+        let id = client(
+            &state,
+            "sbatch",
+            &[
+                "--parsable",
+                "--array=0-1",
+                "--open-mode=append",
+                "-o",
+                log.to_str().unwrap(),
+                job.to_str().unwrap(),
+            ],
+        );
+        let task = format!("{id}_0");
+        let running = |task: &str| {
+            let state_of = client(&state, "squeue", &["-h", "-j", task, "-o", "%T"]);
+            state_of == "RUNNING" || state_of == "COMPLETING"
+        };
+
+        // Task 0 is killed once its first point is written, while it computes the next.
+        wait_until(120, "the first point of shard 0", || shard_zero_points(&sharded) >= 1);
+        client(&state, "scancel", &["--signal=KILL", &task]);
+        wait_until(60, "the killed task to end", || !running(&task));
+        let written = shard_zero_points(&sharded);
+        assert!(
+            written < 4,
+            "the kill came after the task's last point: a slower map is needed"
+        );
+        // A requeued job waits a scheduler delay before it is eligible; a user may start it now.
+        client(&state, "scontrol", &["requeue", &task]);
+        client(
+            &state,
+            "scontrol",
+            &["update", &format!("JobId={task}"), "StartTime=now"],
+        );
+        wait_until(300, "the array job to end", || {
+            client(&state, "squeue", &["-h", "-j", &id]).is_empty()
+        });
+
+        let logs: Vec<String> = (0..2)
             .map(|i| std::fs::read_to_string(sharded.join(format!("task_{i}.log"))).unwrap_or_default())
             .collect();
         assert!(
-            submitted.status.success(),
-            "array job failed: {}\n{logs}",
-            String::from_utf8_lossy(&submitted.stderr)
+            logs[1].contains("shard 1/2: 4 points") && logs[1].contains("4 points computed, 0 reused"),
+            "{}",
+            logs[1]
         );
-        assert!(logs.contains("shard 0/2") && logs.contains("shard 1/2"), "{logs}");
-        let collected = fiberfold(&tiny_map(&sharded, &["--collect"]));
+        assert_eq!(
+            logs[0].matches("shard 0/2: 4 points").count(),
+            2,
+            "run, then rerun: {}",
+            logs[0]
+        );
+        assert!(
+            logs[0].contains(&format!("{} points computed, {written} reused", 4 - written)),
+            "the requeued task resumes from the {written} points written: {}",
+            logs[0]
+        );
+        let collected = fiberfold(&tiny_map_of(8, &sharded, &["--collect"]));
         assert!(
             collected.status.success(),
             "{}",
@@ -66,7 +157,7 @@ fn a_job_array_computes_the_same_map() {
         );
 
         let whole = scratch("slurm-whole");
-        let unsharded = fiberfold(&tiny_map(&whole, &[]));
+        let unsharded = fiberfold(&tiny_map_of(8, &whole, &[]));
         assert!(unsharded.status.success());
         assert_eq!(map_points(&sharded), map_points(&whole));
         let _ = std::fs::remove_dir_all(&sharded);

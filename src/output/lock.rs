@@ -28,7 +28,10 @@ impl OutputLock {
             // The lock appears whole or not at all: written aside, then hard-linked to its name
             // (which fails if the name exists), so no reader ever sees it empty.
             let staged = dir.join(format!("{name}.{}", std::process::id()));
-            std::fs::write(&staged, format!("{} {}", host(), std::process::id())).map_err(|e| Error::io(&staged, e))?;
+            if let Err(e) = std::fs::write(&staged, format!("{} {}", host(), std::process::id())) {
+                let _ = std::fs::remove_file(&staged); // a full disk may have created it empty
+                return Err(Error::io(&path, e));
+            }
             let linked = std::fs::hard_link(&staged, &path);
             let _ = std::fs::remove_file(&staged);
             match linked {

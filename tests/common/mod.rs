@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests (each test crate uses some of them).
 #![allow(dead_code)]
 
+pub mod files;
+
 use fiberfold::fem::boundary::{X, Y};
 use fiberfold::fem::element::{shape_derivatives, shape_functions};
 use fiberfold::fem::{dof, Dirichlet, System};
@@ -76,6 +78,12 @@ impl Rng {
 
 /// A 2 x 1 map on small meshes (a few seconds a point): an isotropic soft and stiff layer.
 pub fn tiny_map(out: &std::path::Path, extra: &[&str]) -> Vec<String> {
+    tiny_map_of(2, out, extra)
+}
+
+/// [`tiny_map`] with `points` layers from mu_l = 1.5 to 10 (log-spaced).
+pub fn tiny_map_of(points: usize, out: &std::path::Path, extra: &[&str]) -> Vec<String> {
+    let points = points.to_string();
     let mut args: Vec<String> = [
         "map",
         "--set",
@@ -89,7 +97,7 @@ pub fn tiny_map(out: &std::path::Path, extra: &[&str]) -> Vec<String> {
         "--x-to",
         "10",
         "--x-points",
-        "2",
+        points.as_str(),
         "--x-log",
         "--y",
         "beta",
