@@ -6,7 +6,8 @@
 mod common;
 
 use common::scratch;
-use fiberfold::mesh::{ElementKind, MeshSpec};
+use fiberfold::fem::ElementKind;
+use fiberfold::mesh::MeshSpec;
 use fiberfold::protocol::{Protocol, StepControl, StepRecord};
 use fiberfold::stability::biot_compression;
 use fiberfold::studies::crease_threshold::{crease_threshold, CreaseThresholdStudy};
@@ -98,6 +99,7 @@ fn a_run_to_a_crease_writes_contact_secondary_and_pressure() {
         mesh: MeshSpec::new(20, 2, 8, 0.5, 10.0, 10.0),
         protocol,
         vtu_every: 0.1,
+        secondary_modes: simulate::MODES,
     };
     let params = Parameters {
         beta: FRAC_PI_4,

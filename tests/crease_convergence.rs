@@ -4,7 +4,7 @@
 //! uniformly from a uniform layer extrapolates to the same threshold as the graded default,
 //! within the uncertainty each reports.
 
-use fiberfold::mesh::ElementKind;
+use fiberfold::fem::ElementKind;
 use fiberfold::stability::{Method, StabilityAnalysis};
 use fiberfold::studies::crease::{crease, CreaseMesh, CreaseReport, CreaseStudy, Refinement, Scan};
 use fiberfold::Parameters;

@@ -8,10 +8,11 @@ mod common;
 use common::{boundary_values, distortion, error_norms, homogeneous_material, worst_nodal_error};
 use fiberfold::fem::boundary::{X, Y};
 use fiberfold::fem::linear_solver::multiply;
+use fiberfold::fem::ElementKind;
 use fiberfold::fem::{dof, equilibrium, model_conditions, Newton, NewtonError, NewtonPolicy, Reuse, System};
 use fiberfold::homogeneous::homogeneous_state;
 use fiberfold::material::Bilayer;
-use fiberfold::mesh::{ElementKind, Mesh, MeshSpec};
+use fiberfold::mesh::{Mesh, MeshSpec};
 use fiberfold::Parameters;
 
 /// Numbers in scientific notation, for messages.

@@ -129,7 +129,8 @@ fn unit_growth_changes_nothing() {
 /// compression (measured: 2e-6 displacement, 1.3e-6 mixed).
 #[test]
 fn fe_bifurcation_under_growth_meets_the_linear_theory_on_the_fine_mesh() {
-    use fiberfold::mesh::{ElementKind, MeshSpec};
+    use fiberfold::fem::ElementKind;
+    use fiberfold::mesh::MeshSpec;
     use fiberfold::protocol::{find_bifurcation, BifurcationSettings};
     use fiberfold::studies::bifurcation::admissible_minimum;
     let p = Parameters {

@@ -6,10 +6,11 @@
 mod common;
 
 use common::{boundary_values, distortion, fiberfold, mixed_bifurcation, scratch, worst_nodal_error};
+use fiberfold::fem::ElementKind;
 use fiberfold::fem::{equilibrium, model_conditions, Newton, NewtonPolicy, System};
 use fiberfold::homogeneous::constraint_pressure;
 use fiberfold::material::Bilayer;
-use fiberfold::mesh::{ElementKind, Mesh, MeshSpec};
+use fiberfold::mesh::{Mesh, MeshSpec};
 use fiberfold::stability::biot_compression;
 use fiberfold::studies::crease::{crease, CreaseMesh, CreaseStudy, Scan};
 use fiberfold::Parameters;

@@ -8,9 +8,10 @@ mod common;
 use common::{boundary_values, distortion, error_norms, mixed_bifurcation, ErrorNorms};
 use fiberfold::fem::added::{AddedEnergy, Block, Diagonal};
 use fiberfold::fem::element::{gauss_rule, shape_functions};
+use fiberfold::fem::ElementKind;
 use fiberfold::fem::{equilibrium, Newton, NewtonPolicy, System};
 use fiberfold::material::{Bilayer, Hyperelastic, NeoHookean, Tensor2};
-use fiberfold::mesh::{ElementKind, Mesh, MeshSpec};
+use fiberfold::mesh::{Mesh, MeshSpec};
 use fiberfold::Parameters;
 use std::f64::consts::PI;
 

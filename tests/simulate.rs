@@ -96,6 +96,7 @@ fn fixed_step_study(step: f64, d_max: f64) -> SimulateStudy {
         mesh: small_mesh(),
         protocol,
         vtu_every: 0.05,
+        secondary_modes: simulate::MODES,
     }
 }
 

@@ -180,7 +180,7 @@ fn the_minimisation_leaves_a_saddle_along_its_negative_curvature() {
 fn every_state_of_a_run_through_a_snap_is_an_undamped_equilibrium_with_the_reported_inertia() {
     use fiberfold::fem::added::NoAddedEnergy;
     use fiberfold::fem::model_conditions;
-    use fiberfold::mesh::ElementKind;
+    use fiberfold::fem::ElementKind;
     use fiberfold::protocol::{stages, Event};
     use fiberfold::studies::simulate::{Crossing, MeshChoice, SimulateOptions};
 

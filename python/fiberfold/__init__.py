@@ -128,15 +128,22 @@ class Simulation:
             ``contact_length``, ``penetration``, ``stabilisation_energy_fraction``, ``snap``,
             ``ellipticity_layer``, ``ellipticity_substrate``, ``growth_layer``), one float64
             array each, one entry per accepted state.
+        summary: the content of ``simulate.json`` (its ``files`` empty: nothing is written);
+            each of its keys is also an attribute:
         onset: the content of ``onset.json`` (the three estimates and the linear theory).
         contact: the content of ``contact.json``.
-        secondary: every change of the tangent's inertia (``d_before``, ``d_after``,
-            ``negative_before``, ``negative_after``).
+        secondary: the content of ``secondary.json``: ``d_secondary``, every change of the
+            tangent's inertia (``changes``: ``d_before``, ``d_after``, ``negative_before``,
+            ``negative_after``, and for the first few the ``eigenvalue`` and
+            ``mode_half_waves`` of their mode) and the ``branch`` the run ended on.
+        snaps, ellipticity, mesh, k, imperfection, d_max, d_reached, completed, accepted_steps,
+            cuts, totals, wall_seconds, parameters, load, g_reached: the other keys of
+            ``simulate.json``.
+        unknowns, element: the mesh's number of unknowns and its element (``"displacement"`` or
+            ``"mixed"``), from ``mesh``.
         state: the last converged state (:class:`State`: reference ``points``,
             ``deformed_points``, ``cells``, ``point_data``, ``cell_data``, ``write_vtu(path)``),
             ready for pyvista or meshio.
-        k, unknowns, element, d_max, d_reached, completed, accepted_steps, cuts: facts of the
-            run (``element``: ``"displacement"`` or ``"mixed"``).
         stopped: why the path ended before ``d_max`` (None if it did not).
     """
 
@@ -144,11 +151,11 @@ class Simulation:
         self.amplitude = columns
         self.state = state
         self.stopped = stopped
-        self.onset = summary.pop("onset")
-        self.contact = summary.pop("contact")
-        self.secondary = summary.pop("secondary")
+        self.summary = summary
         for key, value in summary.items():
             setattr(self, key, value)
+        self.unknowns = summary["mesh"]["unknowns"]
+        self.element = summary["mesh"]["element"]
 
     def to_meshio(self) -> Any:
         """The last state as a ``meshio.Mesh`` (needs meshio): cells of type ``quad9``."""
@@ -234,36 +241,29 @@ def bifurcation(
 
 def crease(
     params: Parameters,
-    folds: Sequence[float] = (0.5, 1.0, 2.0),
-    *,
-    d_from: float = 0.05,
-    d_to: float = 0.7,
-    d_step: float = 0.05,
-    tolerance: float = 1e-5,
-    size: float = 12.0,
-    nx: int = 24,
-    layer_elements: int = 3,
-    substrate_elements: int = 10,
-    ratio: float = 8.0,
-    layer_grading: float = 2.0,
-    convergence: bool = True,
-    mesh_tolerance: float = 1e-3,
-    max_meshes: int = 4,
-    element: str = "displacement",
+    folds: Optional[Sequence[float]] = None,
+    **options: Any,
 ) -> Dict[str, Any]:
     """The crease onset (``fiberfold crease``): where a seeded crease of reference length ``a``
     (each of ``folds``, units of H) first lowers the energy below the flat state's (Hong, Zhao
-    and Suo's criterion). Each threshold is computed on the base mesh with its element counts
-    times 1, 2, 3, ... (at most ``max_meshes``) until it changes by less than ``mesh_tolerance``
-    in d, and extrapolated with the observed order (``convergence=False``: the base mesh alone).
-    The content of ``crease.json``: ``d_crease`` (the smallest extrapolated threshold, None if
-    none within the scan), ``d_crease_error`` (its uncertainty), ``order``, ``converged``,
-    ``fold_length``, ``depth``, ``meshes``, and every fold's ``thresholds`` per mesh,
-    ``extrapolated`` and energies."""
-    return json.loads(
-        _fiberfold.crease_run(
-            _check_parameters(params), [float(a) for a in folds], d_from, d_to, d_step, tolerance, size, nx,
-            layer_elements, substrate_elements, ratio, layer_grading, convergence, mesh_tolerance, max_meshes,
-            element,
-        )
+    and Suo's criterion). The options are the CLI's flags by name (``d_from``, ``d_to``,
+    ``d_step``, ``tolerance``, ``size``, ``nx``, ``layer_elements``, ``substrate_elements``,
+    ``ratio``, ``layer_grading``, ``element``, ``convergence``, ``mesh_tolerance``,
+    ``max_meshes``); :func:`crease_defaults` gives each with its default. Each threshold is
+    computed on the base mesh with its element counts times 1, 2, 3, ... (at most
+    ``max_meshes``) until it changes by less than ``mesh_tolerance`` in d, and extrapolated with
+    the observed order (``convergence=False``: the base mesh alone). The content of
+    ``crease.json``: ``d_crease`` (the smallest extrapolated threshold, None if none within the
+    scan), ``d_crease_error`` (its uncertainty), ``order``, ``converged``, ``fold_length``,
+    ``depth``, ``meshes``, and every fold's ``thresholds`` per mesh, ``extrapolated`` and
+    energies. An unknown option raises ``ValueError``, a value of the wrong type ``TypeError``."""
+    if folds is not None:
+        options["folds"] = [float(a) for a in folds]
+    keywords = json.dumps(options, default=_plain)
+    return json.loads(_fiberfold.crease_run(_check_parameters(params), keywords))
+
+
+def crease_defaults() -> Dict[str, Any]:
+    """Every option of :func:`crease` with its default (those of ``fiberfold crease``)."""
+    return dict(json.loads(_fiberfold.crease_defaults()))
     )

@@ -79,21 +79,5 @@ def simulate_run(
 ) -> Tuple[Dict[str, npt.NDArray[np.float64]], str, State, Optional[str]]: ...
 def simulate_defaults() -> str: ...
 def bifurcation_run(params: Parameters, out: str, mesh: str = ..., element: str = ...) -> str: ...
-def crease_run(
-    params: Parameters,
-    folds: List[float],
-    d_from: float,
-    d_to: float,
-    d_step: float,
-    tolerance: float,
-    size: float,
-    nx: int,
-    layer_elements: int,
-    substrate_elements: int,
-    ratio: float,
-    layer_grading: float,
-    convergence: bool,
-    mesh_tolerance: float,
-    max_meshes: int,
-    element: str,
-) -> str: ...
+def crease_run(params: Parameters, options: str) -> str: ...
+def crease_defaults() -> str: ...

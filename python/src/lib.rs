@@ -3,9 +3,10 @@
 //! Long calls release the GIL, report to an optional progress callback and stop within a step
 //! on Ctrl-C (`KeyboardInterrupt`). The public, typed API is `fiberfold/__init__.py`.
 
+use fiberfold::fem::ElementKind;
 use fiberfold::homogeneous::HomogeneousRow;
 use fiberfold::material::Bilayer;
-use fiberfold::mesh::{ElementKind, MeshSpec};
+use fiberfold::mesh::MeshSpec;
 use fiberfold::output::vtu::{vtk_cell, write_vtu, DataArray};
 use fiberfold::parameters::validate_compression;
 use fiberfold::stability::discrete::DiscreteOptions;
@@ -13,8 +14,8 @@ use fiberfold::stability::{Method, K_MAX};
 use fiberfold::studies::homogeneous::{columns, CSV_HEADER};
 use fiberfold::studies::orientation::Modes;
 use fiberfold::studies::simulate::{
-    self, amplitude_header, amplitude_row, cell_arrays, displacement_array, EllipticityReport, Progress,
-    SimulateOptions, StateFields,
+    self, amplitude_header, amplitude_row, cell_arrays, displacement_array, Progress, SimulateOptions,
+    SimulationSummary, StateFields,
 };
 use fiberfold::studies::stability::{DispersionCurve, OnsetSummary, SweepStudy};
 use fiberfold::Error;
@@ -278,9 +279,9 @@ fn shaped<'py>(py: Python<'py>, array: &DataArray) -> Bound<'py, PyAny> {
 
 /// Runs `simulate` in memory with `options`, a JSON object of `fiberfold simulate`'s options
 /// (the library's names; the missing ones at its defaults, [`simulate_defaults`]). Returns
-/// `(columns, summary_json, state, stopped)`: the `amplitude.csv` columns as arrays, a JSON text
-/// with `onset`, `contact`, `secondary` and run facts, the last state, and why the path stopped
-/// early (None if it reached `d_max`).
+/// `(columns, summary_json, state, stopped)`: the `amplitude.csv` columns as arrays, the JSON
+/// text of `simulate.json` (with no files), the last state, and why the path stopped early (None
+/// if it reached `d_max`).
 #[pyfunction]
 #[pyo3(signature = (params, options, progress))]
 fn simulate_run<'py>(
@@ -327,6 +328,7 @@ fn simulate_run<'py>(
             })
         })
     };
+    let start = std::time::Instant::now();
     let solution = py.detach(|| simulate::solve(&p, &study, &monitor));
     if let Some(e) = raised.lock().expect("not poisoned").take() {
         return Err(e);
@@ -339,29 +341,11 @@ fn simulate_run<'py>(
         let column: Vec<f64> = rows.iter().map(|r| r[c]).collect();
         columns.set_item(*name, column.into_pyarray(py))?;
     }
-    let d_reached = solution.curve.records.last().map_or(0.0, |r| r.d);
-    let summary = serde_json::json!({
-        "k": study.protocol.k,
-        "unknowns": study.mesh.num_dofs(),
-        "element": study.mesh.element,
-        "d_max": study.protocol.d_max,
-        "d_reached": d_reached,
-        "completed": solution.curve.stopped.is_none(),
-        "accepted_steps": solution.curve.records.len(),
-        "cuts": solution.curve.cuts.len(),
-        "onset": solution.onset,
-        "contact": solution.contact,
-        "secondary": solution.inertia_changes,
-        "snaps": solution.curve.records.iter().filter_map(|r| r.snap.clone()).collect::<Vec<_>>(),
-        "ellipticity": EllipticityReport::new(solution.curve.records.iter().map(|r| (r.d, r.ellipticity))),
-    });
+    // The summary of `simulate.json`, without files.
+    let summary = SimulationSummary::new(&p, &study, &solution, Vec::new(), start.elapsed().as_secs_f64());
+    let summary = serde_json::to_string(&summary).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
     let stopped = solution.curve.stopped.as_ref().map(|e| e.to_string());
-    Ok((
-        columns,
-        summary.to_string(),
-        PyState { fields: solution.state },
-        stopped,
-    ))
+    Ok((columns, summary, PyState { fields: solution.state }, stopped))
 }
 
 /// Every option of `simulate` with its default, as a JSON object (the same as the CLI's).
@@ -387,56 +371,24 @@ fn bifurcation_run(py: Python<'_>, params: &PyParameters, out: PathBuf, mesh: &s
     serde_json::to_string(&report).map_err(|e| PyRuntimeError::new_err(e.to_string()))
 }
 
-/// The crease onset (`fiberfold crease`), in memory: `crease.json` as JSON text.
+/// The crease onset (`fiberfold crease`), in memory, with `options`, a JSON object of its
+/// options by the library's names (the missing ones at its defaults, [`crease_defaults`]):
+/// `crease.json` as JSON text.
 #[pyfunction]
-#[pyo3(signature = (params, folds, d_from, d_to, d_step, tolerance, size, nx, layer_elements, substrate_elements, ratio, layer_grading, convergence, mesh_tolerance, max_meshes, element))]
-#[allow(clippy::too_many_arguments)]
-fn crease_run(
-    py: Python<'_>,
-    params: &PyParameters,
-    folds: Vec<f64>,
-    d_from: f64,
-    d_to: f64,
-    d_step: f64,
-    tolerance: f64,
-    size: f64,
-    nx: usize,
-    layer_elements: usize,
-    substrate_elements: usize,
-    ratio: f64,
-    layer_grading: f64,
-    convergence: bool,
-    mesh_tolerance: f64,
-    max_meshes: usize,
-    element: &str,
-) -> PyResult<String> {
-    use fiberfold::studies::crease::{crease, CreaseMesh, CreaseStudy, Refinement, Scan};
-    let study = CreaseStudy {
-        mesh: CreaseMesh {
-            size,
-            nx,
-            layer: layer_elements,
-            substrate: substrate_elements,
-            ratio,
-            layer_grading,
-            element: ElementKind::from_name(element).map_err(to_py)?,
-        },
-        fold_lengths: folds,
-        scan: Scan {
-            from: d_from,
-            to: d_to,
-            step: d_step,
-            tolerance,
-        },
-        refinement: convergence.then_some(Refinement {
-            tolerance: mesh_tolerance,
-            max_meshes,
-        }),
-        lowest_only: false,
-    };
+fn crease_run(py: Python<'_>, params: &PyParameters, options: &str) -> PyResult<String> {
+    use fiberfold::studies::crease::{crease, CreaseOptions};
+    let study = CreaseOptions::from_keywords(options)
+        .and_then(|o| o.study())
+        .map_err(to_py)?;
     let p = params.inner.clone();
     let report = py.detach(|| crease(&p, &study, &|| {})).map_err(to_py)?;
     serde_json::to_string(&report).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+}
+
+/// Every option of `crease` with its default, as a JSON object (the same as the CLI's).
+#[pyfunction]
+fn crease_defaults() -> String {
+    fiberfold::studies::crease::CreaseOptions::default_keywords()
 }
 
 /// The native module.
@@ -453,5 +405,6 @@ fn _fiberfold(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate_defaults, m)?)?;
     m.add_function(wrap_pyfunction!(bifurcation_run, m)?)?;
     m.add_function(wrap_pyfunction!(crease_run, m)?)?;
+    m.add_function(wrap_pyfunction!(crease_defaults, m)?)?;
     Ok(())
 }

@@ -1,6 +1,7 @@
 """Tests of the Python package against independent values, the CLI, and its error contract."""
 
 import csv
+import json
 import os
 import signal
 import subprocess
@@ -122,6 +123,25 @@ def test_simulate_gives_the_cli_curve(tmp_path):
         ours = result.amplitude[column]
         assert ours.shape == cli.shape
         assert np.allclose(ours, cli, rtol=1e-12, atol=1e-15), column
+    # The summary is simulate.json's, but for wall times and the files written.
+    with open(out / "simulate.json") as f:
+        written = json.load(f)
+    assert set(result.summary) == set(written)
+    assert result.summary["files"] == [] and written["files"]
+    assert without_times_and_files(result.summary) == without_times_and_files(written)
+
+
+def without_times_and_files(value):
+    """`value` without wall times, timings and file names (which differ between two runs)."""
+    if isinstance(value, dict):
+        return {
+            k: without_times_and_files(v)
+            for k, v in value.items()
+            if "seconds" not in k and k not in ("files", "mode_file", "totals")
+        }
+    if isinstance(value, list):
+        return [without_times_and_files(v) for v in value]
+    return value
 
 
 def test_simulate_arrays_have_the_documented_shapes():
@@ -268,6 +288,20 @@ def test_crease_onset_of_a_soft_layer():
     assert 0.2 < r["d_crease"] < 0.3 and r["fold_length"] == 1.0
     with pytest.raises(ValueError, match="fold"):
         fiberfold.crease(p, [0.0])
+    with pytest.raises(ValueError, match="a keyword of crease"):
+        fiberfold.crease(p, [1.0], fold=2)
+    with pytest.raises(TypeError, match="`nx`"):
+        fiberfold.crease(p, [1.0], nx="many")
+
+
+def test_crease_takes_the_cli_options_with_the_cli_defaults():
+    defaults = fiberfold.crease_defaults()
+    help_text = subprocess.run([str(cli_binary()), "crease", "--help"], capture_output=True, text=True).stdout
+    flags = {"folds": "--fold", "convergence": "--no-convergence"}
+    for name in defaults:
+        assert flags.get(name, "--" + name.replace("_", "-")) in help_text, name
+    assert defaults["folds"] == [0.5, 1.0, 2.0] and defaults["convergence"] is True
+    assert defaults["element"] == "displacement" and defaults["nx"] == 24
 
 
 def test_laws_by_dotted_keys_or_tables_round_trip_and_give_their_onset():

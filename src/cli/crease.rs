@@ -3,7 +3,7 @@
 use super::common::{report_files, ParamArgs};
 use super::simulate::ElementChoice;
 use clap::Args;
-use fiberfold::studies::crease::{self, CreaseMesh, CreaseReport, CreaseStudy, Refinement, Scan};
+use fiberfold::studies::crease::{self, CreaseOptions, CreaseReport, CreaseStudy};
 use fiberfold::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
@@ -15,63 +15,63 @@ pub struct CreaseArgs {
 
     /// Reference fold lengths a (units of H), comma separated: the onset is the smallest
     /// threshold over them, reported with its a.
-    #[arg(long, value_delimiter = ',', default_values_t = defaults().fold_lengths, allow_negative_numbers = true)]
+    #[arg(long, value_delimiter = ',', default_values_t = defaults().folds, allow_negative_numbers = true)]
     pub fold: Vec<f64>,
 
     /// First compression d scanned.
-    #[arg(long, default_value_t = defaults().scan.from, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().d_from, allow_negative_numbers = true)]
     pub d_from: f64,
 
     /// Last compression d scanned (below 1).
-    #[arg(long, default_value_t = defaults().scan.to, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().d_to, allow_negative_numbers = true)]
     pub d_to: f64,
 
     /// Step of the scan in d.
-    #[arg(long, default_value_t = defaults().scan.step, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().d_step, allow_negative_numbers = true)]
     pub d_step: f64,
 
     /// Width in d to which each threshold is located on each mesh.
-    #[arg(long, default_value_t = defaults().scan.tolerance, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().tolerance, allow_negative_numbers = true)]
     pub tolerance: f64,
 
     /// Side of the square block around the crease (units of H, at least 4).
-    #[arg(long, default_value_t = defaults().mesh.size, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().size, allow_negative_numbers = true)]
     pub size: f64,
 
     /// Elements along X in the base mesh (refined --ratio times near the crease).
-    #[arg(long, default_value_t = defaults().mesh.nx)]
+    #[arg(long, default_value_t = defaults().nx)]
     pub nx: usize,
 
     /// Elements through the layer in the base mesh.
-    #[arg(long, default_value_t = defaults().mesh.layer)]
+    #[arg(long, default_value_t = defaults().layer_elements)]
     pub layer_elements: usize,
 
     /// Graded elements through the substrate in the base mesh.
-    #[arg(long, default_value_t = defaults().mesh.substrate)]
+    #[arg(long, default_value_t = defaults().substrate_elements)]
     pub substrate_elements: usize,
 
     /// Refinement near the crease: elements there this many times smaller.
-    #[arg(long, default_value_t = defaults().mesh.ratio, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().ratio, allow_negative_numbers = true)]
     pub ratio: f64,
 
     /// Ratio of consecutive layer elements from the surface down (1: uniform; up to 4): the
     /// elements are smallest at the crease tip.
-    #[arg(long, default_value_t = defaults().mesh.layer_grading, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().layer_grading, allow_negative_numbers = true)]
     pub layer_grading: f64,
 
     /// Finite element (mixed: the more accurate, and the only one for incompressible = true;
     /// displacement, the default, locks above K/mu ~ 100).
-    #[arg(long, value_enum, default_value_t = ElementChoice::Displacement)]
+    #[arg(long, value_enum, default_value_t = defaults().element.into())]
     pub element: ElementChoice,
 
     /// Converge each threshold in the mesh: the base mesh (--nx, --layer-elements,
     /// --substrate-elements) with its element counts times 1, 2, 3, ... until the threshold
     /// changes by less than this (in d), then extrapolated with the observed order.
-    #[arg(long, default_value_t = refinement().tolerance, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = defaults().mesh_tolerance, allow_negative_numbers = true)]
     pub mesh_tolerance: f64,
 
     /// Meshes of the sequence at most (3 to 6).
-    #[arg(long, default_value_t = refinement().max_meshes)]
+    #[arg(long, default_value_t = defaults().max_meshes)]
     pub max_meshes: usize,
 
     /// The base mesh alone: no refinement, no uncertainty.
@@ -85,30 +85,24 @@ pub struct CreaseArgs {
 
 pub fn run(args: &CreaseArgs) -> Result<()> {
     let params = args.params.resolve()?;
-    let study = CreaseStudy {
-        mesh: CreaseMesh {
-            size: args.size,
-            nx: args.nx,
-            layer: args.layer_elements,
-            substrate: args.substrate_elements,
-            ratio: args.ratio,
-            layer_grading: args.layer_grading,
-            element: args.element.into(),
-        },
-        fold_lengths: args.fold.clone(),
-        scan: Scan {
-            from: args.d_from,
-            to: args.d_to,
-            step: args.d_step,
-            tolerance: args.tolerance,
-        },
-        refinement: (!args.no_convergence).then_some(Refinement {
-            tolerance: args.mesh_tolerance,
-            max_meshes: args.max_meshes,
-        }),
-        lowest_only: false,
-    };
-    study.validate()?;
+    let study = CreaseOptions {
+        folds: args.fold.clone(),
+        d_from: args.d_from,
+        d_to: args.d_to,
+        d_step: args.d_step,
+        tolerance: args.tolerance,
+        size: args.size,
+        nx: args.nx,
+        layer_elements: args.layer_elements,
+        substrate_elements: args.substrate_elements,
+        ratio: args.ratio,
+        layer_grading: args.layer_grading,
+        element: args.element.into(),
+        convergence: !args.no_convergence,
+        mesh_tolerance: args.mesh_tolerance,
+        max_meshes: args.max_meshes,
+    }
+    .study()?;
     println!(
         "crease onset (energy of a seeded crease against the flat state) for folds a = {:?} H, d in [{}, {}]",
         study.fold_lengths, study.scan.from, study.scan.to
@@ -140,12 +134,8 @@ pub fn run(args: &CreaseArgs) -> Result<()> {
     Ok(())
 }
 
-fn defaults() -> CreaseStudy {
-    CreaseStudy::default()
-}
-
-fn refinement() -> Refinement {
-    defaults().refinement.expect("the default study converges in the mesh")
+fn defaults() -> CreaseOptions {
+    CreaseOptions::default()
 }
 
 /// Each fold's threshold on each mesh and extrapolated, then the onset.

@@ -3,7 +3,8 @@
 use super::common::{report_files, ParamArgs};
 use clap::{Args, ValueEnum};
 use fiberfold::fem::memory::{available_bytes, MemoryEstimate};
-use fiberfold::mesh::{ElementKind, MeshPreset, MeshSpec};
+use fiberfold::fem::ElementKind;
+use fiberfold::mesh::{MeshPreset, MeshSpec};
 use fiberfold::protocol::mode_number;
 use fiberfold::protocol::secondary::BranchKind;
 use fiberfold::studies::simulate::{self, Crossing, MeshChoice, Progress, SimulateOptions, SimulateStudy};

@@ -18,8 +18,9 @@ use super::element::{self, ElementGeometry, ElementMatrix, ElementState, Element
 use super::load_path::LoadPath;
 use super::mixed::{MixedElement, Volumetric, PRESSURES};
 use crate::error::{Error, Result};
+use crate::fem::ElementKind;
 use crate::material::{Bilayer, Tissue};
-use crate::mesh::{ElementKind, Mesh, Region};
+use crate::mesh::{Mesh, Region};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use rayon::prelude::*;
 use std::sync::Arc;

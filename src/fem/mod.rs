@@ -10,6 +10,7 @@ pub mod assembly;
 pub mod boundary;
 pub mod contact;
 pub mod element;
+pub mod element_kind;
 pub mod ellipticity;
 pub mod equilibrium;
 pub mod fields;
@@ -23,6 +24,7 @@ pub mod newton;
 
 pub use assembly::{Assembled, System, Tangent};
 pub use boundary::{dof, model_conditions, Dirichlet};
+pub use element_kind::{ElementKind, LOCKING_RATIO};
 pub use linear_solver::{Factorisation, SparseLdlt};
 pub use load_path::LoadPath;
 pub use newton::{Newton, NewtonError, NewtonPolicy, NewtonReport, Precision, Reuse, Stall, Timings, Updates};

@@ -5,7 +5,8 @@
 
 use super::simulate::{curve, Monitor, PhaseTotals};
 use crate::error::{Error, Result};
-use crate::mesh::{ElementKind, MeshSpec};
+use crate::fem::ElementKind;
+use crate::mesh::MeshSpec;
 use crate::parameters::Parameters;
 use crate::protocol::{wavenumber_of_waves, Protocol};
 use serde::Serialize;

@@ -7,6 +7,7 @@ pub mod bifurcation;
 pub mod crease;
 pub mod crease_threshold;
 pub mod homogeneous;
+pub mod keywords;
 pub mod map;
 pub mod orientation;
 pub mod reproduce;

@@ -14,17 +14,20 @@
 //! ([`convergence`]): `d_crease` comes with an uncertainty `d_crease_error`.
 
 pub mod convergence;
+mod options;
 pub mod threshold;
 mod write;
 
+pub use options::CreaseOptions;
 pub use threshold::{fold_threshold, FoldThreshold};
 pub use write::run;
 
 use super::Tick;
 use crate::error::{Error, Result};
 use crate::fem::ellipticity::EllipticityReport;
+use crate::fem::ElementKind;
 use crate::material::Bilayer;
-use crate::mesh::{ElementKind, MeshSpec, XRefinement};
+use crate::mesh::{MeshSpec, XRefinement};
 use crate::parameters::{Load, Parameters};
 use convergence::{extrapolate, Extrapolated};
 use serde::{Deserialize, Serialize};

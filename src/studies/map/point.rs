@@ -349,6 +349,7 @@ fn nonlinear(
         ..SimulateOptions::default()
     };
     let mut study = options.study()?;
+    study.secondary_modes = 0; // the branch decides; the modes are not drawn
     if let Some(damper) = &mut study.protocol.stabilisation {
         damper.budget = settings.snap_budget;
     }
@@ -370,7 +371,7 @@ fn nonlinear(
     if let Some(why) = &solution.curve.stopped {
         point.notes.push(format!("nonlinear run stopped early: {why}"));
     }
-    let depths = solution.branch.trough_depths;
+    let depths = solution.secondary.branch.trough_depths;
     let d = solution.contact.d_reached;
     let doubled = doubling(&solution.surface, study.protocol.k, d);
     let unstable = solution

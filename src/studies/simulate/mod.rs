@@ -20,8 +20,8 @@ pub use fig3::fig3;
 pub use fig4a::{fig4a, Fig4aOptions, Fig4aRow};
 pub use fig7::{fig7, CreaseSnapshots, Fig7Facts, Fig7State, FIG7_D};
 pub use options::{Crossing, MeshChoice, SimulateOptions};
-pub use secondary::{SecondaryReport, SecondaryTracker};
-pub use solve::{solve, solve_to_secondary, Solution, StateFields, ToSecondary};
+pub use secondary::{write_secondary, ModeState, SecondaryReport, SecondaryTracker, MODES};
+pub use solve::{solve, solve_observed, solve_to_secondary, Solution, Solved, StateFields, ToSecondary};
 pub use state_vtu::{cell_arrays, displacement_array, write_state};
 
 use crate::error::{Error, Result};
@@ -33,9 +33,7 @@ use crate::output::vtu::Collection;
 use crate::output::{write_json, CsvWriter};
 use crate::parameters::{Load, Parameters};
 use crate::protocol::onset::A2_FIT_WINDOW;
-use crate::protocol::{
-    mode_number, stages, surface_profile, Cut, Event, OnsetEstimates, Protocol, SnapRecord, StepRecord,
-};
+use crate::protocol::{mode_number, stages, Cut, Event, OnsetEstimates, Protocol, SnapRecord, StepRecord};
 use crate::stability::{Method, StabilityAnalysis};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -111,15 +109,19 @@ pub struct SimulateStudy {
     pub protocol: Protocol,
     /// Spacing in `d` of the VTU snapshots (the first and the last state are always written).
     pub vtu_every: f64,
+    /// How many secondary modes are computed (those of the first changes of the inertia).
+    pub secondary_modes: usize,
 }
 
 impl SimulateStudy {
-    /// `protocol` on `mesh`, a VTU snapshot every 0.01 in `d`.
+    /// `protocol` on `mesh`, a VTU snapshot every 0.01 in `d`, the modes of the first
+    /// [`MODES`] changes of the inertia.
     pub fn new(mesh: MeshSpec, protocol: Protocol) -> Self {
         SimulateStudy {
             mesh,
             protocol,
             vtu_every: 0.01,
+            secondary_modes: MODES,
         }
     }
 
@@ -326,116 +328,78 @@ impl From<&MeshSpec> for MeshSummary {
     }
 }
 
-/// Runs the study and writes its files (module docs); a stop in stage 3 is returned as an error
-/// after everything computed so far has been written.
+impl SimulationSummary {
+    /// The summary of `solution` (its files `files`, `wall_seconds` from the start).
+    pub fn new(
+        params: &Parameters,
+        study: &SimulateStudy,
+        solution: &Solution,
+        files: Vec<String>,
+        wall_seconds: f64,
+    ) -> Self {
+        let curve = &solution.curve;
+        SimulationSummary {
+            command: "simulate",
+            parameters: params.clone(),
+            load: params.load,
+            g_reached: params
+                .load
+                .is_growth()
+                .then(|| params.load.parameter(solution.d_reached)),
+            mesh: MeshSummary::from(&study.mesh),
+            k: study.protocol.k,
+            imperfection: study.protocol.imperfection,
+            d_max: study.protocol.d_max,
+            d_reached: solution.d_reached,
+            completed: curve.stopped.is_none(),
+            stopped: curve.stopped.as_ref().map(|e| e.to_string()),
+            accepted_steps: curve.records.len(),
+            cuts: curve.cuts.len(),
+            totals: PhaseTotals::of(&curve.records),
+            wall_seconds,
+            onset: solution.onset.clone(),
+            contact: solution.contact.clone(),
+            secondary: solution.secondary.clone(),
+            snaps: solution.snaps.clone(),
+            ellipticity: solution.ellipticity,
+            files,
+        }
+    }
+}
+
+/// Runs the study ([`solve_observed`]) and writes its files (module docs): `amplitude.csv`, the
+/// VTU snapshots and the snaps' states as the path goes, the rest once it ends. A stop in stage
+/// 3 is returned as an error after everything computed so far has been written.
 pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Monitor) -> Result<SimulationSummary> {
     params.validate()?;
     study.validate()?;
     study.mesh.element.check_for(params.incompressible)?;
     let _lock = crate::output::lock::OutputLock::acquire(out)?;
     let start = Instant::now();
-    let materials = Bilayer::new(params);
-    let mut table = CsvWriter::create(&out.join("amplitude.csv"), &amplitude_header())?;
-    let mut snapshots = Snapshots::new(out, study.vtu_every);
-    let mut recorder = Recorder::new(monitor);
-    let mut secondary = SecondaryTracker::default();
-    let mut crease = study
-        .protocol
-        .contact
-        .then(|| CreaseSnapshots::new(study.protocol.d_max));
-    let (mut last_state, mut snap_files) = (Vec::new(), Vec::new());
-    let mut outcome = stages::run(&materials, study.mesh, &study.protocol, &mut |event| {
-        if let Event::Step { record, system, u } = &event {
-            table.append(&amplitude_row(record))?;
-            snapshots.maybe_write(record, system, &materials, u)?;
-            if record.snap.is_some() {
-                for (when, state) in [("before", &last_state[..]), ("after", u)] {
-                    let path = out.join(format!("snap_{}_{when}.vtu", snap_files.len() / 2));
-                    write_state(&path, system, &materials, state, Vec::new())?;
-                    snap_files.push(path);
-                }
-            }
-            last_state.clear();
-            last_state.extend_from_slice(u);
-            secondary.note(record, u);
-            if let Some(crease) = &mut crease {
-                crease.note(record, u);
-            }
-        }
-        recorder.note(&event)
-    })?;
-    outcome.continuation.release_factorisation();
-    let d_reached = outcome.continuation.d();
-    let (mut system, u) = outcome.continuation.into_state();
-    let u = &u[..];
-    snapshots.write_final(recorder.records.last(), d_reached, &system, &materials, u)?;
-    let mut surface = CsvWriter::create(&out.join("surface.csv"), &["x", "y"])?;
-    for (x, y) in surface_profile(system.mesh(), u) {
-        surface.append(&[x, y])?;
-    }
-    let curve = recorder.into_curve(outcome.stopped);
-    let onset = OnsetReport::new(params, study.protocol.k, study.mesh.length, &curve)?;
-    write_json(&out.join("onset.json"), &onset)?;
-    let contact = ContactReport::new(&curve.records);
-    write_json(&out.join("contact.json"), &contact)?;
-    let snaps: Vec<SnapRecord> = curve.records.iter().filter_map(|r| r.snap.clone()).collect();
-    write_json(&out.join("snaps.json"), &snaps)?;
-    let p = &study.protocol;
-    let (secondary, secondary_files) = secondary.finish(
-        &curve.records,
+    let mut path = PathFiles::create(out, study)?;
+    let solved = solve_observed(params, study, monitor, &mut |event, materials| {
+        path.note(event, materials)
+    });
+    let Solved {
+        mut solution,
+        materials,
+        mut system,
+        u,
+        modes,
+    } = solved?;
+    let mut files = path.finish(&solution, &system, &materials, &u, params)?;
+    files.extend(write_secondary(
+        &mut solution.secondary,
+        &modes,
         &mut system,
         &materials,
-        p.k,
-        (p.imperfection2, p.imperfection2_waves),
-        u,
         out,
-    )?;
-    let mut files: Vec<PathBuf> = [
-        "amplitude.csv",
-        "surface.csv",
-        "onset.json",
-        "contact.json",
-        "snaps.json",
-        "simulate.pvd",
-    ]
-    .iter()
-    .map(|f| out.join(f))
-    .collect();
-    files.extend(snap_files);
-    files.extend(crate::output::plot::save_panels(
-        &fig3(&curve, &onset, params.load),
-        out,
-        "fig3",
     )?);
-    files.extend(secondary_files);
-    if let Some(crease) = crease {
-        files.extend(crease.draw(&system, &materials, params.beta, out)?.1);
-    }
-    let summary = SimulationSummary {
-        command: "simulate",
-        parameters: params.clone(),
-        load: params.load,
-        g_reached: params.load.is_growth().then(|| params.load.parameter(d_reached)),
-        mesh: MeshSummary::from(&study.mesh),
-        k: study.protocol.k,
-        imperfection: study.protocol.imperfection,
-        d_max: study.protocol.d_max,
-        d_reached,
-        completed: curve.stopped.is_none(),
-        stopped: curve.stopped.as_ref().map(|e| e.to_string()),
-        accepted_steps: curve.records.len(),
-        cuts: curve.cuts.len(),
-        totals: PhaseTotals::of(&curve.records),
-        wall_seconds: start.elapsed().as_secs_f64(),
-        onset,
-        contact,
-        secondary,
-        snaps,
-        ellipticity: EllipticityReport::new(curve.records.iter().map(|r| (r.d, r.ellipticity))),
-        files: files.iter().map(|f| f.display().to_string()).collect(),
-    };
+    let files = files.iter().map(|f| f.display().to_string()).collect();
+    let summary = SimulationSummary::new(params, study, &solution, files, start.elapsed().as_secs_f64());
     write_json(&out.join("simulate.json"), &summary)?;
-    match curve.stopped {
+    let d_reached = solution.d_reached;
+    match solution.curve.stopped {
         Some(Error::Interrupted(_)) => Err(Error::Interrupted(format!(
             "at d = {d_reached:.6}; the path so far is in {}",
             out.display()
@@ -445,6 +409,99 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
             out.display()
         ))),
         None => Ok(summary),
+    }
+}
+
+/// The files of a run written as its path goes (`amplitude.csv`, the VTU snapshots, the states
+/// around each snap, the states of Fig. 7), and at its end.
+struct PathFiles {
+    dir: PathBuf,
+    table: CsvWriter,
+    snapshots: Snapshots,
+    snap_files: Vec<PathBuf>,
+    last_state: Vec<f64>,
+    crease: Option<CreaseSnapshots>,
+}
+
+impl PathFiles {
+    fn create(out: &Path, study: &SimulateStudy) -> Result<Self> {
+        Ok(PathFiles {
+            dir: out.to_path_buf(),
+            table: CsvWriter::create(&out.join("amplitude.csv"), &amplitude_header())?,
+            snapshots: Snapshots::new(out, study.vtu_every),
+            snap_files: Vec::new(),
+            last_state: Vec::new(),
+            crease: study
+                .protocol
+                .contact
+                .then(|| CreaseSnapshots::new(study.protocol.d_max)),
+        })
+    }
+
+    /// Writes what one event of the path adds.
+    fn note(&mut self, event: &Event<'_>, materials: &Bilayer) -> Result<()> {
+        let Event::Step { record, system, u } = event else {
+            return Ok(());
+        };
+        self.table.append(&amplitude_row(record))?;
+        self.snapshots.maybe_write(record, system, materials, u)?;
+        if record.snap.is_some() {
+            for (when, state) in [("before", &self.last_state[..]), ("after", u)] {
+                let path = self.dir.join(format!("snap_{}_{when}.vtu", self.snap_files.len() / 2));
+                write_state(&path, system, materials, state, Vec::new())?;
+                self.snap_files.push(path);
+            }
+        }
+        self.last_state.clear();
+        self.last_state.extend_from_slice(u);
+        if let Some(crease) = &mut self.crease {
+            crease.note(record, u);
+        }
+        Ok(())
+    }
+
+    /// Writes the files of the finished path: the last snapshot, `surface.csv`, `onset.json`,
+    /// `contact.json`, `snaps.json`, Fig. 3 and Fig. 7; every file of the run so far.
+    fn finish(
+        mut self,
+        solution: &Solution,
+        system: &System,
+        materials: &Bilayer,
+        u: &[f64],
+        params: &Parameters,
+    ) -> Result<Vec<PathBuf>> {
+        let out = &self.dir;
+        let curve = &solution.curve;
+        self.snapshots
+            .write_final(curve.records.last(), solution.d_reached, system, materials, u)?;
+        let mut surface = CsvWriter::create(&out.join("surface.csv"), &["x", "y"])?;
+        for &(x, y) in &solution.surface {
+            surface.append(&[x, y])?;
+        }
+        write_json(&out.join("onset.json"), &solution.onset)?;
+        write_json(&out.join("contact.json"), &solution.contact)?;
+        write_json(&out.join("snaps.json"), &solution.snaps)?;
+        let mut files: Vec<PathBuf> = [
+            "amplitude.csv",
+            "surface.csv",
+            "onset.json",
+            "contact.json",
+            "snaps.json",
+            "simulate.pvd",
+        ]
+        .iter()
+        .map(|f| out.join(f))
+        .collect();
+        files.append(&mut self.snap_files);
+        files.extend(crate::output::plot::save_panels(
+            &fig3(curve, &solution.onset, params.load),
+            out,
+            "fig3",
+        )?);
+        if let Some(crease) = self.crease {
+            files.extend(crease.draw(system, materials, params.beta, out)?.1);
+        }
+        Ok(files)
     }
 }
 

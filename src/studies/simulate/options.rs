@@ -3,11 +3,13 @@
 //! [`SimulateOptions::default`], and the Python package's keywords arrive as a JSON object read
 //! by [`SimulateOptions::from_keywords`] (same names, missing ones at these defaults).
 
-use super::SimulateStudy;
+use super::{SimulateStudy, MODES};
 use crate::error::{Error, Result};
 use crate::fem::memory::{available_bytes, MemoryEstimate};
-use crate::mesh::{ElementKind, MeshPreset, MeshSpec, XRefinement};
+use crate::fem::ElementKind;
+use crate::mesh::{MeshPreset, MeshSpec, XRefinement};
 use crate::protocol::{mode_number, wavenumber_of_waves, Protocol, SnapSettings, StabilisationSettings, StepControl};
+use crate::studies::keywords::{default_keywords, from_keywords};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -151,61 +153,17 @@ impl Default for SimulateOptions {
     }
 }
 
-/// What a keyword with this default takes, in words.
-fn kind_of(default: &serde_json::Value) -> &'static str {
-    match default {
-        serde_json::Value::Bool(_) => "true or false",
-        serde_json::Value::Number(n) if n.is_u64() => "a whole number",
-        serde_json::Value::Number(_) => "a number",
-        serde_json::Value::String(_) => "one of its names",
-        _ => "a number or None",
-    }
-}
-
 impl SimulateOptions {
     /// The options named in `keywords`, a JSON object of option names (the mesh's among them,
     /// `stabilisation` for the crossing) and values; the others at their defaults. An unknown
     /// name, or a value of the wrong type, is an error naming it.
     pub fn from_keywords(keywords: &str) -> Result<Self> {
-        let given: serde_json::Map<String, serde_json::Value> = serde_json::from_str(keywords)
-            .map_err(|e| Error::invalid("options", keywords, &format!("a JSON object of keywords ({e})")))?;
-        let serde_json::Value::Object(defaults) = serde_json::to_value(Self::default()).expect("serialisable") else {
-            unreachable!("options serialise to an object")
-        };
-        let mut merged = defaults.clone();
-        for (name, value) in given {
-            if !defaults.contains_key(&name) {
-                let known: Vec<&str> = defaults.keys().map(String::as_str).collect();
-                return Err(Error::invalid(
-                    "keyword",
-                    &name,
-                    &format!("a keyword of simulate: {}", known.join(", ")),
-                ));
-            }
-            // Each value alone over the defaults, so that a wrong type names its keyword.
-            let mut alone = defaults.clone();
-            alone.insert(name.clone(), value.clone());
-            if let Err(e) = serde_json::from_value::<Self>(serde_json::Value::Object(alone)) {
-                if let (Some(text), serde_json::Value::String(_)) = (value.as_str(), &defaults[&name]) {
-                    // A name that is not one of the option's: serde lists the names it takes.
-                    let message = e.to_string();
-                    let names = message.split_once("expected ").map_or(message.as_str(), |(_, n)| n);
-                    return Err(Error::invalid(&name, text, names));
-                }
-                return Err(Error::WrongType {
-                    expected: kind_of(&defaults[&name]).into(),
-                    name,
-                    value: value.to_string(),
-                });
-            }
-            merged.insert(name, value);
-        }
-        Ok(serde_json::from_value(serde_json::Value::Object(merged)).expect("every value checked"))
+        from_keywords("simulate", keywords)
     }
 
     /// The defaults as keywords (a JSON object).
     pub fn default_keywords() -> String {
-        serde_json::to_string(&Self::default()).expect("serialisable")
+        default_keywords::<Self>()
     }
 
     /// The validated study; a bad option is an [`Error::InvalidParameter`] naming it.
@@ -263,6 +221,7 @@ impl SimulateOptions {
             mesh,
             protocol,
             vtu_every: self.vtu_every,
+            secondary_modes: MODES,
         };
         study.validate()?;
         if !self.force {

@@ -11,32 +11,48 @@ use crate::mesh::Mesh;
 use crate::output::vtu::DataArray;
 use crate::output::{write_json, Figure, LineStyle, Series};
 use crate::protocol::bifurcation::{dominant_cosine, top_uy};
-use crate::protocol::secondary::{branch, inertia_changes, modes_nearest_zero, Branch, InertiaChange};
+use crate::protocol::secondary::{inertia_changes, modes_nearest_zero, Branch, InertiaChange};
 use crate::protocol::StepRecord;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
-/// How many modes are computed and written (the first changes).
-const MODES: usize = 3;
+/// How many modes `simulate` computes and writes by default (the first changes).
+pub const MODES: usize = 3;
 /// Largest number of solves (Lanczos steps on `K^-1`) per mode.
 const MODE_SOLVES: usize = 60;
 
-/// Keeps the states just after the first `MODES` changes of the inertia.
-#[derive(Default)]
+/// Keeps the states just after the first few changes of the inertia.
 pub struct SecondaryTracker {
+    modes: usize,
     last: Option<usize>,
     states: Vec<(f64, Vec<f64>)>,
 }
 
 impl SecondaryTracker {
+    /// Keeps the states of the first `modes` changes.
+    pub fn new(modes: usize) -> Self {
+        SecondaryTracker {
+            modes,
+            last: None,
+            states: Vec::new(),
+        }
+    }
+
     /// Looks at one accepted state.
     pub fn note(&mut self, record: &StepRecord, u: &[f64]) {
         let Some(negative) = record.negative_pivots else { return };
-        if self.last.is_some_and(|last| last != negative) && self.states.len() < MODES {
+        if self.last.is_some_and(|last| last != negative) && self.states.len() < self.modes {
             self.states.push((record.d, u.to_vec()));
         }
         self.last = Some(negative);
     }
+}
+
+/// The state just after a change and the mode nearest zero there.
+pub struct ModeState {
+    pub d: f64,
+    pub u: Vec<f64>,
+    pub mode: Vec<f64>,
 }
 
 /// One change with its mode.
@@ -73,19 +89,15 @@ const SECONDARY_NOTE: &str = "The inertia is the number of negative pivots of th
     by more than that, 'modulated' otherwise (several deep troughs between shallow ones).";
 
 impl SecondaryTracker {
-    /// Computes the modes, writes their files and `secondary.json` into `out`.
-    #[allow(clippy::too_many_arguments)]
+    /// The report of the path `records` ending on `branch`, with the modes of the first changes
+    /// (their eigenvalues and half waves in the report, their vectors returned).
     pub fn finish(
         self,
         records: &[StepRecord],
         system: &mut System,
-        materials: &Bilayer,
-        k: f64,
+        branch: Branch,
         (imperfection2, imperfection2_waves): (f64, f64),
-        u_final: &[f64],
-        out: &Path,
-    ) -> Result<(SecondaryReport, Vec<PathBuf>)> {
-        let mut files = Vec::new();
+    ) -> Result<(SecondaryReport, Vec<ModeState>)> {
         let mut changes: Vec<SecondaryChange> = inertia_changes(records)
             .into_iter()
             .map(|change| SecondaryChange {
@@ -96,24 +108,14 @@ impl SecondaryTracker {
             })
             .collect();
         // The path's system: its pattern (and so its memory) serves the modes too.
-        let mesh = &system.mesh().clone();
         let states: Vec<(f64, &[f64])> = self.states.iter().map(|(d, u)| (*d, &u[..])).collect();
-        let modes = modes_nearest_zero(system, &states, MODE_SOLVES)?;
-        for (i, (((d, u), change), (mode, eigenvalue))) in
-            self.states.iter().zip(changes.iter_mut()).zip(modes).enumerate()
-        {
-            let path = out.join(format!("secondary_mode_{i}.vtu"));
-            let nodal = &mode[..mesh.num_dofs()];
-            let array = DataArray::plane_vectors("mode", nodal.chunks(2).map(|c| [c[0], c[1]]));
-            write_state(&path, system, materials, u, vec![array])?;
-            let uy = top_uy(mesh, &mode);
-            if i == 0 {
-                files.extend(mode_figure(mesh, &uy, *d).save(out, "secondary_mode")?);
-            }
+        let found = modes_nearest_zero(system, &states, MODE_SOLVES)?;
+        let mesh = system.mesh();
+        let mut modes = Vec::with_capacity(found.len());
+        for (((d, u), change), (mode, eigenvalue)) in self.states.into_iter().zip(changes.iter_mut()).zip(found) {
             change.eigenvalue = Some(eigenvalue);
-            change.mode_half_waves = Some(dominant_cosine(&uy, mesh.spec().length, mesh));
-            change.mode_file = Some(path.display().to_string());
-            files.push(path);
+            change.mode_half_waves = Some(dominant_cosine(&top_uy(mesh, &mode), mesh.spec().length, mesh));
+            modes.push(ModeState { d, u, mode });
         }
         let report = SecondaryReport {
             d_secondary: changes.first().map(|c| c.change.d_after),
@@ -121,14 +123,41 @@ impl SecondaryTracker {
             inertia_tracked: records.iter().any(|r| r.negative_pivots.is_some()),
             imperfection2,
             imperfection2_waves,
-            branch: branch(mesh, u_final, k),
+            branch,
             note: SECONDARY_NOTE,
         };
-        let json = out.join("secondary.json");
-        write_json(&json, &report)?;
-        files.push(json);
-        Ok((report, files))
+        Ok((report, modes))
     }
+}
+
+/// Writes each mode (`secondary_mode_<i>.vtu`, the first one's top surface in
+/// `secondary_mode.png`), names its file in `report`, and writes `secondary.json` into `out`.
+/// The system is left loaded to the last mode's state.
+pub fn write_secondary(
+    report: &mut SecondaryReport,
+    modes: &[ModeState],
+    system: &mut System,
+    materials: &Bilayer,
+    out: &Path,
+) -> Result<Vec<PathBuf>> {
+    let mut files = Vec::new();
+    for (i, (state, change)) in modes.iter().zip(report.changes.iter_mut()).enumerate() {
+        system.load_to(state.d)?; // the fields of a grown state need its growth
+        let mesh = system.mesh();
+        let path = out.join(format!("secondary_mode_{i}.vtu"));
+        let nodal = &state.mode[..mesh.num_dofs()];
+        let array = DataArray::plane_vectors("mode", nodal.chunks(2).map(|c| [c[0], c[1]]));
+        write_state(&path, system, materials, &state.u, vec![array])?;
+        if i == 0 {
+            files.extend(mode_figure(mesh, &top_uy(mesh, &state.mode), state.d).save(out, "secondary_mode")?);
+        }
+        change.mode_file = Some(path.display().to_string());
+        files.push(path);
+    }
+    let json = out.join("secondary.json");
+    write_json(&json, report)?;
+    files.push(json);
+    Ok(files)
 }
 
 /// The top-surface `u_y` of a mode against the reference `X`.

@@ -1,17 +1,20 @@
-//! A run kept in memory instead of written to files (the Python package): the path, its
-//! summaries and the fields of the last state, from the same protocol as [`super::run`].
+//! What `simulate` computes, in memory: the path, its summaries, the secondary modes and the
+//! fields of the last state. [`super::run`] is this followed by writing (its files stream from
+//! an observer of every step, so that a crash keeps the path so far); the Python package takes
+//! the [`Solution`] as it is.
 
-use super::{ContactReport, Curve, Monitor, OnsetReport, Recorder, SimulateStudy};
+use super::secondary::{ModeState, SecondaryTracker};
+use super::{ContactReport, Curve, EllipticityReport, Monitor, OnsetReport, Recorder, SecondaryReport, SimulateStudy};
 use crate::error::Error;
 use crate::error::Result;
 use crate::fem::fields::{cell_fields, CellFields};
+use crate::fem::System;
 use crate::material::Bilayer;
 #[cfg(doc)]
 use crate::output::vtu::vtk_cell;
 use crate::parameters::Parameters;
-use crate::protocol::secondary::{branch, inertia_changes, secondary_mode, Branch, InertiaChange, SecondaryMode};
-use crate::protocol::Event;
-use crate::protocol::{stages, surface_profile};
+use crate::protocol::secondary::{branch, secondary_mode, SecondaryMode};
+use crate::protocol::{stages, surface_profile, Event, SnapRecord};
 
 /// A mesh state ready for a viewer: reference points, 9-node cells (the local node order of
 /// [`crate::mesh`]; [`vtk_cell`] gives VTK's), the nodal displacement and the element-centre
@@ -29,30 +32,61 @@ pub struct StateFields {
 pub struct Solution {
     /// Accepted steps, cuts, and why the path stopped early (if it did).
     pub curve: Curve,
+    /// The `d` of the last converged state.
+    pub d_reached: f64,
     pub onset: OnsetReport,
     pub contact: ContactReport,
-    /// Every change of the tangent's inertia (secondary bifurcations).
-    pub inertia_changes: Vec<InertiaChange>,
-    /// The branch the path ended on (depths of the seeded troughs at the last state).
-    pub branch: Branch,
+    /// Every snap of the path.
+    pub snaps: Vec<SnapRecord>,
+    /// Every change of the tangent's inertia (secondary bifurcations), the modes of the first
+    /// few, and the branch the path ended on.
+    pub secondary: SecondaryReport,
+    /// Where the finite-element states lose strong ellipticity.
+    pub ellipticity: EllipticityReport,
     /// Deformed `(x, y)` of the top surface at the last state, by reference `X`.
     pub surface: Vec<(f64, f64)>,
     /// The last converged state.
     pub state: StateFields,
 }
 
+/// A [`Solution`] with what writing its files needs: the materials, the system at the last
+/// state, that state, and the states and vectors of the secondary modes.
+pub struct Solved {
+    pub solution: Solution,
+    pub materials: Bilayer,
+    pub system: System,
+    pub u: Vec<f64>,
+    pub modes: Vec<ModeState>,
+}
+
 /// Runs `study` as `simulate` does and keeps everything in memory. A failure in stages 1-2 is
 /// an error; a stop in stage 3 (solver failure, or the monitor's error) is kept in
 /// `curve.stopped` with the path up to it.
 pub fn solve(params: &Parameters, study: &SimulateStudy, monitor: Monitor) -> Result<Solution> {
+    Ok(solve_observed(params, study, monitor, &mut |_, _| Ok(()))?.solution)
+}
+
+/// [`solve`], showing every event to `observer` with the materials as it happens (an error it
+/// returns stops the path like a solver failure), and keeping the final system for writing.
+pub fn solve_observed(
+    params: &Parameters,
+    study: &SimulateStudy,
+    monitor: Monitor,
+    observer: &mut dyn FnMut(&Event<'_>, &Bilayer) -> Result<()>,
+) -> Result<Solved> {
     params.validate()?;
     study.validate()?;
     let materials = Bilayer::new(params);
     let mut recorder = Recorder::new(monitor);
+    let mut tracker = SecondaryTracker::new(study.secondary_modes);
     let outcome = stages::run(&materials, study.mesh, &study.protocol, &mut |event| {
+        if let Event::Step { record, u, .. } = &event {
+            tracker.note(record, u);
+        }
+        observer(&event, &materials)?;
         recorder.note(&event)
     })?;
-    finish(params, study, &materials, recorder, outcome)
+    finish(params, study, materials, recorder, tracker, outcome)
 }
 
 /// How [`solve_to_secondary`] ended.
@@ -70,6 +104,7 @@ pub fn solve_to_secondary(params: &Parameters, study: &SimulateStudy) -> Result<
     study.validate()?;
     let materials = Bilayer::new(params);
     let mut recorder = Recorder::new(&|_| Ok(()));
+    let mut tracker = SecondaryTracker::new(study.secondary_modes);
     let mut last = None;
     let mut changed = None;
     let outcome = stages::run(&materials, study.mesh, &study.protocol, &mut |event| {
@@ -81,47 +116,63 @@ pub fn solve_to_secondary(params: &Parameters, study: &SimulateStudy) -> Result<
                 }
                 last = Some(negative);
             }
+            tracker.note(record, u);
         }
         recorder.note(&event)
     })?;
     match changed {
         Some(mode) => Ok(ToSecondary::Changed(mode?)),
-        None => Ok(ToSecondary::Whole(Box::new(finish(
-            params, study, &materials, recorder, outcome,
-        )?))),
+        None => Ok(ToSecondary::Whole(Box::new(
+            finish(params, study, materials, recorder, tracker, outcome)?.solution,
+        ))),
     }
 }
 
-/// The [`Solution`] of a finished run.
+/// The [`Solved`] run of a finished path.
 fn finish(
     params: &Parameters,
     study: &SimulateStudy,
-    materials: &Bilayer,
+    materials: Bilayer,
     recorder: Recorder<'_>,
-    outcome: stages::Outcome,
-) -> Result<Solution> {
-    let continuation = &outcome.continuation;
-    let (system, u) = (continuation.system(), continuation.displacement());
-    let mesh = system.mesh();
-    let branch = branch(mesh, u, study.protocol.k);
-    let surface = surface_profile(mesh, u);
+    tracker: SecondaryTracker,
+    mut outcome: stages::Outcome,
+) -> Result<Solved> {
+    // No two factors at once: the path's is freed before the modes factorise their tangents.
+    outcome.continuation.release_factorisation();
+    let d_reached = outcome.continuation.d();
+    let (mut system, u) = outcome.continuation.into_state();
+    let mesh = system.mesh().clone();
     let state = StateFields {
         points: mesh.coordinates().to_vec(),
         cells: mesh.elements().to_vec(),
         displacement: u[..mesh.num_dofs()].chunks(2).map(|c| [c[0], c[1]]).collect(),
-        cell: cell_fields(system, materials, u)?,
+        cell: cell_fields(&system, &materials, &u)?,
     };
     let curve = recorder.into_curve(outcome.stopped);
-    let onset = OnsetReport::new(params, study.protocol.k, study.mesh.length, &curve)?;
-    let contact = ContactReport::new(&curve.records);
-    let inertia_changes = inertia_changes(&curve.records);
-    Ok(Solution {
-        curve,
-        onset,
-        contact,
-        inertia_changes,
-        branch,
-        surface,
-        state,
+    let p = &study.protocol;
+    let (secondary, modes) = tracker.finish(
+        &curve.records,
+        &mut system,
+        branch(&mesh, &u, p.k),
+        (p.imperfection2, p.imperfection2_waves),
+    )?;
+    // The modes load the system to their states; it is handed back at the last one.
+    system.load_to(d_reached)?;
+    Ok(Solved {
+        solution: Solution {
+            d_reached,
+            onset: OnsetReport::new(params, p.k, study.mesh.length, &curve)?,
+            contact: ContactReport::new(&curve.records),
+            snaps: curve.records.iter().filter_map(|r| r.snap.clone()).collect(),
+            secondary,
+            ellipticity: EllipticityReport::new(curve.records.iter().map(|r| (r.d, r.ellipticity))),
+            surface: surface_profile(&mesh, &u),
+            state,
+            curve,
+        },
+        materials,
+        system,
+        u,
+        modes,
     })
 }
