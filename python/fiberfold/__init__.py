@@ -38,6 +38,7 @@ __all__ = [
     "simulate_defaults",
     "bifurcation",
     "crease",
+    "crease_defaults",
 ]
 
 ArrayLike = Union[Sequence[float], np.ndarray, float]
@@ -266,4 +267,3 @@ def crease(
 def crease_defaults() -> Dict[str, Any]:
     """Every option of :func:`crease` with its default (those of ``fiberfold crease``)."""
     return dict(json.loads(_fiberfold.crease_defaults()))
-    )
