@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# fiberfold against FEniCSx on one wrinkling curve, side by side on this machine, in one run:
+#
+#   bench/fenicsx/compare.sh [coarse|fine] [D_MAX]      (after cargo build --release and
+#                                                        bench/fenicsx/install.sh)
+#
+# The case: Table 1 with beta = 0.785398, 4.5 waves, imperfection 0.05, displacement element,
+# no contact, to D_MAX (default 0.2). fiberfold runs `simulate` with its defaults otherwise (its
+# adaptive steps of at most 0.005, its files); bench/fenicsx/wrinkle.py then solves the same
+# model on fiberfold's mesh (read from the run's first snapshot) with plain Newton and MUMPS on
+# one core, at steps of 0.005. Prints both wall times, peak memory, their ratio, and the largest
+# relative difference of A(d) over the d both reached: the check that both solved one problem.
+set -euo pipefail
+mesh=${1:-coarse}
+d_max=${2:-0.2}
+case $mesh in coarse | fine) ;; *) echo "mesh: coarse or fine" >&2; exit 2 ;; esac
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/../.." && pwd)
+binary=${FIBERFOLD:-$root/target/release/fiberfold}
+venv=${FENICSX_DIR:-$HOME/.cache/fiberfold-fenicsx-bench}/venv
+[ -x "$binary" ] || { echo "no $binary: run cargo build --release first (or set FIBERFOLD)" >&2; exit 1; }
+[ -x "$venv/bin/python" ] || { echo "FEniCSx is not installed: run $here/install.sh" >&2; exit 1; }
+[ -x /usr/bin/time ] || { echo "needs /usr/bin/time (Debian package time)" >&2; exit 1; }
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+case_flags=(--set beta=0.785398 --waves 4.5 --element displacement --no-contact)
+
+/usr/bin/time -f "%e %M" -o "$work/fiberfold.time" \
+  "$binary" simulate "${case_flags[@]}" --mesh "$mesh" --d-max "$d_max" --out "$work/fiberfold" \
+  >"$work/fiberfold.log" 2>&1
+reference=("$venv/bin/python" "$here/wrinkle.py" --mesh-vtu "$work/fiberfold/simulate_0000.vtu"
+  --beta 0.785398 --quiet)
+# Form compilation is cached after a first call: warm it, so that the solve alone is timed.
+OMP_NUM_THREADS=1 "${reference[@]}" --d-max 0.005 --out "$work/warm.csv" >/dev/null 2>&1
+OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 /usr/bin/time -f "%e %M" -o "$work/fenicsx.time" \
+  "${reference[@]}" --d-max "$d_max" --out "$work/fenicsx.csv" >"$work/fenicsx.log" 2>&1 || true
+
+read -r ff_seconds ff_kb <"$work/fiberfold.time"
+read -r fx_seconds fx_kb <"$work/fenicsx.time"
+reached() { tail -1 "$1" | cut -d, -f1; }
+echo "mesh $mesh, displacement element, to d = $d_max"
+printf "fiberfold: %7.1f s  %5d MB  reached d = %s\n" "$ff_seconds" $((ff_kb / 1024)) "$(reached "$work/fiberfold/amplitude.csv")"
+printf "FEniCSx:   %7.1f s  %5d MB  reached d = %s\n" "$fx_seconds" $((fx_kb / 1024)) "$(reached "$work/fenicsx.csv")"
+"$venv/bin/python" - "$work/fiberfold/amplitude.csv" "$work/fenicsx.csv" "$ff_seconds" "$fx_seconds" <<'EOF'
+import csv, sys
+curves = [{round(float(r["d"]), 6): float(r["A"]) for r in csv.DictReader(open(f))} for f in sys.argv[1:3]]
+common = sorted(d for d in curves[0] if d in curves[1])
+print("ratio (FEniCSx / fiberfold): %.2fx" % (float(sys.argv[4]) / float(sys.argv[3])))
+if common:
+    worst = max(abs(curves[0][d] - curves[1][d]) / abs(curves[0][d]) for d in common)
+    print("A(d): largest relative difference %.1e over %d common d up to %g" % (worst, len(common), common[-1]))
+else:
+    print("A(d): no common d (see the logs)")
+EOF
