@@ -42,4 +42,4 @@ fi
 [ -x venv/bin/python ] || "$python" -m venv venv
 venv/bin/pip install --quiet --upgrade pip
 venv/bin/pip install --quiet dolfinx-solver-real==0.11.0.post0
-venv/bin/python -c "import dolfinx; from petsc4py import PETSc; print('FEniCSx', dolfinx.__version__, 'with PETSc', PETSc.Sys.getVersion(), 'in', '$prefix/venv')"
+venv/bin/python -c "import dolfinx_solver, dolfinx; from petsc4py import PETSc; print('FEniCSx', dolfinx.__version__, 'with PETSc', PETSc.Sys.getVersion(), 'in', '$prefix/venv')"

@@ -57,6 +57,7 @@ def main():
     parser.add_argument("--quiet", action="store_true")
     args = parser.parse_args()
 
+    import dolfinx_solver  # noqa: F401  (loads the MPI and PETSc libraries the wheel carries)
     from mpi4py import MPI
     import basix.ufl
     import ufl
@@ -76,7 +77,7 @@ def main():
     # The layer (Y > 0) and the substrate, told apart at each cell's centre.
     Q = fem.functionspace(domain, ("DG", 0))
     in_layer = fem.Function(Q)
-    centres = domain.geometry.x[domain.geometry.dofmap].mean(axis=1)
+    centres = domain.geometry.x[domain.geometry.dofmaps[0]].mean(axis=1)
     for cell, centre in enumerate(centres):
         in_layer.x.array[Q.dofmap.cell_dofs(cell)] = 1.0 if centre[1] > 0.0 else 0.0
 
