@@ -23,10 +23,7 @@ const REGIMES: [(&str, RGBColor); 11] = [
     ("none in range", RGBColor(255, 255, 255)),
     ("undecided (crease search snapped)", RGBColor(120, 120, 120)),
     ("wrinkle -> unstable, unresolved", RGBColor(255, 221, 113)),
-    (
-        "too close to call (within its uncertainty)",
-        RGBColor(148, 103, 189),
-    ),
+    ("too close to call (within its uncertainty)", RGBColor(148, 103, 189)),
     ("wrinkle, the nonlinear run failed (see notes)", RGBColor(140, 86, 75)),
 ];
 
