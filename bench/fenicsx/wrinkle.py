@@ -131,7 +131,7 @@ def main():
     )
     snes = problem.solver
 
-    rows, d, step, start = [], 0.0, args.d_first, time.perf_counter()
+    d, step, start = 0.0, args.d_first, time.perf_counter()
     with open(args.out, "w") as out:
         out.write("d,A,newton_iterations,step_seconds\n")
         while d < args.d_max - 1e-12:
