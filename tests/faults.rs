@@ -8,7 +8,7 @@
 mod common;
 
 use common::files::check_complete;
-use common::{fiberfold, map_points, scratch, tiny_map_of};
+use common::{fiberfold, map_points, quick_simulate, scratch, tiny_map_of};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -80,27 +80,13 @@ fn assert_one_line_error(out: &Output, dir: &Path, cause: &str) {
     );
 }
 
-fn simulate_args(out: &Path) -> Vec<String> {
-    [
-        "simulate",
-        "--waves",
-        "4.5",
-        "--d-max",
-        "0.1",
-        "--out",
-        out.to_str().unwrap(),
-    ]
-    .map(String::from)
-    .to_vec()
-}
-
 #[test]
 #[ignore = "mounts a tmpfs as root: run by .ci/run with --ignored"]
 fn a_disk_that_fills_during_simulate_is_named_and_leaves_complete_files() {
     // Each VTU snapshot is ~1.5 MB: 6 MiB hold a few of the eleven.
     let disk = Mounted::tmpfs("full-simulate", 6 * 1024);
     let out = disk.0.join("run");
-    let failed = fiberfold(&simulate_args(&out));
+    let failed = fiberfold(&quick_simulate(&out));
     assert_one_line_error(&failed, &out, "No space left on device");
     let stdout = String::from_utf8_lossy(&failed.stdout);
     assert!(
@@ -112,7 +98,7 @@ fn a_disk_that_fills_during_simulate_is_named_and_leaves_complete_files() {
     assert!(out.join("amplitude.csv").is_file());
 
     disk.resize(64 * 1024);
-    let again = fiberfold(&simulate_args(&out));
+    let again = fiberfold(&quick_simulate(&out));
     assert!(again.status.success(), "{}", String::from_utf8_lossy(&again.stderr));
     assert!(out.join("simulate.json").is_file());
     check_complete(&out);
@@ -158,7 +144,7 @@ fn a_read_only_output_folder_is_named() {
     std::fs::create_dir_all(source.join("existing")).unwrap();
     let read_only = Mounted::read_only("read-only", &source);
     for out in [read_only.0.join("existing"), read_only.0.join("new")] {
-        let simulate = fiberfold(&simulate_args(&out));
+        let simulate = fiberfold(&quick_simulate(&out));
         assert_one_line_error(&simulate, &out, "Read-only file system");
         let map = fiberfold(&tiny_map_of(2, &out, &[]));
         assert_one_line_error(&map, &out, "Read-only file system");

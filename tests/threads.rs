@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{map_points, scratch, tiny_map};
+use common::{map_points, quick_simulate, scratch, tiny_map};
 use std::path::Path;
 use std::process::Command;
 
@@ -43,16 +43,7 @@ fn one_thread_and_two_give_the_same_path_and_the_same_map() {
     let mut maps = Vec::new();
     for threads in [1, 2] {
         let dir = scratch(&format!("threads-simulate-{threads}"));
-        let args = [
-            "simulate",
-            "--waves",
-            "4.5",
-            "--d-max",
-            "0.1",
-            "--out",
-            dir.to_str().unwrap(),
-        ];
-        run_with_threads(threads, &args.map(String::from));
+        run_with_threads(threads, &quick_simulate(&dir));
         paths.push(amplitude_without_times(&dir));
         let map = scratch(&format!("threads-map-{threads}"));
         run_with_threads(threads, &tiny_map(&map, &[]));

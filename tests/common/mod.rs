@@ -76,6 +76,15 @@ impl Rng {
     }
 }
 
+/// `simulate` on the coarse mesh to d = 0.1 (4.5 waves, about a second) into `out`.
+pub fn quick_simulate(out: &std::path::Path) -> Vec<String> {
+    ["simulate", "--waves", "4.5", "--d-max", "0.1", "--out"]
+        .iter()
+        .map(|s| s.to_string())
+        .chain(std::iter::once(out.display().to_string()))
+        .collect()
+}
+
 /// A 2 x 1 map on small meshes (a few seconds a point): an isotropic soft and stiff layer.
 pub fn tiny_map(out: &std::path::Path, extra: &[&str]) -> Vec<String> {
     tiny_map_of(2, out, extra)
