@@ -253,6 +253,13 @@ fn the_crease_onset_of_a_half_space_is_the_same_for_every_fold_length() {
         "thresholds {thresholds:?}, d_crease {:?} at a = {:?}",
         report.d_crease, report.fold_length
     );
+    for fold in &report.folds {
+        // At each threshold the released fold is an equilibrium: the plane pulls nowhere.
+        let released = fold.meshes[0].released.as_ref().expect("released at the threshold");
+        println!("released {released:?}");
+        assert_eq!(released.pulling_nodes, 0);
+        assert!(released.difference <= released.held_difference);
+    }
     for &d in &thresholds {
         assert!((0.33..=0.38).contains(&d), "{d}");
         assert!(d < biot_compression() - 0.07);
@@ -301,4 +308,53 @@ fn a_creased_state_carries_the_ellipticity_margins_of_its_far_field() {
             );
         }
     }
+}
+
+/// A fold let go to frictionless contact with the plane (issue of the held fold: the plane pulls
+/// on some of its nodes). Isotropic bilayer, mu_l/mu_s = 3, K = 100 mu, a = 0.5 H, base crease
+/// mesh. Just below the crease onset the released fold is an equilibrium: it stays closed over
+/// part of its length, and the elastic force on every node the plane presses, computed apart
+/// from the contact, pushes into the plane. Its energy is below the held fold's (the release
+/// minimises from it). Further below, the fold opens back to the flat state and its energy.
+#[test]
+fn a_released_crease_is_pushed_by_the_plane_wherever_it_touches() {
+    use fiberfold::material::Bilayer;
+    use fiberfold::protocol::crease_seed::{crease_energy, released_crease};
+    use fiberfold::studies::crease::CreaseStudy;
+    let params = Parameters {
+        mu_l: 3.0,
+        K_l: 300.0,
+        K_s: 100.0,
+        phi_m: 1.0,
+        phi_f: 0.0,
+        ..Parameters::default()
+    };
+    let materials = Bilayer::new(&params);
+    let spec = CreaseStudy::default().mesh.spec(2.0);
+    let held = crease_energy(&materials, spec, 0.2295, 0.5).unwrap();
+    let released = released_crease(&materials, spec, 0.2295, 0.5).unwrap();
+    println!("held {held:?}\nreleased {released:?}");
+    assert!(
+        held.tensile_nodes > 0,
+        "the held fold is pulled: {}",
+        held.tensile_nodes
+    );
+    assert!(!released.reopened && released.pressed_nodes >= 2);
+    assert_eq!(released.pulling_nodes, 0);
+    assert!(released.closed_length > 0.0 && released.closed_length <= 0.5 + 1e-12);
+    assert_eq!(released.held_difference, held.difference);
+    assert!(
+        released.difference < held.difference,
+        "{} {}",
+        released.difference,
+        held.difference
+    );
+    let open = released_crease(&materials, spec, 0.2, 0.5).unwrap();
+    assert!(open.reopened && open.depth == 0.0 && open.contact_length == 0.0);
+    let flat = crease_energy(&materials, spec, 0.2, 0.5).unwrap().flat_energy;
+    assert!(
+        open.difference.abs() < 1e-9 * flat,
+        "{} against {flat}",
+        open.difference
+    );
 }

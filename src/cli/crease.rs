@@ -3,7 +3,7 @@
 use super::common::{report_files, ParamArgs};
 use super::simulate::ElementChoice;
 use clap::Args;
-use fiberfold::studies::crease::{self, CreaseOptions, CreaseReport, CreaseStudy};
+use fiberfold::studies::crease::{self, CreaseOptions, CreaseReport, CreaseStudy, FoldThreshold};
 use fiberfold::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
@@ -138,6 +138,30 @@ fn defaults() -> CreaseOptions {
     CreaseOptions::default()
 }
 
+/// What the fold at a threshold does when its nodes are let go to contact with the plane.
+fn print_release(fold: &FoldThreshold) {
+    match (&fold.released, &fold.release_error) {
+        (Some(r), _) if r.reopened => {
+            println!("    released: it reopens to the flat state (the held fold is no equilibrium crease here)")
+        }
+        (Some(r), _) => println!(
+            "    released: stays closed over {:.3} of its {} H, the plane pushing at {} nodes ({}); \
+             U - U_flat = {:.4e} (held {:.4e})",
+            r.closed_length,
+            r.fold_length,
+            r.pressed_nodes,
+            match r.pulling_nodes {
+                0 => "none pulls".to_string(),
+                n => format!("{n} pull"),
+            },
+            r.difference,
+            r.held_difference
+        ),
+        (None, Some(why)) => println!("    released: not computed ({why})"),
+        (None, None) => {}
+    }
+}
+
 /// Each fold's threshold on each mesh and extrapolated, then the onset.
 fn print_onset(report: &CreaseReport, study: &CreaseStudy) {
     for fold in &report.folds {
@@ -148,7 +172,10 @@ fn print_onset(report: &CreaseReport, study: &CreaseStudy) {
                 report.meshes[m].factor, report.meshes[m].unknowns
             );
             match (on_mesh.d_threshold, &on_mesh.stopped) {
-                (Some(d), _) => println!("  a = {a} H, {mesh}: the crease pays off from d = {d:.5}"),
+                (Some(d), _) => {
+                    println!("  a = {a} H, {mesh}: the crease pays off from d = {d:.5}");
+                    print_release(on_mesh);
+                }
                 (None, Some(why)) => println!("  a = {a} H, {mesh}: no threshold ({why})"),
                 (None, None) => println!(
                     "  a = {a} H, {mesh}: no crease pays off up to d = {:.4}",

@@ -17,8 +17,8 @@ use crate::fem::added::NoAddedEnergy;
 use crate::fem::boundary::{dof, X};
 use crate::fem::contact::{Contact, ContactSettings, Plane};
 use crate::fem::ellipticity::{ellipticity_margins, EllipticityMargins};
-use crate::fem::equilibrium::solve_with_contact;
-use crate::fem::{Dirichlet, Newton, NewtonPolicy, System};
+use crate::fem::equilibrium::{minimise, solve_with_contact};
+use crate::fem::{Dirichlet, Newton, NewtonPolicy, NewtonReport, System};
 use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
 use crate::mesh::{Mesh, MeshSpec};
@@ -56,10 +56,65 @@ pub struct CreaseEnergy {
     pub surface: Vec<(f64, f64)>,
 }
 
+/// A fold let go: its nodes freed to frictionless contact with the plane, and the energy
+/// minimised from the folded state with the model's conditions alone. The plane then pushes
+/// wherever it touches, so this is an equilibrium crease (or the flat state, if it reopens).
+#[derive(Clone, Debug, Serialize)]
+pub struct ReleasedCrease {
+    pub strain: f64,
+    /// The reference length `a` that was folded before the release.
+    pub fold_length: f64,
+    /// `U_released - U_flat`.
+    pub difference: f64,
+    /// The same for the fold held on the plane (what the threshold compares).
+    pub held_difference: f64,
+    /// Reference length of the surface still pressed on the plane: the closed crease.
+    pub closed_length: f64,
+    /// Its deformed length.
+    pub contact_length: f64,
+    /// Whether no node touches the plane any more: the fold opened back to the flat state.
+    pub reopened: bool,
+    /// Surface nodes the plane presses.
+    pub pressed_nodes: usize,
+    /// Pressed nodes whose elastic force, computed apart from the contact, pulls them off the
+    /// plane (an equilibrium crease has none).
+    pub pulling_nodes: usize,
+    /// Deformed depth of the closed crease below the flat surface (0 if it reopened).
+    pub depth: f64,
+}
+
 /// `U_crease - U_flat` at the load's strain `strain` (the compression, or `1 - 1/g` under
 /// growth) for a fold of reference length `fold_length` on a mesh of `spec` (one material,
 /// shear modulus `mu`).
 pub fn crease_energy(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_length: f64) -> Result<CreaseEnergy> {
+    fold(materials, spec, strain, fold_length)?.energy()
+}
+
+/// The fold of [`crease_energy`], released ([`ReleasedCrease`]).
+pub fn released_crease(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_length: f64) -> Result<ReleasedCrease> {
+    fold(materials, spec, strain, fold_length)?.release()
+}
+
+/// The folded state and what made it: the system, the model's conditions, the contact, and
+/// the folded nodes held on the plane by `held`.
+struct Folded {
+    newton: Newton,
+    system: System,
+    model: Dirichlet,
+    contact: Contact,
+    folded: Vec<usize>,
+    u: Vec<f64>,
+    held: Dirichlet,
+    report: NewtonReport,
+    flat_energy: f64,
+    mu: f64,
+    strain: f64,
+    fold_length: f64,
+    steps: usize,
+}
+
+/// Folds the surface `0 < X <= fold_length` onto the plane at `strain`, in ramp steps.
+fn fold(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_length: f64) -> Result<Folded> {
     let mesh = Mesh::new(spec)?;
     let mu = materials.layer.energy.shear_modulus();
     let state = homogeneous_state(materials, strain)?;
@@ -81,13 +136,8 @@ pub fn crease_energy(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_leng
     let mut u = homogeneous_unknowns(&system, materials, &state)?;
     let flat_energy = system.assemble(&u, &model, None, false)?.energy;
     let mut newton = Newton::new();
-    let policy = NewtonPolicy {
-        max_iterations: 25,
-        inertia_at_solution: false,
-        ..NewtonPolicy::default()
-    };
     let (mut t, mut step, mut steps) = (0.0f64, 0.125f64, 0);
-    let mut report = None;
+    let mut solved = None;
     while t < 1.0 {
         let next = (t + step).min(1.0);
         let bc = folding_conditions(&system, &model, &folded, state.lambda1, next)?;
@@ -98,14 +148,14 @@ pub fn crease_energy(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_leng
             &bc,
             &mut contact,
             &NoAddedEnergy,
-            &policy,
+            &fold_policy(),
         ) {
-            Ok(solved) => {
+            Ok(report) => {
                 (t, steps) = (next, steps + 1);
-                if solved.iterations <= 8 {
+                if report.iterations <= 8 {
                     step = (2.0 * step).min(0.25);
                 }
-                report = Some((solved, bc));
+                solved = Some((report, bc));
             }
             Err(_) if step > MIN_RAMP_STEP => step *= 0.5,
             Err(e) => {
@@ -116,40 +166,149 @@ pub fn crease_energy(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_leng
             }
         }
     }
-    let (report, bc) = report.expect("at least one step");
-    let mesh = system.mesh();
-    let reactions: Vec<f64> = folded
-        .iter()
-        .map(|&n| {
-            report.reactions[bc
-                .dofs()
-                .binary_search(&dof(n, X))
-                .expect("folded unknowns are prescribed")]
-        })
-        .collect();
-    let y = |n: usize| mesh.coordinates()[n][1] + u[2 * n + 1];
-    let surface = mesh.top();
-    let profile = surface
-        .iter()
-        .map(|&n| (mesh.coordinates()[n][0] + u[2 * n], y(n)))
-        .collect();
-    let depth = y(*surface.last().expect("a surface")) - folded.iter().map(|&n| y(n)).fold(f64::INFINITY, f64::min);
-    let crease_energy = report.energy;
-    let ellipticity = ellipticity_margins(&system, &u)?;
-    Ok(CreaseEnergy {
+    let (report, held) = solved.expect("at least one step");
+    Ok(Folded {
+        newton,
+        system,
+        model,
+        contact,
+        folded,
+        u,
+        held,
+        report,
+        flat_energy,
+        mu,
         strain,
         fold_length,
-        flat_energy,
-        crease_energy,
-        difference: crease_energy - flat_energy,
-        scaled_difference: (crease_energy - flat_energy) / (mu * fold_length * fold_length),
-        depth,
-        tensile_nodes: reactions.iter().filter(|&&r| r < 0.0).count(),
-        min_jacobian: report.min_jacobian,
         steps,
-        ellipticity,
-        surface: profile,
     })
+}
+
+/// Newton's policy of the fold's steps and of the release.
+fn fold_policy() -> NewtonPolicy {
+    NewtonPolicy {
+        max_iterations: 25,
+        inertia_at_solution: false,
+        ..NewtonPolicy::default()
+    }
+}
+
+impl Folded {
+    /// The energies of the fold held on the plane, and its shape.
+    fn energy(self) -> Result<CreaseEnergy> {
+        let reactions: Vec<f64> = self
+            .folded
+            .iter()
+            .map(|&n| {
+                self.report.reactions[self
+                    .held
+                    .dofs()
+                    .binary_search(&dof(n, X))
+                    .expect("folded unknowns are prescribed")]
+            })
+            .collect();
+        let mesh = self.system.mesh();
+        let u = &self.u;
+        let surface = mesh.top();
+        let profile = surface
+            .iter()
+            .map(|&n| {
+                (
+                    mesh.coordinates()[n][0] + u[2 * n],
+                    mesh.coordinates()[n][1] + u[2 * n + 1],
+                )
+            })
+            .collect();
+        let depth = surface_depth(mesh, u, &self.folded);
+        let crease_energy = self.report.energy;
+        let ellipticity = ellipticity_margins(&self.system, u)?;
+        let (flat_energy, a) = (self.flat_energy, self.fold_length);
+        Ok(CreaseEnergy {
+            strain: self.strain,
+            fold_length: a,
+            flat_energy,
+            crease_energy,
+            difference: crease_energy - flat_energy,
+            scaled_difference: (crease_energy - flat_energy) / (self.mu * a * a),
+            depth,
+            tensile_nodes: reactions.iter().filter(|&&r| r < 0.0).count(),
+            min_jacobian: self.report.min_jacobian,
+            steps: self.steps,
+            ellipticity,
+            surface: profile,
+        })
+    }
+}
+
+impl Folded {
+    /// Frees the folded nodes and minimises the energy, contact with the plane as an inequality.
+    fn release(mut self) -> Result<ReleasedCrease> {
+        let held_difference = self.report.energy - self.flat_energy;
+        minimise(
+            &mut self.newton,
+            (&mut self.system, &mut self.u, &self.model),
+            Some(&mut self.contact),
+            &NoAddedEnergy,
+            &fold_policy(),
+        )
+        .map_err(|e| {
+            Error::Solver(format!(
+                "releasing the fold of a = {} at eps = {}: {e}",
+                self.fold_length, self.strain
+            ))
+        })?;
+        let u = &self.u;
+        let state = self.contact.state(u);
+        let pressed: Vec<usize> = self
+            .contact
+            .surface()
+            .nodes
+            .iter()
+            .zip(&state.pressure)
+            .filter(|(_, &p)| p > 0.0)
+            .map(|(&n, _)| n)
+            .collect();
+        // The elastic force on each pressed node: the reaction of the strain energy alone with
+        // the node held where it is.
+        let mut pairs: Vec<(usize, f64)> = self
+            .model
+            .dofs()
+            .iter()
+            .copied()
+            .zip(self.model.values().iter().copied())
+            .collect();
+        pairs.extend(pressed.iter().map(|&n| (dof(n, X), u[dof(n, X)])));
+        let holding = Dirichlet::new(pairs)?;
+        let elastic = self.system.assemble(u, &holding, None, false)?;
+        let pulling = pressed
+            .iter()
+            .filter(|&&n| elastic.reactions[holding.dofs().binary_search(&dof(n, X)).expect("held")] < 0.0)
+            .count();
+        let energy = self.system.assemble(u, &self.model, None, false)?.energy;
+        let mesh = self.system.mesh();
+        Ok(ReleasedCrease {
+            strain: self.strain,
+            fold_length: self.fold_length,
+            difference: energy - self.flat_energy,
+            held_difference,
+            closed_length: pressed.iter().map(|&n| mesh.coordinates()[n][0]).fold(0.0, f64::max),
+            contact_length: state.contact_length,
+            reopened: pressed.is_empty(),
+            pressed_nodes: pressed.len(),
+            pulling_nodes: pulling,
+            depth: surface_depth(mesh, u, &pressed),
+        })
+    }
+}
+
+/// Depth of the crease: the flat surface's height (at the far end) above the lowest of `nodes`.
+fn surface_depth(mesh: &Mesh, u: &[f64], nodes: &[usize]) -> f64 {
+    let y = |n: usize| mesh.coordinates()[n][1] + u[2 * n + 1];
+    let far = *mesh.top().last().expect("a surface");
+    match nodes.is_empty() {
+        true => 0.0,
+        false => nodes.iter().map(|&n| y(far) - y(n)).fold(f64::NEG_INFINITY, f64::max),
+    }
 }
 
 /// The model's conditions plus the folded nodes at `x = (1 - t) lambda_1 X` (`t` from 0 to 1).

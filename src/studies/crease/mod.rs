@@ -418,6 +418,8 @@ pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<Cr
                     d_threshold: None,
                     evaluations: Vec::new(),
                     stopped: Some("not computed on this mesh".into()),
+                    released: None,
+                    release_error: None,
                 });
             }
             fold_convergence.meshes.push(fold);

@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::material::Bilayer;
 use crate::mesh::MeshSpec;
 use crate::numerics::roots::brent_from;
-use crate::protocol::crease_seed::{crease_energy, CreaseEnergy};
+use crate::protocol::crease_seed::{crease_energy, released_crease, CreaseEnergy, ReleasedCrease};
 use crate::studies::Tick;
 use serde::Serialize;
 
@@ -22,6 +22,11 @@ pub struct FoldThreshold {
     pub evaluations: Vec<CreaseEnergy>,
     /// Why the scan ended early, if it did (e.g. the fold snapped).
     pub stopped: Option<String>,
+    /// The fold at the threshold let go to contact with the plane: whether it stays closed,
+    /// over what length, and with the plane pushing everywhere it touches.
+    pub released: Option<ReleasedCrease>,
+    /// Why the release at the threshold failed, if it did.
+    pub release_error: Option<String>,
 }
 
 impl FoldThreshold {
@@ -104,11 +109,22 @@ pub fn fold_threshold(materials: &Bilayer, spec: MeshSpec, a: f64, scan: Scan, t
         ));
     }
     evaluations.sort_by(|x, y| x.strain.total_cmp(&y.strain));
+    let (mut released, mut release_error) = (None, None);
+    if let Some(d) = d_threshold {
+        match released_crease(materials, spec, d, a) {
+            Ok(r) => released = Some(r),
+            Err(Error::Solver(m)) => release_error = Some(m),
+            Err(e) => return Err(e),
+        }
+        tick();
+    }
     Ok(FoldThreshold {
         fold_length: a,
         d_threshold,
         evaluations,
         stopped,
+        released,
+        release_error,
     })
 }
 
