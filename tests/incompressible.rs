@@ -172,6 +172,12 @@ fn incompressible_half_space_creases_at_hong_zhao_suo() {
         "{thresholds:?}"
     );
     assert!(error < 1e-3 && d < biot_compression() - 0.09);
+    // Released at each threshold (with the pressure multipliers in the unknowns), the fold
+    // goes to an equilibrium that the plane only pushes.
+    for mesh in &report.folds[0].meshes {
+        let released = mesh.released.as_ref().expect("released at the threshold");
+        assert_eq!(released.pulling_nodes, 0, "{released:?}");
+    }
 }
 
 /// The Table 1 path of incompressible layers goes on through the closing of its troughs, where

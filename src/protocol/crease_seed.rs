@@ -59,6 +59,9 @@ pub struct CreaseEnergy {
 /// A fold let go: its nodes freed to frictionless contact with the plane, and the energy
 /// minimised from the folded state with the model's conditions alone. The plane then pushes
 /// wherever it touches, so this is an equilibrium crease (or the flat state, if it reopens).
+/// Its energy need not lie below the held fold's: the contact and, in an incompressible solid,
+/// the volume constraint enter through multipliers updated between minimisations, and each
+/// minimisation descends only its own augmented energy.
 #[derive(Clone, Debug, Serialize)]
 pub struct ReleasedCrease {
     pub strain: f64,

@@ -114,7 +114,8 @@ impl AddedEnergy for Shift<'_> {
 /// The energy being minimised (Newton's [`Problem`]) and the scale `D` of its shifts.
 struct Landscape<'a> {
     problem: Problem<'a>,
-    /// `D`, relative to its mean over the free unknowns (all unknowns; zero off the mesh's).
+    /// `D`, relative to its mean over the free unknowns, on every displacement unknown (the
+    /// multipliers are updated outside Newton and take no shift).
     scale: Vec<f64>,
 }
 
@@ -123,7 +124,6 @@ impl<'a> Landscape<'a> {
     fn new(equations: Equations<'a>) -> crate::Result<Self> {
         let problem = Problem::new(equations)?;
         let mut scale = problem.system.reference_stiffness_diagonal()?;
-        scale.resize(problem.system.num_dofs(), 0.0);
         let free = &problem.free;
         let mean = free.iter().map(|&dof| scale[dof].abs()).sum::<f64>() / free.len().max(1) as f64;
         scale
