@@ -217,7 +217,7 @@ fn png_size(path: &std::path::Path) -> (u32, u32) {
 /// no length scale; the report names the smallest.
 #[test]
 fn the_crease_onset_of_a_half_space_is_the_same_for_every_fold_length() {
-    use fiberfold::studies::crease::{crease, CreaseMesh, CreaseStudy, Scan};
+    use fiberfold::studies::crease::{crease, CreaseMesh, CreaseStudy, Criterion, Scan};
     let params = Parameters {
         mu_l: 1.0,
         K_l: 100.0,
@@ -244,6 +244,7 @@ fn the_crease_onset_of_a_half_space_is_the_same_for_every_fold_length() {
             step: 0.04,
             tolerance: 1e-3,
         },
+        criterion: Criterion::Held,
         refinement: None,
         lowest_only: false,
     };
@@ -310,7 +311,7 @@ fn a_creased_state_carries_the_ellipticity_margins_of_its_far_field() {
     }
 }
 
-/// A fold let go to frictionless contact with the plane (issue of the held fold: the plane pulls
+/// A fold let go to frictionless contact with the plane (the held fold's flaw: the plane pulls
 /// on some of its nodes). Isotropic bilayer, mu_l/mu_s = 3, K = 100 mu, a = 0.5 H, base crease
 /// mesh. Just below the crease onset the released fold is an equilibrium: it stays closed over
 /// part of its length, and the elastic force on every node the plane presses, computed apart
@@ -357,4 +358,36 @@ fn a_released_crease_is_pushed_by_the_plane_wherever_it_touches() {
         "{} against {flat}",
         open.difference
     );
+}
+
+/// The released criterion's threshold is a sign change of the equilibrium crease's energy,
+/// checked apart from the search: isotropic bilayer, mu_l/mu_s = 3, K = 100 mu, a = 0.5 H, on
+/// the base crease mesh refined twice (the base mesh's block turns unstable before any fold
+/// pays off). Just above the threshold the released crease stays closed below the flat state's
+/// energy; just below it, it does not pay off. At the threshold the plane pulls nowhere.
+#[test]
+fn the_released_threshold_is_where_the_equilibrium_crease_pays_off() {
+    use fiberfold::material::Bilayer;
+    use fiberfold::protocol::crease_seed::released_crease;
+    use fiberfold::studies::crease::{fold_threshold, CreaseStudy, Criterion, Scan};
+    let params = common::isotropic(3.0);
+    let materials = Bilayer::new(&params);
+    let spec = CreaseStudy::default().mesh.scaled(2).spec(0.5);
+    let scan = Scan {
+        from: 0.225,
+        to: 0.235,
+        step: 0.005,
+        tolerance: 1e-4,
+    };
+    let fold = fold_threshold(&materials, spec, 0.5, scan, Criterion::Released, &|| {}).unwrap();
+    let (d, held) = (fold.d_threshold.unwrap(), fold.d_held.unwrap());
+    println!("released threshold {d}, held {held}; at it {:?}", fold.released);
+    let at = fold.released.as_ref().unwrap();
+    assert!(!at.reopened && at.pulling_nodes == 0, "{at:?}");
+    let above = released_crease(&materials, spec, d + 3.0 * scan.tolerance, 0.5).unwrap();
+    let below = released_crease(&materials, spec, d - 3.0 * scan.tolerance, 0.5).unwrap();
+    println!("above {above:?}\nbelow {below:?}");
+    assert!(!above.reopened && above.difference < 0.0, "{above:?}");
+    assert!(below.reopened || below.difference > 0.0, "{below:?}");
+    assert!(fold.released_evaluations.windows(2).all(|w| w[0].strain <= w[1].strain));
 }

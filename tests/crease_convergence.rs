@@ -6,7 +6,7 @@
 
 use fiberfold::fem::ElementKind;
 use fiberfold::stability::{Method, StabilityAnalysis};
-use fiberfold::studies::crease::{crease, CreaseMesh, CreaseReport, CreaseStudy, Refinement, Scan};
+use fiberfold::studies::crease::{crease, CreaseMesh, CreaseReport, CreaseStudy, Criterion, Refinement, Scan};
 use fiberfold::Parameters;
 
 mod common;
@@ -27,6 +27,7 @@ fn study(mesh: CreaseMesh, max_meshes: usize) -> CreaseStudy {
             step: 0.02,
             ..CreaseStudy::default().scan
         },
+        criterion: Criterion::Held,
         refinement: Some(Refinement {
             max_meshes,
             ..Refinement::default()

@@ -249,8 +249,10 @@ def crease(
     (each of ``folds``, units of H) first lowers the energy below the flat state's (Hong, Zhao
     and Suo's criterion). The options are the CLI's flags by name (``d_from``, ``d_to``,
     ``d_step``, ``tolerance``, ``size``, ``nx``, ``layer_elements``, ``substrate_elements``,
-    ``ratio``, ``layer_grading``, ``element``, ``convergence``, ``mesh_tolerance``,
-    ``max_meshes``); :func:`crease_defaults` gives each with its default. Each threshold is
+    ``ratio``, ``layer_grading``, ``element``, ``criterion``, ``convergence``,
+    ``mesh_tolerance``, ``max_meshes``); :func:`crease_defaults` gives each with its default.
+    ``criterion="released"`` compares the equilibrium crease the fold closes to once released
+    to frictionless contact (``"held"``, the default: the fold held on the plane). Each threshold is
     computed on the base mesh with its element counts times 1, 2, 3, ... (at most
     ``max_meshes``) until it changes by less than ``mesh_tolerance`` in d, and extrapolated with
     the observed order (``convergence=False``: the base mesh alone). The content of

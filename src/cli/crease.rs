@@ -2,11 +2,39 @@
 
 use super::common::{report_files, ParamArgs};
 use super::simulate::ElementChoice;
-use clap::Args;
-use fiberfold::studies::crease::{self, CreaseOptions, CreaseReport, CreaseStudy, FoldThreshold};
+use clap::{Args, ValueEnum};
+use fiberfold::studies::crease::{self, CreaseOptions, CreaseReport, CreaseStudy, Criterion, FoldThreshold};
 use fiberfold::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
+
+/// Which creased state the energy criterion compares with the flat state.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum CriterionChoice {
+    /// The fold held on the symmetry plane over its whole length a (Hong, Zhao & Suo's).
+    Held,
+    /// The fold released to frictionless contact with the plane: the equilibrium crease it
+    /// closes to (a search from the held fold's threshold; about three times the cost).
+    Released,
+}
+
+impl From<CriterionChoice> for Criterion {
+    fn from(choice: CriterionChoice) -> Self {
+        match choice {
+            CriterionChoice::Held => Criterion::Held,
+            CriterionChoice::Released => Criterion::Released,
+        }
+    }
+}
+
+impl From<Criterion> for CriterionChoice {
+    fn from(criterion: Criterion) -> Self {
+        match criterion {
+            Criterion::Held => CriterionChoice::Held,
+            Criterion::Released => CriterionChoice::Released,
+        }
+    }
+}
 
 #[derive(Args)]
 pub struct CreaseArgs {
@@ -64,6 +92,10 @@ pub struct CreaseArgs {
     #[arg(long, value_enum, default_value_t = defaults().element.into())]
     pub element: ElementChoice,
 
+    /// The creased state compared with the flat state.
+    #[arg(long, value_enum, default_value_t = defaults().criterion.into())]
+    pub criterion: CriterionChoice,
+
     /// Converge each threshold in the mesh: the base mesh (--nx, --layer-elements,
     /// --substrate-elements) with its element counts times 1, 2, 3, ... until the threshold
     /// changes by less than this (in d), then extrapolated with the observed order.
@@ -98,14 +130,21 @@ pub fn run(args: &CreaseArgs) -> Result<()> {
         ratio: args.ratio,
         layer_grading: args.layer_grading,
         element: args.element.into(),
+        criterion: args.criterion.into(),
         convergence: !args.no_convergence,
         mesh_tolerance: args.mesh_tolerance,
         max_meshes: args.max_meshes,
     }
     .study()?;
     println!(
-        "crease onset (energy of a seeded crease against the flat state) for folds a = {:?} H, d in [{}, {}]",
-        study.fold_lengths, study.scan.from, study.scan.to
+        "crease onset (energy of a seeded crease, {}, against the flat state) for folds a = {:?} H, d in [{}, {}]",
+        match study.criterion {
+            Criterion::Held => "held on the plane",
+            Criterion::Released => "released to contact with the plane",
+        },
+        study.fold_lengths,
+        study.scan.from,
+        study.scan.to
     );
     if let Some(note) = study.mesh.element.locking_note(&params) {
         println!("{note}");
@@ -173,7 +212,18 @@ fn print_onset(report: &CreaseReport, study: &CreaseStudy) {
             );
             match (on_mesh.d_threshold, &on_mesh.stopped) {
                 (Some(d), _) => {
-                    println!("  a = {a} H, {mesh}: the crease pays off from d = {d:.5}");
+                    let which = match (report.criterion, on_mesh.d_held) {
+                        (Criterion::Released, Some(held)) => format!(
+                            "the released crease pays off from d = {d:.5}{} (the held fold from {held:.5})",
+                            if on_mesh.appears_paying {
+                                ", appearing there already paying off (below it the fold reopens)"
+                            } else {
+                                ""
+                            }
+                        ),
+                        _ => format!("the crease pays off from d = {d:.5}"),
+                    };
+                    println!("  a = {a} H, {mesh}: {which}");
                     print_release(on_mesh);
                 }
                 (None, Some(why)) => println!("  a = {a} H, {mesh}: no threshold ({why})"),

@@ -1,6 +1,7 @@
 //! `fiberfold map`: the instability map over two parameters, resumable and shardable.
 
 use super::common::{progress, report_files, ParamArgs};
+use super::crease::CriterionChoice;
 use super::simulate::ElementChoice;
 use clap::Args;
 use fiberfold::output::lock::OutputLock;
@@ -105,6 +106,9 @@ pub struct MapArgs {
     /// Crease search: graded elements through the substrate of the base mesh.
     #[arg(long, default_value_t = MapSettings::default().crease_mesh.substrate)]
     pub crease_substrate_elements: usize,
+    /// Crease search: the creased state compared with the flat state.
+    #[arg(long, value_enum, default_value_t = MapSettings::default().crease_criterion.into())]
+    pub crease_criterion: CriterionChoice,
 
     /// Compute only the points with index % N == I (I/N; e.g. $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT),
     /// into the same folder as the other shards; assemble them with --collect.
@@ -151,6 +155,7 @@ impl MapArgs {
                 },
                 fold_lengths: self.fold.clone(),
                 keep_poisson: !self.free_bulk,
+                crease_criterion: self.crease_criterion.into(),
                 crease_refinement: match self.no_crease_convergence {
                     true => None,
                     false => defaults.crease_refinement,

@@ -98,6 +98,18 @@ pub fn released_crease(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_le
     fold(materials, spec, strain, fold_length)?.release()
 }
 
+/// Both: the fold held ([`crease_energy`]), then released ([`released_crease`]).
+pub fn held_and_released(
+    materials: &Bilayer,
+    spec: MeshSpec,
+    strain: f64,
+    fold_length: f64,
+) -> Result<(CreaseEnergy, ReleasedCrease)> {
+    let folded = fold(materials, spec, strain, fold_length)?;
+    let held = folded.energy()?;
+    Ok((held, folded.release()?))
+}
+
 /// The folded state and what made it: the system, the model's conditions, the contact, and
 /// the folded nodes held on the plane by `held`.
 struct Folded {
@@ -198,7 +210,7 @@ fn fold_policy() -> NewtonPolicy {
 
 impl Folded {
     /// The energies of the fold held on the plane, and its shape.
-    fn energy(self) -> Result<CreaseEnergy> {
+    fn energy(&self) -> Result<CreaseEnergy> {
         let reactions: Vec<f64> = self
             .folded
             .iter()

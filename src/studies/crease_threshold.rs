@@ -3,7 +3,7 @@
 //! threshold is the same for every fold length. Writes
 //! `crease_threshold.json` and `crease_energy.csv` (every evaluation).
 
-use super::crease::{fold_threshold, Scan};
+use super::crease::{fold_threshold, Criterion, Scan};
 use crate::error::{Error, Result};
 use crate::material::Bilayer;
 use crate::mesh::{MeshSpec, XRefinement};
@@ -88,7 +88,7 @@ pub fn crease_threshold(study: &CreaseThresholdStudy) -> Result<CreaseThreshold>
         step: hi - lo,
         tolerance: study.tolerance,
     };
-    let fold = fold_threshold(&materials, study.mesh, study.fold_length, scan, &|| {})?;
+    let fold = fold_threshold(&materials, study.mesh, study.fold_length, scan, Criterion::Held, &|| {})?;
     let strain = fold.d_threshold.ok_or_else(|| Error::NoRoot {
         what: format!(
             "the energy of a seeded crease minus that of the flat state ({})",

@@ -321,9 +321,11 @@ impl Newton {
     }
 
     /// A step along the direction of negative curvature from `u`: the lowest mode of
-    /// `K v = lambda D v`, by inverse iteration with the factor of `K + s D` for the smallest
-    /// `s >= sigma` (from `SIGMA_MIN`, fourfold) that makes it definite, along the sign that lowers `E`, lengthened (doubled) while `E` keeps falling
-    /// and shortened (halved) until it falls. `None` if no length lowers `E`.
+    /// `K v = lambda D v`, by inverse iteration with the factor of `K + s D` for a shift `s`
+    /// within a factor four of the smallest that makes it definite (from `sigma`, raised or
+    /// lowered fourfold, not below `SIGMA_MIN`), along the sign that lowers `E`, lengthened
+    /// (doubled) while `E` keeps falling and shortened (halved) until it falls. `None` if no
+    /// length lowers `E`.
     fn curvature_step(
         &mut self,
         land: &mut Landscape,
@@ -333,13 +335,14 @@ impl Newton {
         factorisations: &mut usize,
     ) -> Result<Option<(Vec<f64>, Assembled)>, NewtonError> {
         let mut shift = sigma.max(SIGMA_MIN);
-        let shifted = loop {
+        let mut raised = false;
+        let mut shifted = loop {
             let shifted = land.assemble(u, shift, true)?;
             *factorisations += 1;
             if self.factorize(&shifted, &mut land.problem.timings).negative_pivots() == Some(0) {
                 break shifted;
             }
-            shift *= 4.0;
+            (shift, raised) = (4.0 * shift, true);
             if shift > SIGMA_MAX {
                 return Err(Error::Solver(format!(
                     "energy minimisation: no shift up to {SIGMA_MAX:.0e} makes the tangent definite"
@@ -347,6 +350,19 @@ impl Newton {
                 .into());
             }
         };
+        // Definite at the first try: lowered fourfold while it stays definite, so that the shift
+        // lies within a factor four of the lowest eigenvalue's magnitude and the inverse iteration
+        // contracts by at most 3/4 per step (from a large trust-region shift it barely moves).
+        while !raised && shift / 4.0 >= SIGMA_MIN {
+            let lower = land.assemble(u, shift / 4.0, true)?;
+            *factorisations += 1;
+            if self.factorize(&lower, &mut land.problem.timings).negative_pivots() != Some(0) {
+                *factorisations += 1;
+                self.factorize(&shifted, &mut land.problem.timings);
+                break;
+            }
+            (shift, shifted) = (shift / 4.0, lower);
+        }
         let k = shifted.tangent.as_ref().expect("assembled with the tangent");
         let solver = &mut self.solver.as_mut().expect("factorised above").solver;
         let d: Vec<f64> = land.problem.free.iter().map(|&dof| land.scale[dof]).collect();

@@ -12,9 +12,15 @@
 //! with its element counts multiplied by 1, 2, 3, ... until it changes by less than the
 //! refinement's tolerance, and extrapolated to a zero mesh size with the observed order
 //! ([`convergence`]): `d_crease` comes with an uncertainty `d_crease_error`.
+//!
+//! The fold held on the plane over its whole length is not an equilibrium crease: the plane
+//! pulls on some of its nodes. Under the released criterion ([`Criterion::Released`],
+//! [`released`]) the state compared is the crease the fold closes to once let go to
+//! frictionless contact, an equilibrium.
 
 pub mod convergence;
 mod options;
+mod released;
 pub mod threshold;
 mod write;
 
@@ -91,6 +97,30 @@ impl CreaseMesh {
     }
 }
 
+/// Which creased state the energy criterion compares with the flat state.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Criterion {
+    /// The fold held on the plane over its whole reference length `a` (Hong, Zhao & Suo's
+    /// construction).
+    #[default]
+    Held,
+    /// The fold released to frictionless contact with the plane: the equilibrium crease it
+    /// closes to (or the flat state, where it reopens).
+    Released,
+}
+
+impl Criterion {
+    /// The criterion by its name, `held` or `released`.
+    pub fn from_name(name: &str) -> Result<Self> {
+        match name {
+            "held" => Ok(Criterion::Held),
+            "released" => Ok(Criterion::Released),
+            other => Err(Error::invalid("criterion", other, "held or released")),
+        }
+    }
+}
+
 /// How `d(a)` is searched: scan `from` upwards by `step` to `to`, then locate the sign change
 /// to `tolerance` in `d`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -108,6 +138,8 @@ pub struct CreaseStudy {
     /// Reference fold lengths `a` (units of `H`).
     pub fold_lengths: Vec<f64>,
     pub scan: Scan,
+    /// Which creased state is compared with the flat one.
+    pub criterion: Criterion,
     /// The mesh sequence that converges each threshold (None: the base mesh alone).
     pub refinement: Option<Refinement>,
     /// Scan each fold only up to the lowest threshold found before it: the minimum over the
@@ -118,8 +150,8 @@ pub struct CreaseStudy {
 impl Default for CreaseStudy {
     /// A 12 H block, 24 x (3 + 10) elements refined 8 times at the crease in X, the layer's
     /// elements halving towards the surface (1/7, 2/7, 4/7 H); folds of 0.5, 1, 2 H;
-    /// `d` scanned from 0.05 to 0.7 by 0.05, located to 1e-5; converged in the mesh
-    /// ([`Refinement::default`]).
+    /// `d` scanned from 0.05 to 0.7 by 0.05, located to 1e-5; the held criterion; converged in
+    /// the mesh ([`Refinement::default`]).
     fn default() -> Self {
         CreaseStudy {
             mesh: CreaseMesh {
@@ -138,6 +170,7 @@ impl Default for CreaseStudy {
                 step: 0.05,
                 tolerance: 1e-5,
             },
+            criterion: Criterion::default(),
             refinement: Some(Refinement::default()),
             lowest_only: false,
         }
@@ -280,6 +313,8 @@ pub struct CreaseReport {
     pub unknowns: usize,
     /// What loads the bilayer; under growth every `d` is the strain `1 - 1/g`.
     pub load: Load,
+    /// Which creased state the thresholds compare with the flat one.
+    pub criterion: Criterion,
     /// `min_a d(a)`, extrapolated in the mesh: the crease onset (None if no fold paid off).
     pub d_crease: Option<f64>,
     /// The growth of the layer at the crease onset under a growth load (None otherwise).
@@ -291,7 +326,7 @@ pub struct CreaseReport {
     /// Whether that fold's threshold changed by less than the tolerance on the last mesh.
     pub converged: bool,
     /// The fold length `a` of that minimum, and the deformed depth of its crease on the finest
-    /// mesh (units of H).
+    /// mesh (units of H; the released crease's under the released criterion).
     pub fold_length: Option<f64>,
     pub depth: Option<f64>,
     /// The meshes used, coarsest first.
@@ -350,7 +385,7 @@ fn refined_threshold(
 ) -> Result<FoldThreshold> {
     let mut earlier = Vec::new();
     for lowering in 0..=LOWERINGS {
-        let mut fold = fold_threshold(materials, spec, a, scan, tick)?;
+        let mut fold = fold_threshold(materials, spec, a, scan, study.criterion, tick)?;
         let first_pays = fold.d_threshold.is_none() && fold.evaluations.first().is_some_and(|e| e.difference <= 0.0);
         if !first_pays || scan.from <= study.scan.from || lowering == LOWERINGS {
             fold.evaluations.extend(earlier);
@@ -406,21 +441,14 @@ pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<Cr
                 scan.to = scan.to.min(lowest);
             }
             let fold = match factor {
-                1 => fold_threshold(&materials, spec, a, scan, tick)?,
+                1 => fold_threshold(&materials, spec, a, scan, study.criterion, tick)?,
                 _ => refined_threshold(&materials, spec, a, scan, study, tick)?,
             };
             lowest = fold.d_threshold.map_or(lowest, |d| d.min(lowest));
             let fold_convergence = &mut folds[i];
             // Keep the meshes aligned with the sequence: a fold skipped on a mesh has no entry.
             while fold_convergence.meshes.len() + 1 < factor {
-                fold_convergence.meshes.push(FoldThreshold {
-                    fold_length: a,
-                    d_threshold: None,
-                    evaluations: Vec::new(),
-                    stopped: Some("not computed on this mesh".into()),
-                    released: None,
-                    release_error: None,
-                });
+                fold_convergence.meshes.push(FoldThreshold::not_computed(a));
             }
             fold_convergence.meshes.push(fold);
             fold_convergence.update(study.refinement);
@@ -441,6 +469,7 @@ pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<Cr
         mesh: study.mesh,
         unknowns: meshes[0].unknowns,
         load: params.load,
+        criterion: study.criterion,
         d_crease: best.map(|(e, _)| e.value),
         g_crease: best
             .filter(|_| params.load.is_growth())
@@ -451,8 +480,7 @@ pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<Cr
         fold_length: best.map(|(_, i)| folds[i].fold_length),
         depth: best
             .and_then(|(_, i)| folds[i].finest())
-            .and_then(FoldThreshold::at_threshold)
-            .map(|e| e.depth),
+            .and_then(|fold| fold.depth_at_threshold(study.criterion)),
         meshes,
         scan: study.scan,
         refinement: study.refinement,

@@ -2,7 +2,7 @@
 //! `convergence = false`), with the defaults of [`CreaseStudy::default`]: what the command line
 //! fills in, and what the Python package reads from its keywords ([`CreaseOptions::from_keywords`]).
 
-use super::{CreaseMesh, CreaseStudy, Refinement, Scan};
+use super::{CreaseMesh, CreaseStudy, Criterion, Refinement, Scan};
 use crate::error::Result;
 use crate::fem::ElementKind;
 use crate::studies::keywords::{default_keywords, from_keywords};
@@ -29,6 +29,8 @@ pub struct CreaseOptions {
     /// Ratio of the layer's thickest to its thinnest element.
     pub layer_grading: f64,
     pub element: ElementKind,
+    /// Which creased state is compared with the flat one: `held` or `released`.
+    pub criterion: Criterion,
     /// Converge each threshold in the mesh (false: the base mesh alone).
     pub convergence: bool,
     pub mesh_tolerance: f64,
@@ -52,6 +54,7 @@ impl Default for CreaseOptions {
             ratio: study.mesh.ratio,
             layer_grading: study.mesh.layer_grading,
             element: study.mesh.element,
+            criterion: study.criterion,
             convergence: study.refinement.is_some(),
             mesh_tolerance: refinement.tolerance,
             max_meshes: refinement.max_meshes,
@@ -90,6 +93,7 @@ impl CreaseOptions {
                 step: self.d_step,
                 tolerance: self.tolerance,
             },
+            criterion: self.criterion,
             refinement: self.convergence.then_some(Refinement {
                 tolerance: self.mesh_tolerance,
                 max_meshes: self.max_meshes,
@@ -119,5 +123,8 @@ mod tests {
         assert!(message(r#"{"fold": [1]}"#).contains("a keyword of crease"));
         assert!(message(r#"{"folds": 1}"#).contains("`folds` takes a list of numbers"));
         assert!(message(r#"{"element": "p1"}"#).contains("`displacement`"));
+        assert!(message(r#"{"criterion": "open"}"#).contains("`released`"));
+        let released = CreaseOptions::from_keywords(r#"{"criterion": "released"}"#).unwrap();
+        assert_eq!(released.study().unwrap().criterion, Criterion::Released);
     }
 }

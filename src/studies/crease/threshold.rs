@@ -1,10 +1,11 @@
-//! `d(a)` on one mesh: `U_crease - U_flat` is scanned upwards in `d` until it changes sign, then
-//! Brent's method locates the root inside that first bracket, from the two values the scan
-//! already has. Past the threshold the seeded fold may snap to a deeper crease (no quasi-static
-//! path): a failed fold halves the interval from the last good `d` up to three times, and
-//! otherwise ends the scan of that `a`, saying where.
+//! `d(a)` on one mesh: `U_crease - U_flat` of the held fold is scanned upwards in `d` until it
+//! changes sign, then Brent's method locates the root inside that first bracket, from the two
+//! values the scan already has. Past the threshold the seeded fold may snap to a deeper crease
+//! (no quasi-static path): a failed fold halves the interval from the last good `d` up to three
+//! times, and otherwise ends the scan of that `a`, saying where. Under the released criterion
+//! the search goes on from the held fold's threshold ([`super::released`]).
 
-use super::Scan;
+use super::{released::released_threshold, Criterion, Scan};
 use crate::error::{Error, Result};
 use crate::material::Bilayer;
 use crate::mesh::MeshSpec;
@@ -17,8 +18,11 @@ use serde::Serialize;
 #[derive(Clone, Debug, Serialize)]
 pub struct FoldThreshold {
     pub fold_length: f64,
-    /// Where `U_crease - U_flat` changes sign (None: not within the scan).
+    /// The threshold by the study's criterion (None: not within the scan).
     pub d_threshold: Option<f64>,
+    /// Where the held fold's `U_crease - U_flat` changes sign (the held criterion's threshold).
+    pub d_held: Option<f64>,
+    /// The held fold at every `d` evaluated.
     pub evaluations: Vec<CreaseEnergy>,
     /// Why the scan ended early, if it did (e.g. the fold snapped).
     pub stopped: Option<String>,
@@ -27,9 +31,40 @@ pub struct FoldThreshold {
     pub released: Option<ReleasedCrease>,
     /// Why the release at the threshold failed, if it did.
     pub release_error: Option<String>,
+    /// Every release evaluated, by increasing `d` (the one at the threshold under the held
+    /// criterion, the whole search under the released one).
+    pub released_evaluations: Vec<ReleasedCrease>,
+    /// Under the released criterion: whether just below the threshold the fold reopens to the
+    /// flat state, so that the equilibrium crease appears already paying off (rather than
+    /// passing through `U = U_flat`).
+    pub appears_paying: bool,
 }
 
 impl FoldThreshold {
+    /// The entry of a fold that was not computed on a mesh of the sequence.
+    pub fn not_computed(fold_length: f64) -> Self {
+        FoldThreshold {
+            fold_length,
+            d_threshold: None,
+            d_held: None,
+            evaluations: Vec::new(),
+            stopped: Some("not computed on this mesh".into()),
+            released: None,
+            release_error: None,
+            released_evaluations: Vec::new(),
+            appears_paying: false,
+        }
+    }
+
+    /// The deformed depth of the crease at the threshold: the held fold's, or the released
+    /// crease's under the released criterion.
+    pub fn depth_at_threshold(&self, criterion: Criterion) -> Option<f64> {
+        match criterion {
+            Criterion::Held => self.at_threshold().map(|e| e.depth),
+            Criterion::Released => self.released.as_ref().map(|r| r.depth),
+        }
+    }
+
     /// The evaluation closest to `d`.
     pub fn nearest(&self, d: f64) -> Option<&CreaseEnergy> {
         self.evaluations
@@ -49,8 +84,38 @@ impl FoldThreshold {
     }
 }
 
-/// `d(a)` on `spec`: the scan, then Brent within its first sign change, to `scan.tolerance`.
-pub fn fold_threshold(materials: &Bilayer, spec: MeshSpec, a: f64, scan: Scan, tick: Tick) -> Result<FoldThreshold> {
+/// `d(a)` on `spec` by `criterion`: the held fold's scan, then Brent within its first sign
+/// change, to `scan.tolerance`; then the fold released at that threshold, or the released
+/// crease's own threshold searched from there.
+pub fn fold_threshold(
+    materials: &Bilayer,
+    spec: MeshSpec,
+    a: f64,
+    scan: Scan,
+    criterion: Criterion,
+    tick: Tick,
+) -> Result<FoldThreshold> {
+    let mut fold = held_threshold(materials, spec, a, scan, tick)?;
+    let Some(d) = fold.d_held else { return Ok(fold) };
+    match criterion {
+        Criterion::Held => {
+            match released_crease(materials, spec, d, a) {
+                Ok(r) => {
+                    fold.released_evaluations.push(r.clone());
+                    fold.released = Some(r);
+                }
+                Err(Error::Solver(m)) => fold.release_error = Some(m),
+                Err(e) => return Err(e),
+            }
+            tick();
+        }
+        Criterion::Released => released_threshold(materials, spec, scan, &mut fold, tick)?,
+    }
+    Ok(fold)
+}
+
+/// The held fold's threshold on `spec` (nothing released yet).
+fn held_threshold(materials: &Bilayer, spec: MeshSpec, a: f64, scan: Scan, tick: Tick) -> Result<FoldThreshold> {
     let mut evaluations: Vec<CreaseEnergy> = Vec::new();
     let mut stopped = None;
     let mut bracket = None;
@@ -109,22 +174,16 @@ pub fn fold_threshold(materials: &Bilayer, spec: MeshSpec, a: f64, scan: Scan, t
         ));
     }
     evaluations.sort_by(|x, y| x.strain.total_cmp(&y.strain));
-    let (mut released, mut release_error) = (None, None);
-    if let Some(d) = d_threshold {
-        match released_crease(materials, spec, d, a) {
-            Ok(r) => released = Some(r),
-            Err(Error::Solver(m)) => release_error = Some(m),
-            Err(e) => return Err(e),
-        }
-        tick();
-    }
     Ok(FoldThreshold {
         fold_length: a,
         d_threshold,
+        d_held: d_threshold,
         evaluations,
         stopped,
-        released,
-        release_error,
+        released: None,
+        release_error: None,
+        released_evaluations: Vec::new(),
+        appears_paying: false,
     })
 }
 

@@ -1,10 +1,11 @@
-//! The files of `fiberfold crease`: `crease_energy.csv` (every evaluation, on every mesh),
-//! `crease.json` ([`CreaseReport`]) and `crease.png/svg`: the energy difference against `d`
+//! The files of `fiberfold crease`: `crease_energy.csv` (every held fold, on every mesh),
+//! `crease_released.csv` (every release), `crease.json` ([`CreaseReport`]) and `crease.png/svg`: the energy difference against `d`
 //! for every fold on its finest mesh, the thresholds against the mesh size with their
 //! extrapolation, and the crease at the onset.
 
-use super::{crease, CreaseReport, CreaseStudy};
+use super::{crease, CreaseReport, CreaseStudy, Criterion};
 use crate::error::Result;
+use crate::material::Bilayer;
 use crate::output::{ensure_dir, plot::save_panels, write_json, CsvWriter, Figure, LineStyle, Series};
 use crate::parameters::Parameters;
 use crate::studies::Tick;
@@ -22,6 +23,21 @@ const COLUMNS: [&str; 10] = [
     "tensile_nodes",
     "ellipticity_layer",
     "ellipticity_substrate",
+];
+
+/// Columns of `crease_released.csv` (`reopened` is 1 where the fold opened to the flat state).
+const RELEASED_COLUMNS: [&str; 11] = [
+    "fold_length",
+    "mesh",
+    "d",
+    "difference",
+    "held_difference",
+    "closed_length",
+    "contact_length",
+    "reopened",
+    "pressed_nodes",
+    "pulling_nodes",
+    "depth",
 ];
 
 /// Runs the study and writes its files into `out`.
@@ -48,7 +64,28 @@ pub fn run(params: &Parameters, study: &CreaseStudy, out: &Path, tick: Tick) -> 
             }
         }
     }
-    let mut files = vec![csv];
+    let released = out.join("crease_released.csv");
+    let mut table = CsvWriter::create(&released, &RELEASED_COLUMNS)?;
+    for fold in &report.folds {
+        for (m, on_mesh) in fold.meshes.iter().enumerate() {
+            for r in &on_mesh.released_evaluations {
+                table.append(&[
+                    fold.fold_length,
+                    report.meshes[m].factor as f64,
+                    r.strain,
+                    r.difference,
+                    r.held_difference,
+                    r.closed_length,
+                    r.contact_length,
+                    f64::from(u8::from(r.reopened)),
+                    r.pressed_nodes as f64,
+                    r.pulling_nodes as f64,
+                    r.depth,
+                ])?;
+            }
+        }
+    }
+    let mut files = vec![csv, released];
     files.extend(save_panels(&panels(&report), out, "crease")?);
     let json = out.join("crease.json");
     write_json(&json, &report)?;
@@ -79,9 +116,29 @@ fn panels(report: &CreaseReport) -> Vec<Figure> {
         let points = finest
             .map(|f| f.evaluations.iter().map(|e| (e.strain, e.scaled_difference)).collect())
             .unwrap_or_default();
+        let held_label = match report.criterion {
+            Criterion::Held => label.clone(),
+            Criterion::Released => format!("a = {} H, held", fold.fold_length),
+        };
         energy
             .series
-            .push(Series::new(label.clone(), points, LineStyle::DotsAndLine, i));
+            .push(Series::new(held_label, points, LineStyle::DotsAndLine, i));
+        if report.criterion == Criterion::Released {
+            let mu = Bilayer::new(&report.parameters).layer.energy.shear_modulus();
+            let scale = mu * fold.fold_length * fold.fold_length;
+            let points: Vec<(f64, f64)> = finest
+                .map(|f| {
+                    f.released_evaluations
+                        .iter()
+                        .filter(|r| !r.reopened)
+                        .map(|r| (r.strain, r.difference / scale))
+                        .collect()
+                })
+                .unwrap_or_default();
+            energy
+                .series
+                .push(Series::new(format!("{label}, released"), points, LineStyle::Circles, i));
+        }
         let mut thresholds: Vec<(f64, f64)> = fold
             .thresholds
             .iter()
@@ -106,7 +163,7 @@ fn panels(report: &CreaseReport) -> Vec<Figure> {
         let surface: Vec<(f64, f64)> = at.surface.iter().copied().filter(|p| p.0 <= 4.0 * a).collect();
         panels.push(
             Figure::new(
-                format!("crease at d = {:.4} (a = {a} H, finest mesh), mirrored", at.strain),
+                format!("fold held at d = {:.4} (a = {a} H, finest mesh), mirrored", at.strain),
                 "current x / H",
                 "current y / H",
             )

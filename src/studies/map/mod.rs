@@ -11,7 +11,7 @@ mod point;
 
 pub use point::{compute as compute_point, doubling, first_instability, post_buckling, First, MapPoint, PostBuckling};
 
-use super::crease::{CreaseMesh, CreaseStudy, Refinement, Scan};
+use super::crease::{CreaseMesh, CreaseStudy, Criterion, Refinement, Scan};
 use super::orientation::Modes;
 use super::{validate_points, Tick};
 use crate::error::{Error, Result};
@@ -116,6 +116,9 @@ pub struct MapSettings {
     /// it existed: the base mesh alone).
     #[serde(default)]
     pub crease_refinement: Option<Refinement>,
+    /// The crease search's criterion (held in files written before it existed).
+    #[serde(default)]
+    pub crease_criterion: Criterion,
     /// Scale the bulk modulus with a mapped shear modulus (`K_l` with `mu_l`, `K_s` with
     /// `mu_s`), keeping the base set's `K / mu`: the Poisson ratio stays Table 1's.
     pub keep_poisson: bool,
@@ -151,6 +154,7 @@ impl Default for MapSettings {
             crease_scan: crease.scan,
             // Three meshes at most: a point's crease search within about twice its cost on one.
             crease_refinement: crease.refinement.map(|r| Refinement { max_meshes: 3, ..r }),
+            crease_criterion: crease.criterion,
             keep_poisson: true,
             biaxial: None,
         }
@@ -165,6 +169,7 @@ impl MapSettings {
             mesh: self.crease_mesh,
             fold_lengths: self.fold_lengths.clone(),
             scan: self.crease_scan,
+            criterion: self.crease_criterion,
             refinement: self.crease_refinement,
             lowest_only: true,
         }
