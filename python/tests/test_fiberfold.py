@@ -301,7 +301,7 @@ def test_crease_takes_the_cli_options_with_the_cli_defaults():
     for name in defaults:
         assert flags.get(name, "--" + name.replace("_", "-")) in help_text, name
     assert defaults["folds"] == [0.5, 1.0, 2.0] and defaults["convergence"] is True
-    assert defaults["element"] == "displacement" and defaults["nx"] == 24
+    assert defaults["element"] == "displacement" and defaults["nx"] == 24 and defaults["criterion"] == "held"
 
 
 def test_laws_by_dotted_keys_or_tables_round_trip_and_give_their_onset():

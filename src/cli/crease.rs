@@ -184,7 +184,7 @@ fn print_release(fold: &FoldThreshold) {
             println!("    released: it reopens to the flat state (the held fold is no equilibrium crease here)")
         }
         (Some(r), _) => println!(
-            "    released: stays closed over {:.3} of its {} H, the plane pushing at {} nodes ({}); \
+            "    released: closed over {:.3} H (folded over {} H), the plane pushing at {} nodes ({}); \
              U - U_flat = {:.4e} (held {:.4e})",
             r.closed_length,
             r.fold_length,

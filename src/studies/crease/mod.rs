@@ -143,7 +143,10 @@ pub struct CreaseStudy {
     /// The mesh sequence that converges each threshold (None: the base mesh alone).
     pub refinement: Option<Refinement>,
     /// Scan each fold only up to the lowest threshold found before it: the minimum over the
-    /// folds is the same, the thresholds above it are not located (the map's shortcut).
+    /// folds is the same, the thresholds above it are not located (the map's shortcut). Under
+    /// the released criterion the held scan is capped there: a shortcut that holds where the
+    /// released crease forgets its fold length, as it is seen to (the folds that close give
+    /// the same released crease and threshold).
     pub lowest_only: bool,
 }
 
@@ -268,13 +271,14 @@ impl FoldConvergence {
         self.meshes.iter().rev().find(|m| m.d_threshold.is_some())
     }
 
-    /// The thresholds of the last run of consecutive meshes that found one, with their sizes
-    /// `1 / s` (a fold that failed on one mesh may find a threshold on the finer ones).
-    fn last_run(&self) -> (Vec<f64>, Vec<f64>) {
+    /// The thresholds `of` each mesh of the last run of consecutive meshes that found one, with
+    /// their sizes `1 / s` (a fold that failed on one mesh may find a threshold on the finer
+    /// ones).
+    fn last_run(&self, of: impl Fn(&FoldThreshold) -> Option<f64>) -> (Vec<f64>, Vec<f64>) {
         let mut run = Vec::new();
-        for (i, d) in self.thresholds.iter().enumerate().rev() {
+        for (i, d) in self.meshes.iter().map(of).enumerate().rev() {
             match d {
-                Some(d) => run.push((1.0 / (i + 1) as f64, *d)),
+                Some(d) => run.push((1.0 / (i + 1) as f64, d)),
                 None if run.is_empty() => continue,
                 None => break,
             }
@@ -285,7 +289,7 @@ impl FoldConvergence {
 
     fn update(&mut self, refinement: Option<Refinement>) {
         self.thresholds = self.meshes.iter().map(|m| m.d_threshold).collect();
-        let (sizes, values) = self.last_run();
+        let (sizes, values) = self.last_run(|m| m.d_threshold);
         self.extrapolated = extrapolate(&sizes, &values);
         let n = values.len();
         self.converged = n >= 3
@@ -350,12 +354,13 @@ impl CreaseReport {
     }
 }
 
-/// The scan of a fold on the next mesh: steps `delta` (twice the last change of its threshold,
-/// at least [`LOCAL_STEP`]) from `delta` below its previous threshold to `2 delta` above it;
-/// without a previous threshold, the whole scan.
+/// The scan of a fold on the next mesh: steps `delta` (twice the last change of its held
+/// threshold, at least [`LOCAL_STEP`]) from `delta` below its previous held threshold to
+/// `2 delta` above it; without a previous threshold, the whole scan. (The held fold is scanned
+/// first under either criterion; the released search starts from its threshold.)
 fn next_scan(study: &CreaseStudy, fold: &FoldConvergence) -> Scan {
     let scan = study.scan;
-    let (_, values) = fold.last_run();
+    let (_, values) = fold.last_run(|m| m.d_held);
     let Some(&d) = values.last() else { return scan };
     let change = match values.len() {
         1 => 2.0 * LOCAL_STEP,

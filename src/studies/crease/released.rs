@@ -5,8 +5,10 @@
 //! at the threshold is one the solid can rest in.
 //!
 //! The search starts at the held fold's threshold `d_h` and steps away from it, down if the
-//! released crease pays off there and up if it does not, by the scan's step (at most
-//! [`LARGEST_STEP`]), until the verdict changes. Below the threshold the fold may reopen to
+//! released crease pays off there and up if it does not, first by the scan's step (at most
+//! [`FIRST_STEP`]), each step twice the last, until the verdict changes (not below
+//! [`LOWEST`], not above [`HIGHEST`]: the scan's range bounds the held fold's search, not this
+//! one, since on a finer mesh it is a window around the last threshold). Below the threshold the fold may reopen to
 //! the flat state, where `U_released - U_flat` has no crease to measure: the bracket is halved
 //! while its lower end reopens, then Brent's method locates the sign change of
 //! `U_released - U_flat` between two closed creases to the scan's tolerance. If the lower end
@@ -22,8 +24,14 @@ use crate::numerics::roots::brent_from;
 use crate::protocol::crease_seed::{held_and_released, CreaseEnergy, ReleasedCrease};
 use crate::studies::Tick;
 
-/// The largest step of the search away from the held fold's threshold.
-const LARGEST_STEP: f64 = 0.01;
+/// The largest first step of the search away from the held fold's threshold.
+const FIRST_STEP: f64 = 0.01;
+
+/// The lowest `d` the search may reach.
+const LOWEST: f64 = 0.01;
+
+/// The highest `d` the search may reach.
+const HIGHEST: f64 = 0.95;
 
 /// Whether the released crease pays off: it stayed closed, below the flat state's energy.
 fn pays(r: &ReleasedCrease) -> bool {
@@ -107,7 +115,7 @@ pub(super) fn released_threshold(
 /// The threshold and whether the crease appears already paying off; `Err(why)` if the search
 /// cannot finish.
 fn locate(search: &mut Search, scan: Scan, d_held: f64) -> Result<std::result::Result<(f64, bool), String>> {
-    let step = scan.step.min(LARGEST_STEP);
+    let mut step = scan.step.min(FIRST_STEP);
     let released = |d: f64, r: std::result::Result<ReleasedCrease, String>| {
         r.map(|r| (d, r))
             .map_err(|why| format!("the fold released at d = {d:.5} has no quasi-static path: {why}"))
@@ -120,13 +128,11 @@ fn locate(search: &mut Search, scan: Scan, d_held: f64) -> Result<std::result::R
     if pays(&start.1) {
         hi = start;
         loop {
-            if hi.0 <= scan.from {
-                return Ok(Err(format!(
-                    "the released crease already pays off at d = {}: lower --d-from",
-                    scan.from
-                )));
+            if hi.0 <= LOWEST {
+                return Ok(Err(format!("the released crease already pays off at d = {LOWEST}")));
             }
-            let d = (hi.0 - step).max(scan.from);
+            let d = (hi.0 - step).max(LOWEST);
+            step *= 2.0;
             match released(d, search.at(d)?) {
                 Ok(end) if pays(&end.1) => hi = end,
                 Ok(end) => {
@@ -139,13 +145,13 @@ fn locate(search: &mut Search, scan: Scan, d_held: f64) -> Result<std::result::R
     } else {
         lo = start;
         loop {
-            if lo.0 >= scan.to {
+            if lo.0 >= HIGHEST {
                 return Ok(Err(format!(
-                    "the released crease does not pay off up to d = {} (the held fold does from {d_held:.5})",
-                    scan.to
+                    "the released crease does not pay off up to d = {HIGHEST} (the held fold does from {d_held:.5})"
                 )));
             }
-            let d = (lo.0 + step).min(scan.to);
+            let d = (lo.0 + step).min(HIGHEST);
+            step *= 2.0;
             match released(d, search.at(d)?) {
                 Ok(end) if pays(&end.1) => {
                     hi = end;

@@ -123,7 +123,8 @@ fn panels(report: &CreaseReport) -> Vec<Figure> {
         energy
             .series
             .push(Series::new(held_label, points, LineStyle::DotsAndLine, i));
-        if report.criterion == Criterion::Released {
+        let released_points = finest.is_some_and(|f| f.released_evaluations.iter().any(|r| !r.reopened));
+        if report.criterion == Criterion::Released && released_points {
             let mu = Bilayer::new(&report.parameters).layer.energy.shear_modulus();
             let scale = mu * fold.fold_length * fold.fold_length;
             let points: Vec<(f64, f64)> = finest
