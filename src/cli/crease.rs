@@ -14,7 +14,7 @@ pub enum CriterionChoice {
     /// The fold held on the symmetry plane over its whole length a (Hong, Zhao & Suo's).
     Held,
     /// The fold released to frictionless contact with the plane: the equilibrium crease it
-    /// closes to (a search from the held fold's threshold; about three times the cost).
+    /// closes to (a search from the held fold's threshold, each step a fold and a release).
     Released,
 }
 

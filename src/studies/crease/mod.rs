@@ -110,17 +110,6 @@ pub enum Criterion {
     Released,
 }
 
-impl Criterion {
-    /// The criterion by its name, `held` or `released`.
-    pub fn from_name(name: &str) -> Result<Self> {
-        match name {
-            "held" => Ok(Criterion::Held),
-            "released" => Ok(Criterion::Released),
-            other => Err(Error::invalid("criterion", other, "held or released")),
-        }
-    }
-}
-
 /// How `d(a)` is searched: scan `from` upwards by `step` to `to`, then locate the sign change
 /// to `tolerance` in `d`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]

@@ -105,7 +105,6 @@ pub(super) fn released_threshold(
         }
         Err(why) => {
             fold.d_threshold = None;
-            fold.release_error = Some(why.clone());
             fold.stopped = Some(why);
         }
     }
