@@ -47,7 +47,7 @@ pub struct MeshSpec {
     pub depth: f64,
     /// Refinement in X (`None`: uniform).
     pub x_refinement: Option<XRefinement>,
-    /// The element (default: displacement).
+    /// The element (default: mixed).
     pub element: ElementKind,
 }
 

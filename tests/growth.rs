@@ -155,9 +155,11 @@ fn fe_bifurcation_under_growth_meets_the_linear_theory_on_the_fine_mesh() {
     }
 }
 
-/// A half-space has no length scale: grown uniformly with the ends held, it creases at the
-/// strain at which it creases when compressed (the grown body's mesh is stretched by `g` along
-/// `X`, so the two agree within the mesh's error, not to round-off).
+/// A neo-Hookean solid has no length scale: grown uniformly in its plane (`Fg = diag(g, g)`) with
+/// the ends held, the block, its mesh and its fold are the compressed ones scaled by `g`, so it
+/// creases at the compressed one's strain to the root's tolerance. (Grown along `X` alone, the
+/// 12 H block is stretched and the converged thresholds differ by 2.5e-3 with either element:
+/// a finite block's length scale, not an error.)
 #[test]
 fn a_uniformly_grown_half_space_creases_at_the_compressed_one_s_strain() {
     let crease = |load: &str| -> serde_json::Value {
@@ -167,7 +169,18 @@ fn a_uniformly_grown_half_space_creases_at_the_compressed_one_s_strain() {
                 "crease", "--set", "mu_l=1", "--set", "K_l=100", "--set", "K_s=100", "--set", "phi_m=1",
             ])
             .args([
-                "--set", "phi_f=0", "--fold", "1", "--d-from", "0.3", "--d-to", "0.38", "--d-step", "0.04",
+                "--set",
+                "phi_f=0",
+                "--set",
+                "area_growth=true",
+                "--fold",
+                "1",
+                "--d-from",
+                "0.3",
+                "--d-to",
+                "0.38",
+                "--d-step",
+                "0.04",
             ])
             .args(["--no-convergence", "--load", load, "--out", dir.to_str().unwrap()])
             .output()
@@ -180,7 +193,7 @@ fn a_uniformly_grown_half_space_creases_at_the_compressed_one_s_strain() {
     let (compressed, grown) = (crease("compression"), crease("uniform_growth"));
     let d = |r: &serde_json::Value| r["d_crease"].as_f64().unwrap();
     println!("d_crease: compressed {}, grown {}", d(&compressed), d(&grown));
-    assert!((d(&compressed) - d(&grown)).abs() < 1e-3);
+    assert!((d(&compressed) - d(&grown)).abs() < 1e-5);
     assert!(compressed["g_crease"].is_null());
     assert!((grown["g_crease"].as_f64().unwrap() - 1.0 / (1.0 - d(&grown))).abs() < 1e-12);
 }

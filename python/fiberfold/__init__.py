@@ -227,12 +227,13 @@ def _plain(value: Any) -> Any:
 
 
 def bifurcation(
-    params: Parameters, mesh: str = "coarse", out: Optional[str] = None, element: str = "displacement"
+    params: Parameters, mesh: str = "coarse", out: Optional[str] = None, element: Optional[str] = None
 ) -> Dict[str, Any]:
     """The exact bifurcation of the discretised perfect system (``fiberfold bifurcation``):
     the content of ``bifurcation.json`` (``d_bifurcation``, ``k_mode``, the linear theory's
     minimum, ...). Its files (mode VTU and figure) go to ``out``, or to a temporary folder that
-    is removed. ``element``: ``"displacement"`` (default) or ``"mixed"``."""
+    is removed. ``element``: ``"mixed"`` (None: the default, as ``fiberfold bifurcation``'s) or
+    ``"displacement"``."""
     params = _check_parameters(params)
     if out is not None:
         return json.loads(_fiberfold.bifurcation_run(params, str(out), mesh, element))

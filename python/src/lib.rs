@@ -357,13 +357,21 @@ fn simulate_defaults() -> String {
 /// The exact bifurcation of the discretised perfect system (`fiberfold bifurcation`), written
 /// into `out`; returns `bifurcation.json` as JSON text.
 #[pyfunction]
-#[pyo3(signature = (params, out, mesh = "coarse", element = "displacement"))]
-fn bifurcation_run(py: Python<'_>, params: &PyParameters, out: PathBuf, mesh: &str, element: &str) -> PyResult<String> {
+#[pyo3(signature = (params, out, mesh = "coarse", element = None))]
+fn bifurcation_run(
+    py: Python<'_>,
+    params: &PyParameters,
+    out: PathBuf,
+    mesh: &str,
+    element: Option<&str>,
+) -> PyResult<String> {
     use fiberfold::studies::bifurcation::{run, BifurcationStudy};
+    let preset = MeshSpec::preset(mesh).map_err(to_py)?;
     let study = BifurcationStudy {
-        mesh: MeshSpec::preset(mesh)
-            .map_err(to_py)?
-            .with_element(ElementKind::from_name(element).map_err(to_py)?),
+        mesh: match element {
+            Some(name) => preset.with_element(ElementKind::from_name(name).map_err(to_py)?),
+            None => preset,
+        },
         settings: Default::default(),
     };
     let p = params.inner.clone();

@@ -263,16 +263,17 @@ def test_bifurcation_of_the_discretised_perfect_system_meets_the_linear_theory()
 
 def test_incompressible_tissue_with_the_mixed_element():
     # Exactly incompressible, no fibres: Biot's half-space in the linear theory, and the FE
-    # bifurcation of the bilayer within 2e-4 of it with the mixed element, which it needs.
+    # bifurcation of the bilayer within 2e-4 of it with the mixed element (the default), which
+    # it needs.
     p = fiberfold.Parameters(phi_m=1.0, phi_f=0.0, incompressible=True)
     assert p.incompressible is True
     z = min(r.real for r in np.roots([1.0, 1.0, 3.0, -1.0]) if abs(r.imag) < 1e-12)  # Biot's cubic
     assert abs(fiberfold.onset(p.replace(mu_l=1.0)).d_c - (1.0 - np.sqrt(z))) < 1e-7
-    r = fiberfold.bifurcation(p, mesh="coarse", element="mixed")
+    r = fiberfold.bifurcation(p, mesh="coarse")
     assert r["mesh"]["element"] == "mixed"
     assert abs(r["relative_difference"]) < 2e-4
     with pytest.raises(ValueError, match="element"):
-        fiberfold.bifurcation(p, mesh="coarse")
+        fiberfold.bifurcation(p, mesh="coarse", element="displacement")
     with pytest.raises(ValueError, match="element"):
         fiberfold.bifurcation(p, mesh="coarse", element="hybrid")
     run = fiberfold.simulate(p.replace(beta=0.785398), 4.5, d_max=0.02, element="mixed", **TINY)
@@ -301,7 +302,7 @@ def test_crease_takes_the_cli_options_with_the_cli_defaults():
     for name in defaults:
         assert flags.get(name, "--" + name.replace("_", "-")) in help_text, name
     assert defaults["folds"] == [0.5, 1.0, 2.0] and defaults["convergence"] is True
-    assert defaults["element"] == "displacement" and defaults["nx"] == 24 and defaults["criterion"] == "held"
+    assert defaults["element"] == "mixed" and defaults["nx"] == 24 and defaults["criterion"] == "held"
 
 
 def test_laws_by_dotted_keys_or_tables_round_trip_and_give_their_onset():

@@ -87,8 +87,8 @@ pub struct CreaseArgs {
     #[arg(long, default_value_t = defaults().layer_grading, allow_negative_numbers = true)]
     pub layer_grading: f64,
 
-    /// Finite element (mixed: the more accurate, and the only one for incompressible = true;
-    /// displacement, the default, locks above K/mu ~ 100).
+    /// Finite element (mixed, the default: the more accurate, and the only one for
+    /// incompressible = true; displacement locks above K/mu ~ 100).
     #[arg(long, value_enum, default_value_t = defaults().element.into())]
     pub element: ElementChoice,
 

@@ -65,10 +65,10 @@ pub struct MapArgs {
     #[arg(long)]
     pub no_crease_convergence: bool,
 
-    /// Finite element of the crease search and the nonlinear runs (mixed: the more accurate,
-    /// and the only one for incompressible = true; displacement, the default, locks above
+    /// Finite element of the crease search and the nonlinear runs (mixed, the default: the more
+    /// accurate, and the only one for incompressible = true; displacement locks above
     /// K/mu ~ 100).
-    #[arg(long, value_enum, default_value_t = ElementChoice::Displacement)]
+    #[arg(long, value_enum, default_value_t = MapSettings::default().crease_mesh.element.into())]
     pub element: ElementChoice,
 
     /// Nonlinear run: wavelengths 2 pi/k0 across the half domain (2 x waves an integer).
