@@ -4,7 +4,6 @@
 //! uniformly from a uniform layer extrapolates to the same threshold as the graded default,
 //! within the uncertainty each reports.
 
-use fiberfold::fem::ElementKind;
 use fiberfold::stability::{Method, StabilityAnalysis};
 use fiberfold::studies::crease::{crease, CreaseMesh, CreaseReport, CreaseStudy, Criterion, Refinement, Scan};
 use fiberfold::Parameters;
@@ -82,7 +81,6 @@ fn graded_and_uniform_mesh_families_extrapolate_to_the_same_threshold() {
         layer: 2,
         substrate: 10,
         layer_grading: 1.0,
-        element: ElementKind::Displacement,
         ..CreaseStudy::default().mesh
     };
     let uniform = crease(&params, &study(uniform_mesh, 5), &|| {}).unwrap();
