@@ -34,6 +34,14 @@ pub trait Update {
     /// Counts one update into `updates`.
     fn count(&self, updates: &mut Updates);
 
+    /// After an unfinished pass of a minimisation ([`NewtonReport::unfinished`]), at a state
+    /// that is not an equilibrium: refreshes what follows the configuration (the contact pairs,
+    /// not their multipliers) and says whether it did; a loop that does not (`false`) passes
+    /// such a pass up unchanged.
+    fn refresh(&mut self, _u: &[f64]) -> bool {
+        false
+    }
+
     /// Why the loop failed after its last update.
     fn exhausted(&self) -> NewtonError;
 }
@@ -45,8 +53,14 @@ pub enum Check {
     Updated,
 }
 
+/// Most passes of a minimisation stopped unfinished, each followed by an update.
+const MAX_UNFINISHED_PASSES: usize = 200;
+
 /// Solve, update, check: `solve` (which sees the loop's current state), then `update`, again
-/// until the check passes or the updates run out; the report of all solves together.
+/// until the check passes or the updates run out; the report of all solves together. An
+/// unfinished pass of a minimisation is followed by a refresh ([`Update::refresh`]) and another
+/// pass, without a check and outside the updates' count, or passed up if the loop has nothing
+/// to refresh.
 pub fn repeat<U: Update>(
     update: &mut U,
     system: &mut System,
@@ -54,16 +68,29 @@ pub fn repeat<U: Update>(
     mut solve: impl FnMut(&U, &mut System, &mut [f64]) -> Result<NewtonReport, NewtonError>,
 ) -> Result<NewtonReport, NewtonError> {
     let mut report = solve(update, system, u)?;
-    for _ in 0..update.max_updates() {
-        if update.update(system, u)? == Check::Accepted {
-            return Ok(report);
+    let (mut updates, mut unfinished_passes) = (0, 0);
+    loop {
+        if report.unfinished {
+            if !update.refresh(u) {
+                return Ok(report);
+            }
+            unfinished_passes += 1;
+            if unfinished_passes > MAX_UNFINISHED_PASSES {
+                return Err(NewtonError::Model(crate::Error::Solver(format!(
+                    "energy minimisation: still moving after {MAX_UNFINISHED_PASSES} passes"
+                ))));
+            }
+        } else {
+            if update.update(system, u)? == Check::Accepted {
+                return Ok(report);
+            }
+            if updates == update.max_updates() {
+                return Err(update.exhausted());
+            }
+            updates += 1;
         }
         report = report.followed_by(solve(update, system, u)?);
         update.count(&mut report.updates);
-    }
-    match update.update(system, u)? {
-        Check::Accepted => Ok(report),
-        Check::Updated => Err(update.exhausted()),
     }
 }
 
@@ -158,6 +185,11 @@ fn solve_equilibrium(
         None => pressure_passes(other, system, u),
     };
     let result = solved.and_then(|mut report| {
+        if report.unfinished {
+            return Err(NewtonError::Model(crate::Error::Solver(
+                "energy minimisation stopped unfinished with no contact to search again".into(),
+            )));
+        }
         if policy.inertia_at_solution && !system.free_dofs(bc)?.is_empty() {
             let with_contact;
             let added: &dyn AddedEnergy = match contact.as_deref() {

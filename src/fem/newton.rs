@@ -183,6 +183,7 @@ impl Newton {
                     backtracks,
                     updates: Updates::default(),
                     timings: problem.timings,
+                    unfinished: false,
                 });
             }
             // Reused steps each contract |r| by `contraction`, so they are few; bound them anyway.

@@ -215,8 +215,11 @@ impl Augmentation {
     ) -> Result<(NewtonReport, AugmentedRecord)> {
         let saved_plane = self.contact.clone();
         prepare_contact((&mut self.contact, &mut self.inertia), system, u, (bc, d));
+        // Half the search distance per pass: no surface node passes unseen into a segment or
+        // slides far beyond the one it was paired with.
         let policy = NewtonPolicy {
             inertia_at_solution: true,
+            max_pass_move: self.contact.as_ref().map(|c| 0.5 * c.settings.search_distance),
             ..*policy
         };
         let report = match minimise(newton, (system, u, bc), self.contact.as_mut(), &NoAddedEnergy, &policy) {

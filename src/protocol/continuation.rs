@@ -29,6 +29,10 @@ use serde::Serialize;
 use std::collections::VecDeque;
 use std::time::Instant;
 
+/// Most restarts of a snap's minimisation from a minimum that the last contact update left
+/// with a negative eigenvalue.
+const MAX_SNAP_RESTARTS: usize = 4;
+
 /// Step-size control.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct StepControl {
@@ -500,20 +504,31 @@ impl Continuation {
             inertia_at_solution: true,
             ..self.policy
         };
-        let (report, augmented) = match &mut self.augmentation {
-            Some(augmentation) => {
-                let (report, record) =
-                    augmentation.minimise(&mut self.newton, &policy, &mut self.system, &mut u, (&bc, d))?;
-                (report, Some(record))
-            }
-            None => {
-                let state = (&mut self.system, &mut u[..], &bc);
-                (
-                    equilibrium::minimise(&mut self.newton, state, None, &NoAddedEnergy, &policy)?,
-                    None,
-                )
-            }
+        let minimise = |this: &mut Self, u: &mut Vec<f64>| -> Result<(NewtonReport, Option<AugmentedRecord>)> {
+            Ok(match &mut this.augmentation {
+                Some(augmentation) => {
+                    let (report, record) =
+                        augmentation.minimise(&mut this.newton, &policy, &mut this.system, u, (&bc, d))?;
+                    (report, Some(record))
+                }
+                None => {
+                    let state = (&mut this.system, &mut u[..], &bc);
+                    let report = equilibrium::minimise(&mut this.newton, state, None, &NoAddedEnergy, &policy)?;
+                    (report, None)
+                }
+            })
         };
+        let (mut report, mut augmented) = minimise(self, &mut u)?;
+        // The last contact update (the multipliers at the minimum) may leave a barely stable
+        // minimum with a negative eigenvalue: the minimisation goes on from there.
+        for _ in 0..MAX_SNAP_RESTARTS {
+            if report.negative_pivots == Some(0) {
+                break;
+            }
+            let (again, record) = minimise(self, &mut u)?;
+            report = report.followed_by(again);
+            augmented = record;
+        }
         if report.negative_pivots != Some(0) {
             return Err(Error::Solver(format!(
                 "the minimum reached at d = {d:.6} has {:?} negative eigenvalues after the contact updates",

@@ -56,6 +56,13 @@ impl Update for ContactUpdate<'_> {
         updates.contact += 1;
     }
 
+    /// A new search on the deformed surface; the multipliers stay (they are updated at
+    /// equilibria only).
+    fn refresh(&mut self, u: &[f64]) -> bool {
+        self.contact.search(u);
+        true
+    }
+
     fn exhausted(&self) -> NewtonError {
         NewtonError::Model(Error::Solver(format!(
             "contact: penetration {:.2e} (tolerance {:.1e}) or pairs still changing after {} multiplier updates",

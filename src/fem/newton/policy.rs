@@ -38,6 +38,11 @@ pub struct NewtonPolicy {
     /// every such attempt failed after three to five more steps, and the first step of the
     /// undamped ones that converged there cut `|r|` 20-90-fold). `None`: never on that ground.
     pub diverging_after: Option<usize>,
+    /// For a minimisation ([`super::Newton::minimise`]): the largest nodal move from its start,
+    /// beyond which it stops unfinished ([`super::NewtonReport::unfinished`]) so that the outer
+    /// loops refresh what depends on the configuration (the contact pairs) before it goes on.
+    /// `None`: it runs to the minimum.
+    pub max_pass_move: Option<f64>,
 }
 
 /// Which factorisations a solve keeps as its iteration matrix (modified Newton).
@@ -99,6 +104,7 @@ impl Default for NewtonPolicy {
             reused_precision: Precision::Single,
             stall: None,
             diverging_after: None,
+            max_pass_move: None,
         }
     }
 }

@@ -67,6 +67,9 @@ pub struct NewtonReport {
     pub updates: Updates,
     /// Wall times of the phases.
     pub timings: Timings,
+    /// A minimisation that stopped after its largest move ([`super::NewtonPolicy::max_pass_move`]):
+    /// lower in energy than its start but not yet a minimum, nor an equilibrium.
+    pub unfinished: bool,
 }
 
 /// How often each outer loop around Newton's iteration updated its unknowns and solved again

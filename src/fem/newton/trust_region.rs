@@ -19,7 +19,10 @@
 //! factor of `K + sigma D` for a shift that makes it definite), whose curvature is negative, along the
 //! sign that lowers `E`, as far as `E` keeps falling. It ends at a residual within Newton's
 //! tolerance with an unshifted factor without negative pivots: a local minimum. The energy never
-//! increases from step to step.
+//! increases from step to step. With [`NewtonPolicy::max_pass_move`] it stops, unfinished, once a
+//! node has moved that far from the start, for the outer loops to search the contact pairs again
+//! (a snap onto a closing trough moves the surface by more than the pairs found at its start
+//! can follow).
 
 use super::{max_abs, Equations, Newton, NewtonError, NewtonPolicy, NewtonReport, Problem, Updates};
 use crate::error::Error;
@@ -186,7 +189,8 @@ fn total(a: &Assembled) -> f64 {
 impl Newton {
     /// A local minimum of the energy of `equations` from `u` (whose prescribed unknowns must
     /// hold their values): on success `u` holds it, and the report its unshifted inertia (no
-    /// negative pivot); on failure `u` is the last accepted iterate. `policy` gives the
+    /// negative pivot), or, past `policy.max_pass_move`, the last accepted iterate and
+    /// `unfinished`; on failure `u` is the last accepted iterate. `policy` gives the
     /// tolerances (Newton's), not the step rules.
     pub fn minimise(
         &mut self,
@@ -200,12 +204,20 @@ impl Newton {
         let mut history = vec![current.residual_norm()];
         let (mut sigma, mut rejected, mut factorisations) = (0.0f64, 0, 0);
         let tolerance_at = |a: &Assembled| policy.tolerance(a.force_norm(), penalty_scale);
+        let start = u.to_vec();
+        let moved = |u: &[f64]| u.iter().zip(&start).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
         for iteration in 0..MAX_STEPS {
             let residual = current.residual_norm();
             let tolerance = tolerance_at(&current);
-            factorisations += 1;
-            let negative = self.factorize(&current, &mut land.problem.timings).negative_pivots();
-            if negative == Some(0) && residual <= tolerance {
+            let unfinished = policy.max_pass_move.is_some_and(|limit| moved(u) > limit);
+            let negative = match unfinished {
+                true => None,
+                false => {
+                    factorisations += 1;
+                    self.factorize(&current, &mut land.problem.timings).negative_pivots()
+                }
+            };
+            if unfinished || (negative == Some(0) && residual <= tolerance) {
                 self.forget_factorisation();
                 return Ok(NewtonReport {
                     iterations: iteration,
@@ -215,11 +227,12 @@ impl Newton {
                     energy: current.energy,
                     min_jacobian: current.min_jacobian,
                     reactions: current.reactions,
-                    negative_pivots: Some(0),
+                    negative_pivots: negative,
                     start_negative_pivots: None,
                     backtracks: rejected,
                     updates: Updates::default(),
                     timings: land.problem.timings,
+                    unfinished,
                 });
             }
             let indefinite = negative != Some(0);
