@@ -211,7 +211,11 @@ fn every_state_of_a_run_through_a_snap_is_an_undamped_equilibrium_with_the_repor
         // The nodes the contact pushes carry its force: the elastic residual balances it there,
         // and vanishes everywhere else.
         let pushed: Vec<usize> = record.augmented.as_ref().map_or(Vec::new(), |a| {
-            a.pressure.iter().filter(|(_, p)| *p != 0.0).flat_map(|&(n, _)| [dof(n, 0), dof(n, 1)]).collect()
+            a.pressure
+                .iter()
+                .filter(|(_, p)| *p != 0.0)
+                .flat_map(|&(n, _)| [dof(n, 0), dof(n, 1)])
+                .collect()
         });
         in_contact += usize::from(!pushed.is_empty());
         let mut fresh = System::new(system.mesh().clone(), &materials)?;
