@@ -204,7 +204,8 @@ impl Newton {
         let mut history = vec![current.residual_norm()];
         let (mut sigma, mut rejected, mut factorisations) = (0.0f64, 0, 0);
         let tolerance_at = |a: &Assembled| policy.tolerance(a.force_norm(), penalty_scale);
-        let start = u.to_vec();
+        // The largest nodal move from the start (the displacements, not the multipliers after them).
+        let start = u[..land.problem.system.mesh().num_dofs()].to_vec();
         let moved = |u: &[f64]| u.iter().zip(&start).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
         for iteration in 0..MAX_STEPS {
             let residual = current.residual_norm();

@@ -270,17 +270,8 @@ pub fn first_instability(crease_study: &CreaseStudy, parameters: Parameters) -> 
     }
     // Without a threshold, the crease is known not to pay off below the lowest d where a fold's
     // scan ended.
-    let cleared = report.cleared();
     let uncertainty = report.d_crease_error.unwrap_or(0.0);
-    let first = match (d_wrinkle, report.d_crease) {
-        (Some(w), Some(c)) if (c - w).abs() <= uncertainty => First::TooCloseToCall,
-        (Some(w), Some(c)) if c < w => First::Crease,
-        (Some(_), Some(_)) => First::Wrinkle,
-        (Some(w), None) if w <= cleared => First::Wrinkle,
-        (Some(_), None) => First::Undecided,
-        (None, Some(_)) => First::Crease,
-        (None, None) => First::None,
-    };
+    let first = decide((d_wrinkle, report.d_crease), uncertainty, report.cleared());
 
     Ok(MapPoint {
         index: 0,
@@ -446,5 +437,21 @@ mod tests {
         // A 5 % modulation is still a periodic wrinkle.
         let mild = |x: f64| 0.3 * (k * x).cos() + 0.015 * (0.5 * k * x).cos();
         assert_eq!(classify(&mild, false), PostBuckling::Wrinkle);
+    }
+}
+
+/// Which comes first, from the two onsets (`None`: none found) and the crease's uncertainty:
+/// too close to call where they differ by no more than it; without a crease threshold, the
+/// wrinkle if it comes before `cleared`, the lowest `d` up to which no fold paid off, else
+/// undecided.
+pub(super) fn decide((d_wrinkle, d_crease): (Option<f64>, Option<f64>), uncertainty: f64, cleared: f64) -> First {
+    match (d_wrinkle, d_crease) {
+        (Some(w), Some(c)) if (c - w).abs() <= uncertainty => First::TooCloseToCall,
+        (Some(w), Some(c)) if c < w => First::Crease,
+        (Some(_), Some(_)) => First::Wrinkle,
+        (Some(w), None) if w <= cleared => First::Wrinkle,
+        (Some(_), None) => First::Undecided,
+        (None, Some(_)) => First::Crease,
+        (None, None) => First::None,
     }
 }
