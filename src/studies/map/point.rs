@@ -389,6 +389,22 @@ fn nonlinear(
     Ok(())
 }
 
+/// Which comes first, from the two onsets (`None`: none found) and the crease's uncertainty:
+/// too close to call where they differ by no more than it; without a crease threshold, the
+/// wrinkle if it comes before `cleared`, the lowest `d` up to which no fold paid off, else
+/// undecided.
+pub(super) fn decide((d_wrinkle, d_crease): (Option<f64>, Option<f64>), uncertainty: f64, cleared: f64) -> First {
+    match (d_wrinkle, d_crease) {
+        (Some(w), Some(c)) if (c - w).abs() <= uncertainty => First::TooCloseToCall,
+        (Some(w), Some(c)) if c < w => First::Crease,
+        (Some(_), Some(_)) => First::Wrinkle,
+        (Some(w), None) if w <= cleared => First::Wrinkle,
+        (Some(_), None) => First::Undecided,
+        (None, Some(_)) => First::Crease,
+        (None, None) => First::None,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -438,20 +454,20 @@ mod tests {
         let mild = |x: f64| 0.3 * (k * x).cos() + 0.015 * (0.5 * k * x).cos();
         assert_eq!(classify(&mild, false), PostBuckling::Wrinkle);
     }
-}
 
-/// Which comes first, from the two onsets (`None`: none found) and the crease's uncertainty:
-/// too close to call where they differ by no more than it; without a crease threshold, the
-/// wrinkle if it comes before `cleared`, the lowest `d` up to which no fold paid off, else
-/// undecided.
-pub(super) fn decide((d_wrinkle, d_crease): (Option<f64>, Option<f64>), uncertainty: f64, cleared: f64) -> First {
-    match (d_wrinkle, d_crease) {
-        (Some(w), Some(c)) if (c - w).abs() <= uncertainty => First::TooCloseToCall,
-        (Some(w), Some(c)) if c < w => First::Crease,
-        (Some(_), Some(_)) => First::Wrinkle,
-        (Some(w), None) if w <= cleared => First::Wrinkle,
-        (Some(_), None) => First::Undecided,
-        (None, Some(_)) => First::Crease,
-        (None, None) => First::None,
+    #[test]
+    fn the_first_instability_is_too_close_to_call_within_the_crease_uncertainty() {
+        let (w, u) = (0.2305, 5e-4);
+        assert_eq!(decide((Some(w), Some(w - 2.0 * u)), u, 0.0), First::Crease);
+        assert_eq!(decide((Some(w), Some(w + 2.0 * u)), u, 0.0), First::Wrinkle);
+        assert_eq!(decide((Some(w), Some(w - 0.5 * u)), u, 0.0), First::TooCloseToCall);
+        assert_eq!(decide((Some(w), Some(w + 0.5 * u)), u, 0.0), First::TooCloseToCall);
+        // An unconverged threshold (no uncertainty) decides by its sign alone.
+        assert_eq!(decide((Some(w), Some(w - 1e-6)), 0.0, 0.0), First::Crease);
+        // No fold paid off up to `cleared`: the wrinkle first only if it comes before.
+        assert_eq!(decide((Some(w), None), u, w + 0.01), First::Wrinkle);
+        assert_eq!(decide((Some(w), None), u, w - 0.01), First::Undecided);
+        assert_eq!(decide((None, Some(0.35)), u, 0.0), First::Crease);
+        assert_eq!(decide((None, None), u, 0.0), First::None);
     }
 }

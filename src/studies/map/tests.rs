@@ -92,20 +92,3 @@ fn a_mapped_shear_modulus_keeps_the_base_poisson_ratio_unless_asked_not_to() {
         assert!(Shard::parse(bad).is_err(), "{bad}");
     }
 }
-
-#[test]
-fn the_first_instability_is_too_close_to_call_within_the_crease_uncertainty() {
-    use super::point::decide;
-    let (w, u) = (0.2305, 5e-4);
-    assert_eq!(decide((Some(w), Some(w - 2.0 * u)), u, 0.0), First::Crease);
-    assert_eq!(decide((Some(w), Some(w + 2.0 * u)), u, 0.0), First::Wrinkle);
-    assert_eq!(decide((Some(w), Some(w - 0.5 * u)), u, 0.0), First::TooCloseToCall);
-    assert_eq!(decide((Some(w), Some(w + 0.5 * u)), u, 0.0), First::TooCloseToCall);
-    // An unconverged threshold (no uncertainty) decides by its sign alone.
-    assert_eq!(decide((Some(w), Some(w - 1e-6)), 0.0, 0.0), First::Crease);
-    // No fold paid off up to `cleared`: the wrinkle first only if it comes before.
-    assert_eq!(decide((Some(w), None), u, w + 0.01), First::Wrinkle);
-    assert_eq!(decide((Some(w), None), u, w - 0.01), First::Undecided);
-    assert_eq!(decide((None, Some(0.35)), u, 0.0), First::Crease);
-    assert_eq!(decide((None, None), u, 0.0), First::None);
-}
