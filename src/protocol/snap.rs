@@ -43,7 +43,9 @@ pub struct SnapRecord {
     /// Amplitude and total energy of the minimum reached.
     pub amplitude_after: f64,
     pub energy_after: f64,
-    /// `energy_start - energy_after`: never negative (the minimisation never raises the energy).
+    /// `energy_start - energy_after`: the minimisation never raises the energy, but with contact
+    /// each is measured with its own state's multipliers, so a snap that only closes a contact
+    /// pair may release a little less than nothing (within the multiplier update's change).
     pub energy_released: f64,
     /// Negative eigenvalues of the tangent at the minimum reached (none: it is stable).
     pub negative_pivots_after: Option<usize>,
