@@ -191,8 +191,8 @@ def simulate(
     ``waves`` is the number N of seeded waves across the half domain (2N an integer), or give
     ``k = m pi / 50``. ``mesh`` is ``"coarse"``, ``"fine"`` or ``"extra"``, modified by ``nx``,
     ``layer_elements``, ``substrate_elements`` and ``h0`` (or ``grading``). ``element`` is
-    ``"displacement"`` or ``"mixed"`` (more accurate, and needed for nearly and exactly
-    incompressible tissue). ``stabilisation`` is how a snap is crossed: ``"viscous"`` (damped
+    ``"mixed"`` (the default, as ``fiberfold simulate``'s: more accurate, and needed for nearly
+    and exactly incompressible tissue) or ``"displacement"`` (the paper's). ``stabilisation`` is how a snap is crossed: ``"viscous"`` (damped
     steps, with ``eta``), ``"snap"`` (the energy is minimised at that d and the stable
     equilibrium reached is recorded, see ``summary["snaps"]``) or ``"none"``. ``progress`` is
     called with a dict (``event``: ``"stage"``, ``"step"`` or ``"cut"``; ``d``, ``A``,
