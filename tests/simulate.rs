@@ -122,7 +122,7 @@ fn failure_at_the_minimum_step_keeps_the_curve_and_names_d() {
     assert_eq!(
         lines.next().unwrap(),
         "d,A,strain_energy,newton_iterations,residual,min_J,step_seconds,in_contact,contact_length,penetration,\
-         stabilisation_energy_fraction,snap,ellipticity_layer,ellipticity_substrate,growth_layer"
+         stabilisation_energy_fraction,snap,minimised,ellipticity_layer,ellipticity_substrate,growth_layer"
     );
     let rows: Vec<Vec<f64>> = lines
         .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
@@ -130,7 +130,7 @@ fn failure_at_the_minimum_step_keeps_the_curve_and_names_d() {
     let d: Vec<f64> = rows.iter().map(|r| r[0]).collect();
     assert_eq!(d.len(), 3, "{csv}");
     assert!((d[2] - 0.205).abs() < 1e-12);
-    assert!(rows.iter().all(|r| r.len() == 15 && r.iter().all(|x| x.is_finite())));
+    assert!(rows.iter().all(|r| r.len() == 16 && r.iter().all(|x| x.is_finite())));
     for file in ["surface.csv", "onset.json", "simulate.json", "simulate.pvd", "fig3.png"] {
         assert!(dir.join(file).exists(), "{file} missing after the failure");
     }

@@ -126,7 +126,7 @@ class Simulation:
     Attributes:
         amplitude: the columns of ``amplitude.csv`` (``d``, ``A``, ``strain_energy``,
             ``newton_iterations``, ``residual``, ``min_J``, ``step_seconds``, ``in_contact``,
-            ``contact_length``, ``penetration``, ``stabilisation_energy_fraction``, ``snap``,
+            ``contact_length``, ``penetration``, ``stabilisation_energy_fraction``, ``snap``, ``minimised``,
             ``ellipticity_layer``, ``ellipticity_substrate``, ``growth_layer``), one float64
             array each, one entry per accepted state.
         summary: the content of ``simulate.json`` (its ``files`` empty: nothing is written);

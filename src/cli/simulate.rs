@@ -319,6 +319,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
             Progress::Stage(text) => bar.suspend(|| println!("{text}")),
             Progress::Step(r) => {
                 let residuals: Vec<String> = r.residual_history.iter().map(|x| format!("{x:.1e}")).collect();
+                let minimised = if r.minimised { "  (minimised)" } else { "" };
                 let inertia = r.negative_pivots.map_or(String::new(), |n| format!("  {n} negative"));
                 let augmented = r.augmented.as_ref().map_or(String::new(), |a| {
                     let contact = if a.in_contact {
@@ -326,7 +327,11 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
                     } else {
                         String::new()
                     };
-                    format!("{contact}  dissipated {:.1e}", a.stabilisation_energy_fraction)
+                    // Only a damped path dissipates (its eta is set).
+                    match a.eta > 0.0 {
+                        true => format!("{contact}  dissipated {:.1e}", a.stabilisation_energy_fraction),
+                        false => contact,
+                    }
                 });
                 if let Some(snap) = &r.snap {
                     bar.suspend(|| {
@@ -349,7 +354,7 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
                 };
                 bar.suspend(|| {
                     println!(
-                        "{growth}d = {:.6}  step {:.1e}  A = {:.6}  {} it  |r| {}  min J {:.4}{inertia}{augmented}  {:.2} s",
+                        "{growth}d = {:.6}  step {:.1e}  A = {:.6}  {} it{minimised}  |r| {}  min J {:.4}{inertia}{augmented}  {:.2} s",
                         r.d,
                         r.step,
                         r.amplitude,

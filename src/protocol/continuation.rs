@@ -21,17 +21,14 @@ use super::predictor::{extrapolate, PREDICTOR_POINTS};
 use super::snap::{SnapRecord, SnapSettings};
 use super::surface::amplitude;
 use crate::error::{Error, Result};
-use crate::fem::added::NoAddedEnergy;
 use crate::fem::ellipticity::{ellipticity_margins, EllipticityMargins};
 use crate::fem::equilibrium;
-use crate::fem::{Dirichlet, Newton, NewtonPolicy, NewtonReport, Reuse, System, Timings};
+use crate::fem::{Newton, NewtonPolicy, NewtonReport, Reuse, System, Timings};
 use serde::Serialize;
 use std::collections::VecDeque;
 use std::time::Instant;
 
-/// Most restarts of a snap's minimisation from a minimum that the last contact update left
-/// with a negative eigenvalue.
-const MAX_SNAP_RESTARTS: usize = 4;
+mod minimised;
 
 /// Step-size control.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -124,6 +121,10 @@ pub struct StepRecord {
     pub augmented: Option<AugmentedRecord>,
     /// The snap that reached this state, if it was reached by one.
     pub snap: Option<SnapRecord>,
+    /// Whether this state was reached by minimising the energy from the predictor after
+    /// Newton's iteration had failed (on a stable branch in contact; `iterations` are then the
+    /// minimisation's steps).
+    pub minimised: bool,
     /// The smallest strong-ellipticity margin of each layer over its Gauss points.
     pub ellipticity: EllipticityMargins,
     /// The layer's growth `g` along `X` (the load under growth; 1 without growth).
@@ -155,6 +156,7 @@ impl StepRecord {
             timings: report.timings,
             augmented: None,
             snap: None,
+            minimised: false,
             ellipticity,
             growth_layer: system.layer_growth(),
         }
@@ -205,11 +207,33 @@ pub struct Continuation {
     /// The record of the last accepted state (the newest in `history`) while its inertia is
     /// still being counted: reported once it is known.
     pending: Option<StepRecord>,
+    /// What is known of the last accepted state.
+    last: LastState,
+}
+
+/// Whether the last accepted state is stable (its inertia counted, none negative) and in
+/// contact: where a step from it may be corrected by minimisation
+/// ([`Continuation::attempt_by_minimisation`]).
+#[derive(Clone, Copy, Debug, Default)]
+struct LastState {
+    stable: bool,
+    in_contact: bool,
 }
 
 /// A converged attempt: Newton's report, the displacement, and what contact and
 /// stabilisation report.
 type Solved = (NewtonReport, Vec<f64>, Option<AugmentedRecord>);
+
+/// How an accepted state was reached.
+enum Reached {
+    /// Newton's iteration from the predictor.
+    Newton,
+    /// Minimising the energy from the predictor, after Newton's iteration failed
+    /// ([`Continuation::attempt_by_minimisation`]).
+    Minimisation,
+    /// A snap from the last equilibrium ([`Continuation::snap`]).
+    Snap(SnapRecord),
+}
 
 /// The wall time of the step being tried, and of its attempts discarded so far.
 struct StepClock {
@@ -247,6 +271,7 @@ impl Continuation {
             snaps: None,
             slope: None,
             pending: None,
+            last: LastState::default(),
         })
     }
 
@@ -325,9 +350,19 @@ impl Continuation {
             let attempt = self.attempt(d, step);
             let attempt_seconds = attempt_started.elapsed().as_secs_f64();
             self.report_pending(observer, true)?;
+            let attempt = match attempt {
+                Err(reason) if self.snaps.is_some() => match self.attempt_by_minimisation(d) {
+                    Some(solved) => {
+                        clock.failed_seconds += attempt_seconds;
+                        Ok((solved, Reached::Minimisation))
+                    }
+                    None => Err(reason),
+                },
+                attempt => attempt.map(|solved| (solved, Reached::Newton)),
+            };
             let reason = match attempt {
-                Ok(solved) => {
-                    self.accept((d, step), (solved, None), &clock, observer)?;
+                Ok(reached) => {
+                    self.accept((d, step), reached, &clock, observer)?;
                     clock = StepClock::start();
                     continue;
                 }
@@ -336,7 +371,7 @@ impl Continuation {
             let reason = match self.snaps {
                 Some(snaps) if step <= snaps.below.max(self.control.min) * (1.0 + 1e-9) => match self.snap(d) {
                     Ok((solved, snap)) => {
-                        self.accept((d, step), (solved, Some(snap)), &clock, observer)?;
+                        self.accept((d, step), (solved, Reached::Snap(snap)), &clock, observer)?;
                         clock = StepClock::start();
                         continue;
                     }
@@ -351,12 +386,12 @@ impl Continuation {
     }
 
     /// Records the converged state at `d` (now, or once its inertia is counted), keeps it for
-    /// the predictor, and grows the step if it was easy. After a snap, the predictor restarts
-    /// from the new state alone.
+    /// the predictor, and grows the step if Newton's iteration found it easily. After a snap,
+    /// the predictor restarts from the new state alone.
     fn accept(
         &mut self,
         (d, step): (f64, f64),
-        ((report, u, augmented), snap): (Solved, Option<SnapRecord>),
+        ((report, u, augmented), reached): (Solved, Reached),
         clock: &StepClock,
         observer: &mut dyn FnMut(Event<'_>) -> Result<()>,
     ) -> Result<()> {
@@ -367,14 +402,19 @@ impl Continuation {
         );
         let mut record = StepRecord::new((d, step), state, &report, clock.started.elapsed().as_secs_f64());
         let pending = augmented.as_ref().is_some_and(|a| a.inertia_pending);
+        self.last = LastState {
+            stable: report.negative_pivots == Some(0),
+            in_contact: augmented.as_ref().is_some_and(|a| a.in_contact),
+        };
         record.augmented = augmented;
         record.failed_seconds = clock.failed_seconds;
-        if snap.is_some() {
+        let by_newton = matches!(reached, Reached::Newton);
+        record.minimised = matches!(reached, Reached::Minimisation);
+        if let Reached::Snap(snap) = reached {
             self.history.clear();
             self.slope = None;
+            record.snap = Some(snap);
         }
-        let snapped = snap.is_some();
-        record.snap = snap;
         if pending {
             self.pending = Some(record);
         } else {
@@ -390,7 +430,7 @@ impl Continuation {
         }
         // A pass after an update of the multipliers takes a step or so of its own.
         let c = self.control;
-        if !snapped && report.tangent_steps <= c.easy_iterations + report.updates.pressure {
+        if by_newton && report.tangent_steps <= c.easy_iterations + report.updates.pressure {
             self.step = (self.step * c.grow).min(c.max);
         }
         Ok(())
@@ -432,6 +472,7 @@ impl Continuation {
         let augmentation = self.augmentation.as_mut().expect("only augmented steps are pending");
         let waited = std::time::Instant::now();
         record.negative_pivots = augmentation.next_inertia();
+        self.last.stable = record.negative_pivots == Some(0);
         if let Some(augmented) = &mut record.augmented {
             augmented.inertia_pending = false;
             if within_step {
@@ -484,82 +525,6 @@ impl Continuation {
         }
         let report = equilibrium::solve(&mut self.newton, &mut self.system, &mut u, &bc, &policy)?;
         Ok((report, u, None))
-    }
-
-    /// The snap at `d`: the stable equilibrium there reached by minimising the energy from the
-    /// last equilibrium with the boundary moved to `d` ([`super::snap`]); fails if the minimum
-    /// reached is not stable (after the outer loops' updates).
-    fn snap(&mut self, d: f64) -> Result<(Solved, SnapRecord)> {
-        let started = Instant::now();
-        let (d0, u0) = self.history.back().expect("never empty").clone();
-        let before = self.system.load_to(d0)?;
-        let energy_before = self.energy(&u0, &before)?;
-        let bc = self.system.load_to(d)?;
-        let mut u = u0.clone();
-        for (&dof, &value) in bc.dofs().iter().zip(bc.values()) {
-            u[dof] = value;
-        }
-        let energy_start = self.energy(&u, &bc)?;
-        let policy = NewtonPolicy {
-            inertia_at_solution: true,
-            ..self.policy
-        };
-        let minimise = |this: &mut Self, u: &mut Vec<f64>| -> Result<(NewtonReport, Option<AugmentedRecord>)> {
-            Ok(match &mut this.augmentation {
-                Some(augmentation) => {
-                    let (report, record) =
-                        augmentation.minimise(&mut this.newton, &policy, &mut this.system, u, (&bc, d))?;
-                    (report, Some(record))
-                }
-                None => {
-                    let state = (&mut this.system, &mut u[..], &bc);
-                    let report = equilibrium::minimise(&mut this.newton, state, None, &NoAddedEnergy, &policy)?;
-                    (report, None)
-                }
-            })
-        };
-        let (mut report, mut augmented) = minimise(self, &mut u)?;
-        // The last contact update (the multipliers at the minimum) may leave a barely stable
-        // minimum with a negative eigenvalue: the minimisation goes on from there.
-        for _ in 0..MAX_SNAP_RESTARTS {
-            if report.negative_pivots == Some(0) {
-                break;
-            }
-            let (again, record) = minimise(self, &mut u)?;
-            report = report.followed_by(again);
-            augmented = record;
-        }
-        if report.negative_pivots != Some(0) {
-            return Err(Error::Solver(format!(
-                "the minimum reached at d = {d:.6} has {:?} negative eigenvalues after the contact updates",
-                report.negative_pivots
-            )));
-        }
-        let energy_after = self.energy(&u, &bc)?;
-        let mesh = self.system.mesh();
-        let snap = SnapRecord {
-            d,
-            d_before: d0,
-            amplitude_before: amplitude(mesh, &u0),
-            energy_before,
-            energy_start,
-            amplitude_after: amplitude(mesh, &u),
-            energy_after,
-            energy_released: energy_start - energy_after,
-            negative_pivots_after: report.negative_pivots,
-            steps: report.iterations,
-            factorisations: report.timings.factorisations,
-            seconds: started.elapsed().as_secs_f64(),
-        };
-        Ok(((report, u, augmented), snap))
-    }
-
-    /// The total energy (strain plus contact) at `u` with `bc` prescribed.
-    fn energy(&mut self, u: &[f64], bc: &Dirichlet) -> Result<f64> {
-        match &self.augmentation {
-            Some(augmentation) => augmentation.energy(&mut self.system, u, bc),
-            None => Ok(self.system.assemble(u, bc, None, false)?.energy),
-        }
     }
 
     /// The predictor at `d` from the stored states (see [`extrapolate`]).

@@ -43,6 +43,9 @@ pub struct NewtonPolicy {
     /// loops refresh what depends on the configuration (the contact pairs) before it goes on.
     /// `None`: it runs to the minimum.
     pub max_pass_move: Option<f64>,
+    /// For a minimisation: the largest number of its steps in one pass, beyond which it fails
+    /// as not converged.
+    pub max_minimisation_steps: usize,
 }
 
 /// Which factorisations a solve keeps as its iteration matrix (modified Newton).
@@ -87,7 +90,7 @@ impl NewtonPolicy {
 
 impl Default for NewtonPolicy {
     /// `rtol = 1e-10`, `atol = 1e-12`, `utol = 1e-13`, 30 steps, 12 halvings, full Newton, the
-    /// inertia at the solution.
+    /// inertia at the solution; a minimisation of up to 400 steps per pass.
     fn default() -> Self {
         NewtonPolicy {
             max_iterations: 30,
@@ -105,6 +108,7 @@ impl Default for NewtonPolicy {
             stall: None,
             diverging_after: None,
             max_pass_move: None,
+            max_minimisation_steps: 400,
         }
     }
 }

@@ -38,9 +38,6 @@ const SIGMA_MAX: f64 = 1e8;
 /// Smallest ratio of actual to predicted decrease for which a step is taken.
 const RHO_ACCEPT: f64 = 1e-4;
 
-/// Largest number of steps of one minimisation.
-const MAX_STEPS: usize = 400;
-
 /// Largest nodal move of one step, in units of the layer thickness: below the contact search
 /// distance (`H / 2`), so that a surface cannot pass through another unseen.
 const MAX_MOVE: f64 = 0.1;
@@ -207,7 +204,7 @@ impl Newton {
         // The largest nodal move from the start (the displacements, not the multipliers after them).
         let start = u[..land.problem.system.mesh().num_dofs()].to_vec();
         let moved = |u: &[f64]| u.iter().zip(&start).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
-        for iteration in 0..MAX_STEPS {
+        for iteration in 0..policy.max_minimisation_steps {
             let residual = current.residual_norm();
             let tolerance = tolerance_at(&current);
             let unfinished = policy.max_pass_move.is_some_and(|limit| moved(u) > limit);

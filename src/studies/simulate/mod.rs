@@ -60,10 +60,17 @@ pub enum Progress<'a> {
     Cut(&'a Cut),
 }
 
-/// The last columns of `amplitude.csv`: `snap` (1 where a snap reached the state), the
-/// smallest strong-ellipticity margin of each layer over its Gauss points, and the layer's
-/// growth `g` (the load under growth; 1 without growth).
-pub const STATE_COLUMNS: [&str; 4] = ["snap", "ellipticity_layer", "ellipticity_substrate", "growth_layer"];
+/// The last columns of `amplitude.csv`: `snap` (1 where a snap reached the state),
+/// `minimised` (1 where the energy's minimisation from the predictor corrected the step after
+/// Newton's iteration failed), the smallest strong-ellipticity margin of each layer over its
+/// Gauss points, and the layer's growth `g` (the load under growth; 1 without growth).
+pub const STATE_COLUMNS: [&str; 5] = [
+    "snap",
+    "minimised",
+    "ellipticity_layer",
+    "ellipticity_substrate",
+    "growth_layer",
+];
 
 /// Every column of `amplitude.csv`: [`AMPLITUDE_HEADER`], [`CREASE_COLUMNS`], [`STATE_COLUMNS`].
 pub fn amplitude_header() -> Vec<&'static str> {
@@ -86,12 +93,12 @@ pub fn amplitude_row(record: &StepRecord) -> Vec<f64> {
         record.min_jacobian,
         record.seconds,
     ];
-    let snap = if record.snap.is_some() { 1.0 } else { 0.0 };
+    let flag = |set: bool| if set { 1.0 } else { 0.0 };
     let margins = [record.ellipticity.layer, record.ellipticity.substrate];
     [
         &columns[..],
         &crease_columns(record),
-        &[snap],
+        &[flag(record.snap.is_some()), flag(record.minimised)],
         &margins,
         &[record.growth_layer],
     ]

@@ -1,0 +1,93 @@
+//! Runs as a user would make them, far from Table 1: every fibre angle `beta` in {0, pi/4,
+//! pi/2}, stiffness contrasts `mu_l / mu_s` in {3, 10, 30} and bulk moduli `K / mu` of 100 and
+//! 1e4, each along the crease path (contact) to `d = 0.48` on a small mesh, crossing snaps by
+//! the default viscous damper, and (ignored: a measurement, 2 min) by energy minimisation.
+//! Every run either reaches 0.48 with finite, admissible states, or stops with an error that
+//! names the `d` where it stopped and keeps the states before it. No recorded state may carry
+//! damping silently: wherever the damper dissipated, the record says so.
+
+use fiberfold::material::Bilayer;
+use fiberfold::mesh::MeshSpec;
+use fiberfold::protocol::{stages, Event, Protocol, SnapSettings};
+use fiberfold::Parameters;
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+
+/// `L = 10` (two half waves of `k = 0.628`), depth 10: 20 x (2 + 8) elements.
+fn small_mesh() -> MeshSpec {
+    MeshSpec::new(20, 2, 8, 0.5, 10.0, 10.0)
+}
+
+#[test]
+fn every_damped_run_of_the_sweep_reaches_the_end_or_says_where_it_stopped() {
+    sweep(|protocol| protocol);
+}
+
+#[test]
+#[ignore]
+fn every_run_of_the_sweep_crossing_snaps_by_minimisation_reaches_the_end_or_says_where_it_stopped() {
+    sweep(|mut protocol| {
+        protocol.stabilisation = None;
+        protocol.snaps = Some(SnapSettings::default());
+        protocol
+    });
+}
+
+/// The sweep, each run's protocol the crease path changed by `crossing`; prints one line per run.
+fn sweep(crossing: impl Fn(Protocol) -> Protocol) {
+    let mut summary = Vec::new();
+    for beta in [0.0, FRAC_PI_4, FRAC_PI_2] {
+        for ratio in [3.0, 10.0, 30.0] {
+            for bulk in [100.0, 1e4] {
+                let params = Parameters {
+                    beta,
+                    mu_l: ratio,
+                    K_l: bulk * ratio,
+                    K_s: bulk,
+                    ..Parameters::default()
+                };
+                params.validate().unwrap();
+                let protocol = crossing(Protocol::new(2.0 * PI / 10.0, 0.05, 0.48).with_crease_path());
+                let (mut states, mut last_d, mut damped, mut snaps, mut minimised) = (0, 0.0, 0, 0, 0);
+                let outcome = stages::run(&Bilayer::new(&params), small_mesh(), &protocol, &mut |event| {
+                    if let Event::Step { record, .. } = event {
+                        assert!(record.amplitude.is_finite() && record.strain_energy.is_finite());
+                        assert!(record.min_jacobian > 0.0, "{record:?}");
+                        assert!(record.d > last_d, "states advance in d");
+                        last_d = record.d;
+                        states += 1;
+                        snaps += usize::from(record.snap.is_some());
+                        minimised += usize::from(record.minimised);
+                        if let Some(snap) = &record.snap {
+                            assert_eq!(snap.negative_pivots_after, Some(0), "{snap:?}");
+                        }
+                        // Stage 3's states (not stage 2's end) carry contact and the damper.
+                        if let Some(augmented) = &record.augmented {
+                            damped += usize::from(augmented.stabilisation_energy_fraction > 0.0);
+                        }
+                    }
+                    Ok(())
+                });
+                let label = format!("beta {beta:.3}, mu_l/mu_s {ratio}, K/mu {bulk:e}");
+                let end = match outcome {
+                    Ok(outcome) => match outcome.stopped {
+                        None => {
+                            assert!((outcome.continuation.d() - 0.48).abs() < 1e-12, "{label}");
+                            "reached 0.48".to_string()
+                        }
+                        Some(stop) => {
+                            let message = stop.to_string();
+                            assert!(message.contains("d = "), "{label}: the stop names d: {message}");
+                            assert!(states > 0, "{label}: the states before the stop are kept");
+                            format!("stopped: {message}")
+                        }
+                    },
+                    Err(e) => panic!("{label}: the run failed without keeping its path: {e}"),
+                };
+                summary.push(format!(
+                    "{label}: {states} states to {last_d:.4}, {damped} damped, {snaps} snaps, {minimised} minimised; {end}"
+                ));
+            }
+        }
+    }
+    println!("{}", summary.join("\n"));
+}
