@@ -5,7 +5,7 @@ use super::common::{prepare_out, report_files, ParamArgs};
 use clap::{Args, ValueEnum};
 use fiberfold::output::atomic::write_file;
 use fiberfold::output::write_json;
-use fiberfold::studies::bench_fe::{self, default_meshes, FeBench, FeBenchSetup, Kernels, LawKernels};
+use fiberfold::studies::bench_fe::{self, default_meshes, FeBench, FeBenchSetup, Kernels, LawKernels, SnapBench};
 use fiberfold::Result;
 use serde::Serialize;
 use std::path::PathBuf;
@@ -50,6 +50,7 @@ struct FeTimings<'a> {
     curves: &'a FeBench,
     kernels: &'a Kernels,
     laws: &'a LawKernels,
+    snaps: &'a SnapBench,
 }
 
 pub fn run(args: &BenchArgs) -> Result<()> {
@@ -97,10 +98,14 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             println!("{law_heading}");
             let laws = bench_fe::laws(&setup.params, &meshes)?;
             print!("{laws}");
+            let snap_heading = "the same curve with contact, its snaps crossed by energy minimisation:";
+            println!("{snap_heading}");
+            let snaps = bench_fe::snaps(&setup, &meshes)?;
+            print!("{snaps}");
             let (table, json) = (args.out.join("bench_fe.md"), args.out.join("bench_fe.json"));
             write_file(
                 &table,
-                format!("{bench}\n{heading}\n\n{kernels}\n{law_heading}\n\n{laws}"),
+                format!("{bench}\n{heading}\n\n{kernels}\n{law_heading}\n\n{laws}\n{snap_heading}\n\n{snaps}"),
             )?;
             write_json(
                 &json,
@@ -108,6 +113,7 @@ pub fn run(args: &BenchArgs) -> Result<()> {
                     curves: &bench,
                     kernels: &kernels,
                     laws: &laws,
+                    snaps: &snaps,
                 },
             )?;
             vec![table, json]

@@ -228,9 +228,9 @@ pub struct SimulateArgs {
     /// follow the branch: `viscous` damps the steps the step control has cut below 1e-3
     /// (ABAQUS's *STATIC, STABILIZE: those recorded states carry damping forces); `snap`
     /// minimises the energy where a step of 1e-6 fails and records the stable equilibrium
-    /// reached (snaps.json: every recorded state an exact equilibrium; a snap onto a closing
-    /// trough, with contact, is not yet found reliably and then stops the path); `none` stops
-    /// where Newton's method fails.
+    /// reached (snaps.json: every recorded state an exact equilibrium; in contact a failed step
+    /// from a stable state is corrected by minimisation too, `minimised` in amplitude.csv;
+    /// slower than `viscous` through contact); `none` stops where Newton's method fails.
     #[arg(long, value_enum, default_value_t = defaults().crossing.into())]
     pub stabilisation: CrossingChoice,
 

@@ -8,7 +8,7 @@ use crate::error::{Error, Result};
 use crate::fem::ElementKind;
 use crate::mesh::MeshSpec;
 use crate::parameters::Parameters;
-use crate::protocol::{wavenumber_of_waves, Protocol};
+use crate::protocol::{wavenumber_of_waves, Protocol, SnapSettings};
 use serde::Serialize;
 use std::f64::consts::FRAC_PI_4;
 use std::fmt;
@@ -172,6 +172,82 @@ impl FeBench {
             ))),
             None => Ok(()),
         }
+    }
+}
+
+/// The benchmark curve crossed by snaps (contact on, no damping, [`SnapSettings::default`]) on
+/// one mesh: how many snaps, what each cost.
+#[derive(Clone, Debug, Serialize)]
+pub struct SnapBenchRow {
+    pub mesh: String,
+    pub d_reached: f64,
+    pub completed: bool,
+    pub snaps: usize,
+    /// Steps whose failed Newton correction the minimisation from the predictor replaced.
+    pub minimised_steps: usize,
+    /// Per snap: wall time (s), minimisation steps and factorisations (shifted and unshifted).
+    pub seconds_per_snap: f64,
+    pub steps_per_snap: f64,
+    pub factorisations_per_snap: f64,
+    pub energy_released: f64,
+    pub curve_seconds: f64,
+}
+
+/// The snap table.
+#[derive(Clone, Debug, Serialize)]
+pub struct SnapBench {
+    pub rows: Vec<SnapBenchRow>,
+}
+
+/// Runs the benchmark curve on each mesh with its snaps crossed by energy minimisation.
+pub fn snaps(setup: &FeBenchSetup, meshes: &[(&str, MeshSpec)]) -> Result<SnapBench> {
+    let mut rows = Vec::new();
+    for &(name, spec) in meshes {
+        let k = wavenumber_of_waves(setup.waves, spec.length)?;
+        let mut protocol = Protocol::new(k, 0.05, setup.d_max).with_crease_path();
+        (protocol.stabilisation, protocol.snaps) = (None, Some(SnapSettings::default()));
+        let result = curve(&setup.params, spec, &protocol, &|_| Ok(()))?;
+        let snaps: Vec<_> = result.records.iter().filter_map(|r| r.snap.as_ref()).collect();
+        let per = |total: f64| total / snaps.len().max(1) as f64;
+        rows.push(SnapBenchRow {
+            mesh: name.to_string(),
+            d_reached: result.records.last().map_or(0.0, |r| r.d),
+            completed: result.stopped.is_none(),
+            snaps: snaps.len(),
+            minimised_steps: result.records.iter().filter(|r| r.minimised).count(),
+            seconds_per_snap: per(snaps.iter().map(|s| s.seconds).sum()),
+            steps_per_snap: per(snaps.iter().map(|s| s.steps as f64).sum()),
+            factorisations_per_snap: per(snaps.iter().map(|s| s.factorisations as f64).sum()),
+            energy_released: snaps.iter().map(|s| s.energy_released).sum(),
+            curve_seconds: result.seconds,
+        });
+    }
+    Ok(SnapBench { rows })
+}
+
+impl fmt::Display for SnapBench {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "| mesh | d reached | snaps | minimised steps | s / snap | steps / snap | factorisations / snap | released | curve s |"
+        )?;
+        writeln!(f, "|---|---|---|---|---|---|---|---|---|")?;
+        for r in &self.rows {
+            writeln!(
+                f,
+                "| {} | {:.6} | {} | {} | {:.2} | {:.1} | {:.1} | {:.4} | {:.2} |",
+                r.mesh,
+                r.d_reached,
+                r.snaps,
+                r.minimised_steps,
+                r.seconds_per_snap,
+                r.steps_per_snap,
+                r.factorisations_per_snap,
+                r.energy_released,
+                r.curve_seconds
+            )?;
+        }
+        Ok(())
     }
 }
 

@@ -125,7 +125,7 @@ impl Continuation {
     /// contact update leaves it with a negative eigenvalue; fails unless it ends stable.
     fn stable_minimum(
         &mut self,
-        u: &mut Vec<f64>,
+        u: &mut [f64],
         (bc, d): (&Dirichlet, f64),
         policy: &NewtonPolicy,
     ) -> Result<(NewtonReport, Option<AugmentedRecord>)> {

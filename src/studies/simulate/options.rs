@@ -103,9 +103,9 @@ pub struct SimulateOptions {
 #[serde(rename_all = "lowercase")]
 pub enum Crossing {
     /// Minimise the energy at the `d` of the failed step: the stable equilibrium the structure
-    /// snaps to ([`crate::protocol::snap`]). Every recorded state is an exact equilibrium; a
-    /// snap onto a closing trough (contact) is not yet found reliably, and the path then stops
-    /// there with its reason.
+    /// snaps to ([`crate::protocol::snap`]); in contact, a failed step from a stable state is
+    /// corrected by the same minimisation from the predictor. Every recorded state is an
+    /// exact equilibrium; slower than the damper on a path through contact.
     Snap,
     /// Viscous damping of the cut steps, as ABAQUS's `*STATIC, STABILIZE`: the recorded
     /// states carry damping forces ([`crate::protocol::stabilisation`]).
