@@ -9,6 +9,8 @@
 //! `g* = x* + (x*^3 - x*) / k`. Beyond `g*` the only equilibrium is on the far branch, the
 //! largest root of the cubic; the structure snaps there, releasing `E(x*; g) - E(x_far; g)`.
 
+mod common;
+
 use fiberfold::fem::added::{AddedEnergy, Block};
 use fiberfold::fem::{dof, equilibrium, Dirichlet, Newton, NewtonPolicy, System};
 use fiberfold::material::Bilayer;
@@ -210,26 +212,12 @@ fn every_state_of_a_run_through_a_snap_is_an_undamped_equilibrium_with_the_repor
         };
         // The nodes the contact pushes carry its force: the elastic residual balances it there,
         // and vanishes everywhere else.
-        let pushed: Vec<usize> = record.augmented.as_ref().map_or(Vec::new(), |a| {
-            a.pressure
-                .iter()
-                .filter(|(_, p)| *p != 0.0)
-                .flat_map(|&(n, _)| [dof(n, 0), dof(n, 1)])
-                .collect()
-        });
-        in_contact += usize::from(!pushed.is_empty());
-        let mut fresh = System::new(system.mesh().clone(), &materials)?;
-        let bc = model_conditions(system.mesh(), record.d)?;
-        let assembled = fresh.assemble(u, &bc, None, false)?;
-        let free = fresh.free_dofs(&bc)?;
-        let residual = free
-            .iter()
-            .zip(&assembled.residual)
-            .filter(|(dof, _)| !pushed.contains(dof))
-            .map(|(_, r)| r * r)
-            .sum::<f64>()
-            .sqrt();
-        let tolerance = policy.residual_tolerance * assembled.force_norm() + policy.absolute_tolerance;
+        let pushed = record
+            .augmented
+            .as_ref()
+            .is_some_and(|a| a.pressure.iter().any(|(_, p)| *p != 0.0));
+        in_contact += usize::from(pushed);
+        let (residual, tolerance) = common::undamped_residual(&materials, (record, system, u), &policy);
         worst = worst.max(residual / tolerance);
         assert!(
             residual <= tolerance,
@@ -237,7 +225,9 @@ fn every_state_of_a_run_through_a_snap_is_an_undamped_equilibrium_with_the_repor
             record.d,
         );
         // Without contact the tangent is the elastic one, whose inertia is counted afresh.
-        if let (Some(reported), true) = (record.negative_pivots, pushed.is_empty()) {
+        if let (Some(reported), false) = (record.negative_pivots, pushed) {
+            let mut fresh = System::new(system.mesh().clone(), &materials)?;
+            let bc = model_conditions(system.mesh(), record.d)?;
             let counted = Newton::new().inertia(&mut fresh, u, &bc, &NoAddedEnergy, &mut Default::default())?;
             assert_eq!(counted, Some(reported), "inertia at d = {}", record.d);
         }

@@ -288,3 +288,36 @@ pub fn isotropic(ratio: f64) -> Parameters {
         ..Parameters::default()
     }
 }
+
+/// The undamped elastic residual of a recorded state `u` at `record.d`, assembled afresh on a new
+/// system of `materials`, over the free unknowns off the nodes the contact pushes (where the
+/// elastic residual balances the contact force), and Newton's tolerance `policy` gives it:
+/// `(residual, tolerance)`.
+pub fn undamped_residual(
+    materials: &Bilayer,
+    (record, system, u): (&fiberfold::protocol::StepRecord, &System, &[f64]),
+    policy: &fiberfold::fem::NewtonPolicy,
+) -> (f64, f64) {
+    let pushed: Vec<usize> = record.augmented.as_ref().map_or(Vec::new(), |a| {
+        a.pressure
+            .iter()
+            .filter(|(_, p)| *p != 0.0)
+            .flat_map(|&(n, _)| [dof(n, 0), dof(n, 1)])
+            .collect()
+    });
+    let mut fresh = System::new(system.mesh().clone(), materials).unwrap();
+    let bc = fiberfold::fem::model_conditions(system.mesh(), record.d).unwrap();
+    let assembled = fresh.assemble(u, &bc, None, false).unwrap();
+    let free = fresh.free_dofs(&bc).unwrap();
+    let residual = free
+        .iter()
+        .zip(&assembled.residual)
+        .filter(|(dof, _)| !pushed.contains(dof))
+        .map(|(_, r)| r * r)
+        .sum::<f64>()
+        .sqrt();
+    (
+        residual,
+        policy.residual_tolerance * assembled.force_norm() + policy.absolute_tolerance,
+    )
+}
