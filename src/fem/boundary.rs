@@ -62,6 +62,13 @@ impl Dirichlet {
         &self.values
     }
 
+    /// Sets the prescribed unknowns of `u` to their values.
+    pub fn impose(&self, u: &mut [f64]) {
+        for (&dof, &value) in self.dofs.iter().zip(&self.values) {
+            u[dof] = value;
+        }
+    }
+
     /// Number of prescribed unknowns.
     pub fn len(&self) -> usize {
         self.dofs.len()

@@ -493,9 +493,7 @@ impl Continuation {
         let bc = self.system.load_to(d)?;
         let mut u = self.predict(d);
         if self.history.len() > 1 || self.slope.is_some() {
-            for (&dof, &value) in bc.dofs().iter().zip(bc.values()) {
-                u[dof] = value;
-            }
+            bc.impose(&mut u);
         }
         // A full-length step lies on a smooth stretch of the path: Newton may keep a fresh
         // indefinite tangent there; a cut step is near a fold, where it may not.

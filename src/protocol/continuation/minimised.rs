@@ -58,9 +58,7 @@ impl Continuation {
         let energy_before = self.energy(&u0, &before)?;
         let bc = self.system.load_to(d)?;
         let mut u = u0.clone();
-        for (&dof, &value) in bc.dofs().iter().zip(bc.values()) {
-            u[dof] = value;
-        }
+        bc.impose(&mut u);
         let energy_start = self.energy(&u, &bc)?;
         let policy = NewtonPolicy {
             inertia_at_solution: true,
@@ -97,9 +95,7 @@ impl Continuation {
         }
         let bc = self.system.load_to(d).ok()?;
         let mut u = self.predict(d);
-        for (&dof, &value) in bc.dofs().iter().zip(bc.values()) {
-            u[dof] = value;
-        }
+        bc.impose(&mut u);
         let predictor = u.clone();
         let saved_contact = self.augmentation.as_ref().and_then(|a| a.contact.clone());
         let policy = NewtonPolicy {
