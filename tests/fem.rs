@@ -6,6 +6,7 @@
 mod common;
 
 use common::{boundary_values, distortion, error_norms, homogeneous_material, worst_nodal_error};
+use fiberfold::fem::added::{AddedEnergy, Block, Diagonal};
 use fiberfold::fem::boundary::{X, Y};
 use fiberfold::fem::linear_solver::multiply;
 use fiberfold::fem::ElementKind;
@@ -122,6 +123,68 @@ fn assembled_tangent_and_lifting_match_central_differences() {
         let fd = (plus[i] - minus[i]) / (2.0 * h);
         let analytic = lifted[i] - assembled.residual[i];
         assert!((fd - analytic).abs() <= 1e-6 * scale, "lifting {i}: {fd} vs {analytic}");
+    }
+}
+
+/// A quadratic `sum_i c_i (u_i - r_i)^2 / 2` on every unknown, as an added energy.
+struct Quadratic {
+    curvature: Vec<f64>,
+    centre: Vec<f64>,
+}
+
+impl AddedEnergy for Quadratic {
+    fn groups(&self) -> &[Vec<usize>] {
+        &[]
+    }
+
+    fn block(&self, g: usize, _: &[f64], _: bool) -> Block {
+        unreachable!("no group {g}")
+    }
+
+    fn diagonal(&self, u: &[f64]) -> Option<Diagonal> {
+        Some(Diagonal::quadratic(self.curvature.clone(), u, &self.centre))
+    }
+}
+
+#[test]
+fn a_diagonal_added_to_an_assembly_is_the_assembly_of_the_quadratic_centred_there() {
+    let (p, mesh) = wavy_problem();
+    let mut system = System::new(mesh.clone(), &Bilayer::new(&p)).unwrap();
+    let bc = model_conditions(&mesh, 0.05).unwrap();
+    let u: Vec<f64> = (0..mesh.num_dofs()).map(|i| 0.01 * (0.37 * i as f64).sin()).collect();
+    let curvature: Vec<f64> = (0..mesh.num_dofs()).map(|i| 0.5 + (0.61 * i as f64).cos()).collect();
+    let quadratic = Quadratic {
+        curvature: curvature.clone(),
+        centre: u.clone(),
+    };
+    let assembled = system.assemble(&u, &bc, None, true).unwrap();
+    let expected = system.assemble_with(&u, &bc, None, true, &quadratic).unwrap();
+    let shifted = system.with_diagonal_added(&assembled, &curvature);
+    assert_eq!(shifted.residual, expected.residual);
+    assert_eq!(
+        (shifted.energy, shifted.added_energy),
+        (expected.energy, expected.added_energy)
+    );
+    let (a, b) = (shifted.tangent.unwrap(), expected.tangent.unwrap());
+    assert_eq!(a.as_ref().val(), b.as_ref().val());
+    // The assembly it came from is unchanged, and the two differ by the curvature alone.
+    let base = assembled.tangent.unwrap();
+    let free = system.free_dofs(&bc).unwrap().to_vec();
+    for (j, &dof) in free.iter().enumerate() {
+        let mut unit = vec![0.0; free.len()];
+        unit[j] = 1.0;
+        let difference: Vec<f64> = multiply(a.as_ref(), &unit)
+            .iter()
+            .zip(multiply(base.as_ref(), &unit))
+            .map(|(x, y)| x - y)
+            .collect();
+        for (i, x) in difference.iter().enumerate() {
+            let want = if i == j { curvature[dof] } else { 0.0 };
+            assert!(
+                (x - want).abs() <= 1e-12 * (1.0 + want.abs()),
+                "entry ({i}, {j}): {x} vs {want}"
+            );
+        }
     }
 }
 

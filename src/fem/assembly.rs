@@ -407,6 +407,28 @@ impl System {
         })
     }
 
+    /// `assembled` (of the current pattern, with its tangent) with `curvature[dof]` added to
+    /// the tangent's diagonal entry of every free unknown: the assembly of the strain energy
+    /// plus `sum_i c_i (u_i - u0_i)^2 / 2` centred at `assembled`'s own state (which adds
+    /// neither energy nor force), without assembling again. Panics if the pattern has changed
+    /// since or the tangent is missing.
+    pub fn with_diagonal_added(&self, assembled: &Assembled, curvature: &[f64]) -> Assembled {
+        let start = Instant::now();
+        let pattern = self.pattern.as_ref().expect("assembled before");
+        assert_eq!(pattern.id, assembled.pattern, "the assembly is of the current pattern");
+        let mut tangent = assembled.tangent.clone().expect("assembled with the tangent");
+        for (&position, &dof) in pattern.diagonal.iter().zip(&pattern.free) {
+            tangent.values[position] += curvature[dof];
+        }
+        Assembled {
+            residual: assembled.residual.clone(),
+            tangent: Some(tangent),
+            reactions: assembled.reactions.clone(),
+            elapsed: start.elapsed(),
+            ..*assembled
+        }
+    }
+
     /// Element `e`'s state at `u` (with the multipliers' penalty scaled by `penalty_scale`), its
     /// lifting force `K_e lift_e`, and its free-free block into `chunk`.
     fn element_contribution(

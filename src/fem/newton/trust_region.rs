@@ -26,7 +26,6 @@
 
 use super::{max_abs, Equations, Newton, NewtonError, NewtonPolicy, NewtonReport, Problem, Updates};
 use crate::error::Error;
-use crate::fem::added::{AddedEnergy, Block, Diagonal, Sum};
 use crate::fem::assembly::Assembled;
 
 /// Smallest non-zero shift; below it the step is Newton's.
@@ -88,29 +87,6 @@ fn lowest_generalised_mode(
     Ok((x, curvature, solves))
 }
 
-/// `sigma D (u - centre)^2 / 2`: its curvature shifts the tangent by `sigma D`; at the centre
-/// it adds neither energy nor force.
-struct Shift<'a> {
-    scale: &'a [f64],
-    sigma: f64,
-    centre: &'a [f64],
-}
-
-impl AddedEnergy for Shift<'_> {
-    fn groups(&self) -> &[Vec<usize>] {
-        &[]
-    }
-
-    fn block(&self, g: usize, _: &[f64], _: bool) -> Block {
-        unreachable!("a shift has no group {g}, only diagonal terms")
-    }
-
-    fn diagonal(&self, u: &[f64]) -> Option<Diagonal> {
-        let curvature: Vec<f64> = self.scale.iter().map(|d| self.sigma * d).collect();
-        Some(Diagonal::quadratic(curvature, u, self.centre))
-    }
-}
-
 /// The energy being minimised (Newton's [`Problem`]) and the scale `D` of its shifts.
 struct Landscape<'a> {
     problem: Problem<'a>,
@@ -132,30 +108,26 @@ impl<'a> Landscape<'a> {
         Ok(Landscape { problem, scale })
     }
 
-    /// Energy, residual and (if `with_tangent`) tangent at `u`, shifted by `sigma D` if
-    /// `sigma > 0`.
-    fn assemble(&mut self, u: &[f64], sigma: f64, with_tangent: bool) -> crate::Result<Assembled> {
-        let shift = Shift {
-            scale: &self.scale,
-            sigma,
-            centre: u,
-        };
+    /// Energy, residual and tangent at `u`.
+    fn assemble(&mut self, u: &[f64]) -> crate::Result<Assembled> {
         let problem = &mut self.problem;
-        let sum;
-        let added: &dyn AddedEnergy = match sigma > 0.0 {
-            true => {
-                sum = Sum::new(vec![problem.added, &shift]);
-                &sum
-            }
-            false => problem.added,
-        };
         let assembled =
             problem
                 .system
-                .assemble_penalised(u, problem.bc, None, with_tangent, added, problem.penalty_scale)?;
+                .assemble_penalised(u, problem.bc, None, true, problem.added, problem.penalty_scale)?;
         problem.timings.assembly += assembled.elapsed;
         problem.timings.assemblies += 1;
         Ok(assembled)
+    }
+
+    /// `current` (the assembly at its state `u`, with the tangent) shifted by `sigma D`: the
+    /// energy `sigma D (v - u)^2 / 2` added, centred at `u`, leaves the energy and the residual
+    /// there and adds `sigma D` to the tangent.
+    fn shifted(&mut self, current: &Assembled, sigma: f64) -> Assembled {
+        let curvature: Vec<f64> = self.scale.iter().map(|d| sigma * d).collect();
+        let shifted = self.problem.system.with_diagonal_added(current, &curvature);
+        self.problem.timings.assembly += shifted.elapsed;
+        shifted
     }
 
     /// `u` moved by `t p` on the free unknowns.
@@ -197,7 +169,7 @@ impl Newton {
     ) -> Result<NewtonReport, NewtonError> {
         let penalty_scale = equations.penalty_scale;
         let mut land = Landscape::new(equations)?;
-        let mut current = land.assemble(u, 0.0, true).map_err(|e| super::inverted(e, 0))?;
+        let mut current = land.assemble(u).map_err(|e| super::inverted(e, 0))?;
         let mut history = vec![current.residual_norm()];
         let (mut sigma, mut rejected, mut factorisations) = (0.0f64, 0, 0);
         let tolerance_at = |a: &Assembled| policy.tolerance(a.force_norm(), penalty_scale);
@@ -208,14 +180,14 @@ impl Newton {
             let residual = current.residual_norm();
             let tolerance = tolerance_at(&current);
             let unfinished = policy.max_pass_move.is_some_and(|limit| moved(u) > limit);
-            let negative = match unfinished {
-                true => None,
-                false => {
-                    factorisations += 1;
-                    self.factorize(&current, &mut land.problem.timings).negative_pivots()
-                }
-            };
-            if unfinished || (negative == Some(0) && residual <= tolerance) {
+            // The unshifted factor is needed for a Newton step (`sigma = 0`) and for the test of
+            // a minimum; a shifted step makes its own, so the inertia waits until it decides.
+            let mut negative = None;
+            if !unfinished && (sigma == 0.0 || residual <= tolerance) {
+                factorisations += 1;
+                negative = Some(self.factorize(&current, &mut land.problem.timings).negative_pivots());
+            }
+            if unfinished || (negative == Some(Some(0)) && residual <= tolerance) {
                 self.forget_factorisation();
                 return Ok(NewtonReport {
                     iterations: iteration,
@@ -225,7 +197,7 @@ impl Newton {
                     energy: current.energy,
                     min_jacobian: current.min_jacobian,
                     reactions: current.reactions,
-                    negative_pivots: negative,
+                    negative_pivots: negative.flatten(),
                     start_negative_pivots: None,
                     backtracks: rejected,
                     updates: Updates::default(),
@@ -233,17 +205,19 @@ impl Newton {
                     unfinished,
                 });
             }
-            let indefinite = negative != Some(0);
-            let next = match indefinite && residual <= tolerance {
+            let next = match negative.is_some_and(|n| n != Some(0)) && residual <= tolerance {
                 true => None,
                 false => self.shifted_step(&mut land, u, &current, &mut sigma, (&mut rejected, &mut factorisations))?,
             };
+            let progress = |predicted: f64| predicted > NEGLIGIBLE_PROGRESS * total(&current).abs().max(1.0);
+            let decided = next.as_ref().is_some_and(|(_, _, predicted)| progress(*predicted));
+            let indefinite = !decided
+                && *negative.get_or_insert_with(|| {
+                    factorisations += 1;
+                    self.factorize(&current, &mut land.problem.timings).negative_pivots()
+                }) != Some(0);
             let (trial, assembled) = match next {
-                Some((trial, assembled, predicted))
-                    if !indefinite || predicted > NEGLIGIBLE_PROGRESS * total(&current).abs().max(1.0) =>
-                {
-                    (trial, assembled)
-                }
+                Some((trial, assembled, _)) if !indefinite => (trial, assembled),
                 None if !indefinite => break,
                 _ => {
                     let step = self.curvature_step(&mut land, u, &current, sigma, &mut factorisations)?;
@@ -282,7 +256,7 @@ impl Newton {
         let residual = current.residual_norm();
         while *sigma <= SIGMA_MAX {
             if *sigma > 0.0 {
-                let shifted = land.assemble(u, *sigma, true)?;
+                let shifted = land.shifted(current, *sigma);
                 *factorisations += 1;
                 if self.factorize(&shifted, &mut land.problem.timings).negative_pivots() != Some(0) {
                     *sigma = (4.0 * *sigma).max(SIGMA_MIN);
@@ -304,7 +278,7 @@ impl Newton {
             let t = (MAX_MOVE / max_abs(&p)).min(1.0);
             let predicted = -(t * r_dot_p + 0.5 * t * t * p_k_p);
             let trial = land.moved(u, &p, t);
-            let (rho, assembled) = match land.assemble(&trial, 0.0, true) {
+            let (rho, assembled) = match land.assemble(&trial) {
                 Ok(a) => {
                     let actual = energy - total(&a);
                     // Within round-off of the energy, the residual decides.
@@ -348,7 +322,7 @@ impl Newton {
         let mut shift = sigma.max(SIGMA_MIN);
         let mut raised = false;
         let mut shifted = loop {
-            let shifted = land.assemble(u, shift, true)?;
+            let shifted = land.shifted(current, shift);
             *factorisations += 1;
             if self.factorize(&shifted, &mut land.problem.timings).negative_pivots() == Some(0) {
                 break shifted;
@@ -365,7 +339,7 @@ impl Newton {
         // lies within a factor four of the lowest eigenvalue's magnitude and the inverse iteration
         // contracts by at most 3/4 per step (from a large trust-region shift it barely moves).
         while !raised && shift / 4.0 >= SIGMA_MIN {
-            let lower = land.assemble(u, shift / 4.0, true)?;
+            let lower = land.shifted(current, shift / 4.0);
             *factorisations += 1;
             if self.factorize(&lower, &mut land.problem.timings).negative_pivots() != Some(0) {
                 *factorisations += 1;
@@ -392,7 +366,7 @@ impl Newton {
         }
         let energy = |land: &mut Landscape, t: f64| -> Option<(Vec<f64>, Assembled)> {
             let trial = land.moved(u, &mode, t);
-            land.assemble(&trial, 0.0, true).ok().map(|a| (trial, a))
+            land.assemble(&trial).ok().map(|a| (trial, a))
         };
         let mut length = CURVATURE_STEP / max_abs(&mode);
         let mut best: Option<(Vec<f64>, Assembled)> = None;
