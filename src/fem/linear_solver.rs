@@ -27,6 +27,10 @@ use faer::{Conj, MatMut, Par, Side};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+mod separator;
+mod split;
+use split::{SplitAnalysis, SplitFactor, SMALLEST_SPLIT};
+
 /// Which factorisation currently holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Factorisation {
@@ -40,6 +44,9 @@ pub enum Factorisation {
 struct Analysis {
     symbolic: SymbolicCholesky<usize>,
     order: FactorOrder,
+    /// The pattern split in two parts factorised on two cores ([`split`]), if it is large
+    /// enough and splits well; `L B L^T` always factorises the whole.
+    split: Option<SplitAnalysis>,
 }
 
 /// A reusable factorisation of symmetric matrices sharing one sparsity pattern.
@@ -55,6 +62,10 @@ pub struct SparseLdlt {
     /// The larger workspace of `L B L^T` (with faer's own permutation), made on first use.
     pivoted_scratch: Option<MemBuffer>,
     state: Option<Factorisation>,
+    /// The two parts' factors, made on first use (split patterns only).
+    split: Option<SplitFactor>,
+    /// Whether the current `L D L^T` is the split one (`split`) rather than `values`.
+    split_holds: bool,
     /// Whether `values` holds the `L D L^T` factor rounded to `f32`, packed in its first half.
     single: bool,
     /// Negative pivots of the current factorisation, counted on first request.
@@ -76,7 +87,8 @@ impl SparseLdlt {
         let symbolic = factorize_symbolic_cholesky(pattern, Side::Lower, SymmetricOrdering::Amd, params)
             .expect("symbolic factorisation fails only when out of memory");
         let order = FactorOrder::new(pattern, &symbolic);
-        let mut solver = SparseLdlt::with_analysis(Arc::new(Analysis { symbolic, order }));
+        let split = SplitAnalysis::new(pattern, SMALLEST_SPLIT);
+        let mut solver = SparseLdlt::with_analysis(Arc::new(Analysis { symbolic, order, split }));
         solver.symbolic_time = start.elapsed();
         solver
     }
@@ -101,8 +113,8 @@ impl SparseLdlt {
         ]));
         let n = symbolic.nrows();
         SparseLdlt {
-            permuted: vec![0.0; analysis.order.row_idx.len()],
-            values: vec![0.0; symbolic.len_val()],
+            permuted: Vec::new(),
+            values: Vec::new(),
             subdiag: vec![0.0; n],
             perm_forward: vec![0; n],
             perm_inverse: vec![0; n],
@@ -110,6 +122,8 @@ impl SparseLdlt {
             scratch,
             pivoted_scratch: None,
             state: None,
+            split: None,
+            split_holds: false,
             single: false,
             negative: std::cell::OnceCell::new(),
             symbolic_time: Duration::ZERO,
@@ -123,15 +137,30 @@ impl SparseLdlt {
         self.analysis.symbolic.nrows()
     }
 
-    /// Number of stored factor values (lower triangle plus the dense diagonal blocks).
+    /// Number of stored factor values (lower triangle plus the dense diagonal blocks; of both
+    /// parts and the separator's block where the pattern is split).
     pub fn factor_size(&self) -> usize {
-        self.analysis.symbolic.len_val()
+        match &self.analysis.split {
+            Some(split) => split.factor_size(),
+            None => self.analysis.symbolic.len_val(),
+        }
     }
 
     /// `L D L^T` of the symmetric matrix whose lower triangle is `a` (same pattern as at
-    /// construction); falls back to `L B L^T` on a zero pivot.
+    /// construction), split on two cores where the pattern is; falls back to `L B L^T` of
+    /// the whole on a zero pivot.
     pub fn factorize(&mut self, a: SparseColMatRef<'_, usize, f64>) -> Factorisation {
         let start = Instant::now();
+        self.forget();
+        if let Some(analysis) = &self.analysis.split {
+            let factor = self.split.get_or_insert_with(|| SplitFactor::new(analysis));
+            if factor.factorize(analysis, a.val()) {
+                self.state = Some(Factorisation::Ldlt);
+                self.split_holds = true;
+                self.factorisation_time = start.elapsed();
+                return Factorisation::Ldlt;
+            }
+        }
         self.prepare();
         let SymbolicCholeskyRaw::Supernodal(supernodal) = self.analysis.symbolic.raw() else {
             unreachable!("the symbolic analysis forces a supernodal factor")
@@ -158,15 +187,17 @@ impl SparseLdlt {
     /// Forgets the factorisation in place.
     fn forget(&mut self) {
         self.negative = std::cell::OnceCell::new();
+        self.split_holds = false;
         self.single = false;
         self.state = None;
     }
 
-    /// [`SparseLdlt::forget`], with the factor's memory made again if it was freed.
+    /// [`SparseLdlt::forget`], with the whole factor's memory made if it is not there.
     fn prepare(&mut self) {
         self.forget();
         if self.values.is_empty() {
             self.values = vec![0.0; self.analysis.symbolic.len_val()];
+            self.permuted = vec![0.0; self.analysis.order.row_idx.len()];
         }
     }
 
@@ -175,6 +206,8 @@ impl SparseLdlt {
     pub fn free_factor(&mut self) {
         self.forget();
         self.values = Vec::new();
+        self.permuted = Vec::new();
+        self.split = None;
         self.pivoted_scratch = None;
     }
 
@@ -219,6 +252,15 @@ impl SparseLdlt {
         let start = Instant::now();
         let n = self.dimension();
         assert_eq!(rhs.len(), n, "right-hand side length");
+        if self.split_holds {
+            let analysis = self.analysis.split.as_ref().expect("a split pattern");
+            self.split
+                .as_mut()
+                .expect("factorised")
+                .solve_in_place(analysis, rhs, false);
+            self.solve_time = start.elapsed();
+            return finite(rhs);
+        }
         let x = MatMut::from_column_major_slice_mut(rhs, n, 1);
         match self.state {
             None => panic!("solve_in_place called before factorize"),
@@ -246,11 +288,22 @@ impl SparseLdlt {
     /// [`SparseLdlt::solve_in_place`] with the `L D L^T` factor rounded to single precision:
     /// `x` to about 1e-7 relative (times the conditioning), for iterations that check their own
     /// residual. The first call rounds the factor in place (after counting its negative pivots),
-    /// so that only this solve is left until the next factorisation. An `L B L^T` factor is
-    /// solved in double precision.
+    /// so that only this solve is left until the next factorisation (a split factor: each
+    /// part's). An `L B L^T` factor is solved in double precision.
     pub fn solve_in_place_single(&mut self, rhs: &mut [f64]) -> Result<()> {
         if self.state != Some(Factorisation::Ldlt) {
             return self.solve_in_place(rhs);
+        }
+        if self.split_holds {
+            let start = Instant::now();
+            self.negative_pivots(); // counted while D is exact
+            let analysis = self.analysis.split.as_ref().expect("a split pattern");
+            self.split
+                .as_mut()
+                .expect("factorised")
+                .solve_in_place(analysis, rhs, true);
+            self.solve_time = start.elapsed();
+            return finite(rhs);
         }
         if !self.single {
             self.round_to_single();
@@ -259,8 +312,7 @@ impl SparseLdlt {
         let n = self.dimension();
         assert_eq!(rhs.len(), n, "right-hand side length");
         let mut x: Vec<f32> = rhs.iter().map(|&v| v as f32).collect();
-        let single: &[f32] = bytemuck::cast_slice(&self.values);
-        LdltRef::new(&self.analysis.symbolic, &single[..self.values.len()]).solve_in_place_with_conj(
+        LdltRef::new(&self.analysis.symbolic, as_single(&self.values)).solve_in_place_with_conj(
             Conj::No,
             MatMut::from_column_major_slice_mut(&mut x, n, 1),
             Par::Seq,
@@ -275,11 +327,7 @@ impl SparseLdlt {
     /// which lies in the `f64` slot `i / 2`, already read (no second buffer, no extra memory).
     fn round_to_single(&mut self) {
         self.negative_pivots(); // counted while D is exact
-        let words: &mut [u32] = bytemuck::cast_slice_mut(&mut self.values);
-        for i in 0..words.len() / 2 {
-            let value = f64::from_ne_bytes(bytemuck::cast([words[2 * i], words[2 * i + 1]]));
-            words[i] = (value as f32).to_bits();
-        }
+        round_to_single(&mut self.values);
         self.single = true;
     }
 
@@ -290,8 +338,9 @@ impl SparseLdlt {
             unreachable!("the symbolic analysis forces a supernodal factor")
         };
         Some(*self.negative.get_or_init(|| match kind {
+            Factorisation::Ldlt if self.split_holds => self.split.as_ref().expect("factorised").negative_pivots(),
             Factorisation::Ldlt => self.diagonal_blocks(supernodal).filter(|&(d, _)| d < 0.0).count(),
-            Factorisation::Lblt => self.block_inertia(supernodal),
+            Factorisation::Lblt => block_inertia(&self.diagonal_blocks(supernodal).collect::<Vec<_>>()),
         }))
     }
 
@@ -309,25 +358,6 @@ impl SparseLdlt {
         })
     }
 
-    /// Negative eigenvalues of `B`: 1x1 pivots by sign, 2x2 blocks by determinant and trace.
-    fn block_inertia(&self, supernodal: &SymbolicSupernodalCholesky<usize>) -> usize {
-        let pivots: Vec<(f64, f64)> = self.diagonal_blocks(supernodal).collect();
-        let (mut negative, mut i) = (0, 0);
-        while i < pivots.len() {
-            let (d, s) = pivots[i];
-            if s == 0.0 {
-                negative += usize::from(d < 0.0);
-                i += 1;
-            } else {
-                let e = pivots[i + 1].0;
-                let det = d * e - s * s;
-                negative += if det < 0.0 { 1 } else { 2 * usize::from(d + e < 0.0) };
-                i += 2;
-            }
-        }
-        negative
-    }
-
     /// Wall time of the symbolic analysis.
     pub fn symbolic_time(&self) -> Duration {
         self.symbolic_time
@@ -342,6 +372,40 @@ impl SparseLdlt {
     pub fn solve_time(&self) -> Duration {
         self.solve_time
     }
+}
+
+/// Rounds `values` to `f32` in place: value `i` goes to the `i`-th `f32` slot, which lies in
+/// the `f64` slot `i / 2`, already read. Read them back with [`as_single`].
+fn round_to_single(values: &mut [f64]) {
+    let words: &mut [u32] = bytemuck::cast_slice_mut(values);
+    for i in 0..words.len() / 2 {
+        let value = f64::from_ne_bytes(bytemuck::cast([words[2 * i], words[2 * i + 1]]));
+        words[i] = (value as f32).to_bits();
+    }
+}
+
+/// The values rounded by [`round_to_single`].
+fn as_single(values: &[f64]) -> &[f32] {
+    &bytemuck::cast_slice(values)[..values.len()]
+}
+
+/// Negative eigenvalues of a `B` of 1x1 and 2x2 pivots `(b_ii, b_i+1,i)`: 1x1 pivots (no
+/// subdiagonal) by sign, 2x2 blocks by determinant and trace.
+fn block_inertia(pivots: &[(f64, f64)]) -> usize {
+    let (mut negative, mut i) = (0, 0);
+    while i < pivots.len() {
+        let (d, s) = pivots[i];
+        if s == 0.0 {
+            negative += usize::from(d < 0.0);
+            i += 1;
+        } else {
+            let e = pivots[i + 1].0;
+            let det = d * e - s * s;
+            negative += if det < 0.0 { 1 } else { 2 * usize::from(d + e < 0.0) };
+            i += 2;
+        }
+    }
+    negative
 }
 
 /// The slot of an entry above the diagonal.
@@ -442,94 +506,4 @@ pub fn multiply(a: SparseColMatRef<'_, usize, f64>, x: &[f64]) -> Vec<f64> {
 }
 
 #[cfg(test)]
-pub(super) mod tests {
-    use super::*;
-    use faer::sparse::{SparseColMat, Triplet};
-
-    /// The 1D Laplacian shifted by `sigma`: eigenvalues `2 - 2 cos(k pi / (n + 1)) - sigma`.
-    pub(in crate::fem) fn shifted_laplacian(n: usize, sigma: f64) -> SparseColMat<usize, f64> {
-        let mut t = Vec::new();
-        for i in 0..n {
-            t.push(Triplet::new(i, i, 2.0 - sigma));
-            if i + 1 < n {
-                t.push(Triplet::new(i, i + 1, -1.0));
-                t.push(Triplet::new(i + 1, i, -1.0));
-            }
-        }
-        SparseColMat::try_new_from_triplets(n, n, &t).unwrap()
-    }
-
-    fn below(n: usize, sigma: f64) -> usize {
-        (1..=n)
-            .filter(|&k| 2.0 - 2.0 * (k as f64 * std::f64::consts::PI / (n as f64 + 1.0)).cos() < sigma)
-            .count()
-    }
-
-    #[test]
-    fn solves_and_counts_negative_eigenvalues() {
-        let n = 200;
-        for sigma in [0.0, 0.013, 0.5, 1.7] {
-            let a = shifted_laplacian(n, sigma);
-            let mut solver = SparseLdlt::new(a.symbolic());
-            let b: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).cos()).collect();
-            for kind in [Factorisation::Ldlt, Factorisation::Lblt] {
-                match kind {
-                    Factorisation::Ldlt => assert_eq!(solver.factorize(a.as_ref()), Factorisation::Ldlt),
-                    Factorisation::Lblt => assert_eq!(solver.factorize_pivoted(a.as_ref()), Factorisation::Lblt),
-                }
-                assert_eq!(
-                    solver.negative_pivots(),
-                    Some(below(n, sigma)),
-                    "sigma {sigma}, {kind:?}"
-                );
-                let mut x = b.clone();
-                solver.solve_in_place(&mut x).unwrap();
-                let ax = multiply(a.as_ref(), &x);
-                let error = ax.iter().zip(&b).map(|(p, q)| (p - q).abs()).fold(0.0, f64::max);
-                assert!(error < 1e-9, "sigma {sigma}, {kind:?}: {error}");
-            }
-        }
-    }
-
-    /// The single-precision solve keeps the inertia, solves to single precision, and leaves
-    /// the next factorisation in double precision.
-    #[test]
-    fn single_precision_solves_to_its_rounding() {
-        let n = 200;
-        let a = shifted_laplacian(n, 0.013);
-        let b: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).cos()).collect();
-        let mut solver = SparseLdlt::new(a.symbolic());
-        solver.factorize(a.as_ref());
-        let mut exact = b.clone();
-        solver.solve_in_place(&mut exact).unwrap();
-        for _ in 0..2 {
-            let mut x = b.clone();
-            solver.solve_in_place_single(&mut x).unwrap();
-            let error = x.iter().zip(&exact).map(|(p, q)| (p - q).abs()).fold(0.0, f64::max);
-            let size = exact.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
-            assert!(error > 1e-12 * size && error < 1e-4 * size, "{error} of {size}");
-            assert_eq!(solver.negative_pivots(), Some(below(n, 0.013)));
-        }
-        solver.factorize(a.as_ref());
-        let mut x = b.clone();
-        solver.solve_in_place(&mut x).unwrap();
-        assert_eq!(x, exact);
-    }
-
-    #[test]
-    fn zero_pivot_falls_back_to_bunch_kaufman() {
-        // [[0, 1], [1, 0]] has no L D L^T without pivoting; eigenvalues -1 and 1.
-        let t = [
-            Triplet::new(0, 1, 1.0),
-            Triplet::new(1, 0, 1.0),
-            Triplet::new(0, 0, 0.0),
-        ];
-        let a = SparseColMat::<usize, f64>::try_new_from_triplets(2, 2, &t).unwrap();
-        let mut solver = SparseLdlt::new(a.symbolic());
-        assert_eq!(solver.factorize(a.as_ref()), Factorisation::Lblt);
-        assert_eq!(solver.negative_pivots(), Some(1));
-        let mut x = vec![2.0, 3.0];
-        solver.solve_in_place(&mut x).unwrap();
-        assert!((x[0] - 3.0).abs() < 1e-14 && (x[1] - 2.0).abs() < 1e-14);
-    }
-}
+pub(super) mod tests;
