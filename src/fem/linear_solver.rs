@@ -58,7 +58,9 @@ pub struct SparseLdlt {
     subdiag: Vec<f64>,
     perm_forward: Vec<usize>,
     perm_inverse: Vec<usize>,
-    scratch: MemBuffer,
+    /// The workspace of the whole factor's `L D L^T` and solves, made on first use (a split
+    /// pattern needs it only after a zero pivot).
+    scratch: Option<MemBuffer>,
     /// The larger workspace of `L B L^T` (with faer's own permutation), made on first use.
     pivoted_scratch: Option<MemBuffer>,
     state: Option<Factorisation>,
@@ -101,16 +103,7 @@ impl SparseLdlt {
     }
 
     fn with_analysis(analysis: Arc<Analysis>) -> Self {
-        let par = Par::Seq;
         let symbolic = &analysis.symbolic;
-        let SymbolicCholeskyRaw::Supernodal(supernodal) = symbolic.raw() else {
-            unreachable!("the symbolic analysis forces a supernodal factor")
-        };
-        let scratch = MemBuffer::new(StackReq::any_of(&[
-            factorize_supernodal_numeric_ldlt_scratch::<usize, f64>(supernodal, par, Default::default()),
-            symbolic.solve_in_place_scratch::<f64>(1, par),
-            symbolic.solve_in_place_scratch::<f32>(1, par),
-        ]));
         let n = symbolic.nrows();
         SparseLdlt {
             permuted: Vec::new(),
@@ -119,7 +112,7 @@ impl SparseLdlt {
             perm_forward: vec![0; n],
             perm_inverse: vec![0; n],
             analysis,
-            scratch,
+            scratch: None,
             pivoted_scratch: None,
             state: None,
             split: None,
@@ -171,7 +164,10 @@ impl SparseLdlt {
             LdltRegularization::default(),
             supernodal,
             Par::Seq,
-            MemStack::new(&mut self.scratch),
+            MemStack::new(
+                self.scratch
+                    .get_or_insert_with(|| whole_scratch(&self.analysis.symbolic)),
+            ),
             Default::default(),
         );
         let kind = if ldlt.is_ok() {
@@ -268,7 +264,10 @@ impl SparseLdlt {
                 Conj::No,
                 x,
                 Par::Seq,
-                MemStack::new(&mut self.scratch),
+                MemStack::new(
+                    self.scratch
+                        .get_or_insert_with(|| whole_scratch(&self.analysis.symbolic)),
+                ),
             ),
             Some(Factorisation::Lblt) => {
                 let stack = MemStack::new(
@@ -316,7 +315,10 @@ impl SparseLdlt {
             Conj::No,
             MatMut::from_column_major_slice_mut(&mut x, n, 1),
             Par::Seq,
-            MemStack::new(&mut self.scratch),
+            MemStack::new(
+                self.scratch
+                    .get_or_insert_with(|| whole_scratch(&self.analysis.symbolic)),
+            ),
         );
         rhs.iter_mut().zip(&x).for_each(|(r, &v)| *r = f64::from(v));
         self.solve_time = start.elapsed();
@@ -372,6 +374,18 @@ impl SparseLdlt {
     pub fn solve_time(&self) -> Duration {
         self.solve_time
     }
+}
+
+/// The workspace of the whole factor's `L D L^T` and its solves (double and single precision).
+fn whole_scratch(symbolic: &SymbolicCholesky<usize>) -> MemBuffer {
+    let SymbolicCholeskyRaw::Supernodal(supernodal) = symbolic.raw() else {
+        unreachable!("the symbolic analysis forces a supernodal factor")
+    };
+    MemBuffer::new(StackReq::any_of(&[
+        factorize_supernodal_numeric_ldlt_scratch::<usize, f64>(supernodal, Par::Seq, Default::default()),
+        symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
+        symbolic.solve_in_place_scratch::<f32>(1, Par::Seq),
+    ]))
 }
 
 /// Rounds `values` to `f32` in place: value `i` goes to the `i`-th `f32` slot, which lies in
