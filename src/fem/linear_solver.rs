@@ -245,18 +245,12 @@ impl SparseLdlt {
             !self.single,
             "double-precision solve with a factor rounded to single precision"
         );
+        if self.split_holds {
+            return self.solve_split(rhs, false);
+        }
         let start = Instant::now();
         let n = self.dimension();
         assert_eq!(rhs.len(), n, "right-hand side length");
-        if self.split_holds {
-            let analysis = self.analysis.split.as_ref().expect("a split pattern");
-            self.split
-                .as_mut()
-                .expect("factorised")
-                .solve_in_place(analysis, rhs, false);
-            self.solve_time = start.elapsed();
-            return finite(rhs);
-        }
         let x = MatMut::from_column_major_slice_mut(rhs, n, 1);
         match self.state {
             None => panic!("solve_in_place called before factorize"),
@@ -294,15 +288,8 @@ impl SparseLdlt {
             return self.solve_in_place(rhs);
         }
         if self.split_holds {
-            let start = Instant::now();
             self.negative_pivots(); // counted while D is exact
-            let analysis = self.analysis.split.as_ref().expect("a split pattern");
-            self.split
-                .as_mut()
-                .expect("factorised")
-                .solve_in_place(analysis, rhs, true);
-            self.solve_time = start.elapsed();
-            return finite(rhs);
+            return self.solve_split(rhs, true);
         }
         if !self.single {
             self.round_to_single();
@@ -321,6 +308,17 @@ impl SparseLdlt {
             ),
         );
         rhs.iter_mut().zip(&x).for_each(|(r, &v)| *r = f64::from(v));
+        self.solve_time = start.elapsed();
+        finite(rhs)
+    }
+
+    /// Solves with the split factor, its sides rounded to single precision if `single`.
+    fn solve_split(&mut self, rhs: &mut [f64], single: bool) -> Result<()> {
+        let start = Instant::now();
+        assert_eq!(rhs.len(), self.dimension(), "right-hand side length");
+        let analysis = self.analysis.split.as_ref().expect("a split pattern");
+        let factor = self.split.as_mut().expect("factorised");
+        factor.solve_in_place(analysis, rhs, single);
         self.solve_time = start.elapsed();
         finite(rhs)
     }
