@@ -43,7 +43,8 @@ pub enum Factorisation {
 /// The symbolic analysis of one sparsity pattern, shared by the solvers of its matrices.
 struct Analysis {
     symbolic: SymbolicCholesky<usize>,
-    order: FactorOrder,
+    /// Made on first use where the pattern is split (only a side's zero pivot needs it).
+    order: std::sync::OnceLock<FactorOrder>,
     /// The pattern split in two parts factorised on two cores ([`split`]), if it is large
     /// enough and splits well; `L B L^T` always factorises the whole.
     split: Option<SplitAnalysis>,
@@ -88,8 +89,11 @@ impl SparseLdlt {
         };
         let symbolic = factorize_symbolic_cholesky(pattern, Side::Lower, SymmetricOrdering::Amd, params)
             .expect("symbolic factorisation fails only when out of memory");
-        let order = FactorOrder::new(pattern, &symbolic);
         let split = SplitAnalysis::new(pattern, SMALLEST_SPLIT);
+        let order = std::sync::OnceLock::new();
+        if split.is_none() {
+            order.get_or_init(|| FactorOrder::new(pattern, &symbolic));
+        }
         let mut solver = SparseLdlt::with_analysis(Arc::new(Analysis { symbolic, order, split }));
         solver.symbolic_time = start.elapsed();
         solver
@@ -148,19 +152,26 @@ impl SparseLdlt {
         if let Some(analysis) = &self.analysis.split {
             let factor = self.split.get_or_insert_with(|| SplitFactor::new(analysis));
             if factor.factorize(analysis, a.val()) {
+                // A whole factor of an earlier zero pivot gives its memory back.
+                (self.values, self.permuted) = (Vec::new(), Vec::new());
                 self.state = Some(Factorisation::Ldlt);
                 self.split_holds = true;
                 self.factorisation_time = start.elapsed();
                 return Factorisation::Ldlt;
             }
         }
+        self.split = None; // a side met a zero pivot: its memory goes to the whole's factor
         self.prepare();
         let SymbolicCholeskyRaw::Supernodal(supernodal) = self.analysis.symbolic.raw() else {
             unreachable!("the symbolic analysis forces a supernodal factor")
         };
+        let order = (self.analysis.order).get_or_init(|| FactorOrder::new(a.symbolic(), &self.analysis.symbolic));
+        if self.permuted.len() != order.row_idx.len() {
+            self.permuted = vec![0.0; order.row_idx.len()];
+        }
         let ldlt = factorize_supernodal_numeric_ldlt(
             &mut self.values,
-            self.analysis.order.gather(a, &mut self.permuted),
+            order.gather(a, &mut self.permuted),
             LdltRegularization::default(),
             supernodal,
             Par::Seq,
@@ -193,7 +204,6 @@ impl SparseLdlt {
         self.forget();
         if self.values.is_empty() {
             self.values = vec![0.0; self.analysis.symbolic.len_val()];
-            self.permuted = vec![0.0; self.analysis.order.row_idx.len()];
         }
     }
 
@@ -210,6 +220,7 @@ impl SparseLdlt {
     /// Intranode Bunch-Kaufman `L B L^T` of `a`: slower, but stable for indefinite matrices.
     pub fn factorize_pivoted(&mut self, a: SparseColMatRef<'_, usize, f64>) -> Factorisation {
         let start = Instant::now();
+        self.split = None; // the sides' factors give their memory to the whole's
         self.prepare();
         let symbolic = &self.analysis.symbolic;
         let scratch = self.pivoted_scratch.get_or_insert_with(|| {

@@ -12,7 +12,8 @@ pub(super) const SEPARATOR: u8 = 2;
 /// The symmetric adjacency of a pattern's lower triangle (diagonal left out).
 pub(super) struct Graph {
     start: Vec<usize>,
-    neighbours: Vec<usize>,
+    /// 32-bit indices: the graph is built beside the factors it replaces.
+    neighbours: Vec<u32>,
 }
 
 impl Graph {
@@ -26,11 +27,11 @@ impl Graph {
         }
         (0..n).for_each(|i| start[i + 1] += start[i]);
         let mut next = start.clone();
-        let mut neighbours = vec![0usize; start[n]];
+        let mut neighbours = vec![0u32; start[n]];
         for (r, c) in edges().filter(|(r, c)| r > c) {
-            neighbours[next[r]] = c;
+            neighbours[next[r]] = c as u32;
             next[r] += 1;
-            neighbours[next[c]] = r;
+            neighbours[next[c]] = r as u32;
             next[c] += 1;
         }
         Graph { start, neighbours }
@@ -40,7 +41,7 @@ impl Graph {
         self.start.len() - 1
     }
 
-    fn of(&self, v: usize) -> &[usize] {
+    pub(super) fn of(&self, v: usize) -> &[u32] {
         &self.neighbours[self.start[v]..self.start[v + 1]]
     }
 
@@ -50,7 +51,7 @@ impl Graph {
         let mut queue = std::collections::VecDeque::from([root]);
         level[root] = 0;
         while let Some(v) = queue.pop_front() {
-            for &w in self.of(v) {
+            for w in self.of(v).iter().map(|&w| w as usize) {
                 if level[w] == u32::MAX {
                     level[w] = level[v] + 1;
                     queue.push_back(w);
@@ -113,7 +114,7 @@ pub(super) fn bisect(graph: &Graph) -> Option<Vec<u8>> {
     // An unknown of the separator with no neighbour on one side joins the other side.
     for (lonely, joins) in [(SECOND, FIRST), (FIRST, SECOND)] {
         for v in 0..n {
-            if side[v] == SEPARATOR && !graph.of(v).iter().any(|&w| side[w] == lonely) {
+            if side[v] == SEPARATOR && !graph.of(v).iter().any(|&w| side[w as usize] == lonely) {
                 side[v] = joins;
             }
         }
@@ -143,7 +144,7 @@ mod tests {
         }
         for v in 0..n {
             for &w in graph.of(v) {
-                assert!(!(side[v] == FIRST && side[w] == SECOND), "edge {v}-{w} across");
+                assert!(!(side[v] == FIRST && side[w as usize] == SECOND), "edge {v}-{w} across");
             }
         }
     }

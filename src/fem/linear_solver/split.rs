@@ -106,24 +106,26 @@ impl PartAnalysis {
             .for_each(|(l, &g)| local[g] = l);
         let (m, n_a) = (interior.len() + separator.len(), interior.len());
         // The part's lower triangle in local numbering, with the global entry of each value.
-        let mut entries: Vec<(usize, usize, usize)> = Vec::new();
+        // 32-bit indices: this is built beside the factors it replaces.
+        let mut entries: Vec<(u32, u32, u32)> = Vec::new();
         let mut k = 0;
         for col in 0..n {
             for &row in pattern.row_idx_of_col_raw(col) {
                 let (i, j) = (local[row], local[col]);
                 if row >= col && i != usize::MAX && j != usize::MAX {
-                    entries.push((i.max(j), i.min(j), k));
+                    entries.push((i.max(j) as u32, i.min(j) as u32, k as u32));
                 }
                 k += 1;
             }
         }
         let mut col_ptr = vec![0usize; m + 1];
-        entries.iter().for_each(|&(_, j, _)| col_ptr[j + 1] += 1);
+        entries.iter().for_each(|&(_, j, _)| col_ptr[j as usize + 1] += 1);
         (0..m).for_each(|j| col_ptr[j + 1] += col_ptr[j]);
         let mut row_idx = vec![0usize; entries.len()];
         let mut next = col_ptr.clone();
         for &(i, j, _) in &entries {
-            row_idx[next[j]] = i;
+            let j = j as usize;
+            row_idx[next[j]] = i as usize;
             next[j] += 1;
         }
         let local_pattern = SymbolicSparseColMatRef::new_unsorted_checked(m, m, &col_ptr, None, &row_idx);
@@ -139,16 +141,17 @@ impl PartAnalysis {
         let placed = |i: usize, j: usize| (position[i].max(position[j]), position[i].min(position[j]));
         entries
             .iter()
-            .for_each(|&(i, j, _)| factor_ptr[placed(i, j).1 + 1] += 1);
+            .for_each(|&(i, j, _)| factor_ptr[placed(i as usize, j as usize).1 + 1] += 1);
         (0..m).for_each(|j| factor_ptr[j + 1] += factor_ptr[j]);
         let mut factor_rows = vec![0usize; entries.len()];
         let mut next = factor_ptr.clone();
         let mut gather: Vec<(u32, u32)> = Vec::with_capacity(entries.len());
         let mut halved = Vec::new();
         for &(i, j, k) in &entries {
+            let (i, j) = (i as usize, j as usize);
             let (r, c) = placed(i, j);
             factor_rows[next[c]] = r;
-            let pair = (k as u32, next[c] as u32);
+            let pair = (k, next[c] as u32);
             next[c] += 1;
             if i >= n_a && j >= n_a {
                 halved.push(pair);
@@ -260,14 +263,14 @@ impl SplitFactor {
     /// pattern); `false` where a part meets a zero pivot (the caller then pivots the whole).
     pub(super) fn factorize(&mut self, analysis: &SplitAnalysis, values: &[f64]) -> bool {
         let [first, second] = &mut self.parts;
-        // The second side on a thread of its own, not on the thread pool: faer's kernels on
-        // the pool's threads slowed the assemblies that follow on them (measured, coarse
-        // mesh: 0.6 -> 1.0 s).
-        let (a, b) = std::thread::scope(|scope| {
-            let second = scope.spawn(|| second.factorize(&analysis.parts[1], values));
-            let a = first.factorize(&analysis.parts[0], values);
-            (a, second.join().expect("a factorisation does not panic"))
-        });
+        // Both sides on the two threads of a pool of their own, not on rayon's global pool:
+        // faer's kernels on the global pool's threads slowed the assemblies that follow on
+        // them (measured, coarse mesh: 0.6 -> 1.0 s), and threads made afresh for each
+        // factorisation each made their own workspaces (more peak memory).
+        let (a, b) = factorisation_pool().join(
+            || first.factorize(&analysis.parts[0], values),
+            || second.factorize(&analysis.parts[1], values),
+        );
         if !(a && b) {
             self.separator = None;
             return false;
@@ -428,21 +431,28 @@ fn forward<T: Copy + Into<f64>>(part: &PartAnalysis, values: &[T], x: &mut [f64]
     let n_a = part.interior_len();
     let supernodal = part.supernodal();
     let factor = SupernodalLdltRef::new(supernodal, values);
+    // The updates of the rows below a supernode, summed over its columns, then scattered.
+    let mut below: Vec<f64> = Vec::new();
     for node in (0..supernodal.n_supernodes()).map(|n| factor.supernode(n)) {
         let (start, block) = (node.start(), node.val());
         if start >= n_a {
             break;
         }
         let size = block.ncols();
+        below.clear();
+        below.resize(node.pattern().len(), 0.0);
         for c in 0..(n_a - start).min(size) {
             let column = block.col(c).try_as_col_major().expect("column-major").as_slice();
             let xc = x[start + c];
-            for r in c + 1..size {
-                x[start + r] -= column[r].into() * xc;
+            for (xr, &v) in x[start + c + 1..start + size].iter_mut().zip(&column[c + 1..size]) {
+                *xr -= v.into() * xc;
             }
-            for (&row, &v) in node.pattern().iter().zip(&column[size..]) {
-                x[row] -= v.into() * xc;
+            for (b, &v) in below.iter_mut().zip(&column[size..]) {
+                *b += v.into() * xc;
             }
+        }
+        for (&row, &b) in node.pattern().iter().zip(&below) {
+            x[row] -= b;
         }
     }
 }
@@ -462,24 +472,52 @@ fn backward<T: Copy + Into<f64>>(part: &PartAnalysis, values: &[T], x: &mut [f64
             }
         }
     }
+    // The solution on the rows below a supernode, gathered once.
+    let mut below: Vec<f64> = Vec::new();
     for node in (0..nodes).rev().map(|n| factor.supernode(n)) {
         let (start, block) = (node.start(), node.val());
         if start >= n_a {
             continue;
         }
         let size = block.ncols();
+        below.clear();
+        below.extend(node.pattern().iter().map(|&row| x[row]));
         for c in (0..(n_a - start).min(size)).rev() {
             let column = block.col(c).try_as_col_major().expect("column-major").as_slice();
-            let mut sum = 0.0;
-            for r in c + 1..size {
-                sum += column[r].into() * x[start + r];
-            }
-            for (&row, &v) in node.pattern().iter().zip(&column[size..]) {
-                sum += v.into() * x[row];
-            }
+            let sum = dot(&column[c + 1..size], &x[start + c + 1..start + size]) + dot(&column[size..], &below);
             x[start + c] -= sum;
         }
     }
+}
+
+/// `a . b` in four interleaved sums (which the compiler vectorises; one sum in order it may not).
+fn dot<T: Copy + Into<f64>>(a: &[T], b: &[f64]) -> f64 {
+    let mut sums = [0.0; 4];
+    let (chunks_a, chunks_b) = (a.chunks_exact(4), b.chunks_exact(4));
+    let tail: f64 = chunks_a
+        .remainder()
+        .iter()
+        .zip(chunks_b.remainder())
+        .map(|(&p, &q)| p.into() * q)
+        .sum();
+    for (p, q) in chunks_a.zip(chunks_b) {
+        for k in 0..4 {
+            sums[k] += p[k].into() * q[k];
+        }
+    }
+    (sums[0] + sums[1]) + (sums[2] + sums[3]) + tail
+}
+
+/// The two threads that factorise the sides, made once.
+fn factorisation_pool() -> &'static rayon::ThreadPool {
+    static POOL: std::sync::OnceLock<rayon::ThreadPool> = std::sync::OnceLock::new();
+    POOL.get_or_init(|| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .thread_name(|i| format!("factorisation-{i}"))
+            .build()
+            .expect("two threads can be started")
+    })
 }
 
 /// The Bunch-Kaufman factorisation `P S P^T = L B L^T` of the separator's dense system, on
