@@ -266,11 +266,19 @@ impl SplitFactor {
         // Both sides on the two threads of a pool of their own, not on rayon's global pool:
         // faer's kernels on the global pool's threads slowed the assemblies that follow on
         // them (measured, coarse mesh: 0.6 -> 1.0 s), and threads made afresh for each
-        // factorisation each made their own workspaces (more peak memory).
-        let (a, b) = factorisation_pool().join(
-            || first.factorize(&analysis.parts[0], values),
-            || second.factorize(&analysis.parts[1], values),
-        );
+        // factorisation each made their own workspaces (more peak memory). Where the caller
+        // keeps to one thread (`RAYON_NUM_THREADS=1`), one after the other: the same numbers.
+        let (a, b) = if rayon::current_num_threads() >= 2 {
+            factorisation_pool().join(
+                || first.factorize(&analysis.parts[0], values),
+                || second.factorize(&analysis.parts[1], values),
+            )
+        } else {
+            (
+                first.factorize(&analysis.parts[0], values),
+                second.factorize(&analysis.parts[1], values),
+            )
+        };
         if !(a && b) {
             self.separator = None;
             return false;
