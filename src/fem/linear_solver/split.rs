@@ -263,22 +263,10 @@ impl SplitFactor {
     /// pattern); `false` where a part meets a zero pivot (the caller then pivots the whole).
     pub(super) fn factorize(&mut self, analysis: &SplitAnalysis, values: &[f64]) -> bool {
         let [first, second] = &mut self.parts;
-        // Both sides on the two threads of a pool of their own, not on rayon's global pool:
-        // faer's kernels on the global pool's threads slowed the assemblies that follow on
-        // them (measured, coarse mesh: 0.6 -> 1.0 s), and threads made afresh for each
-        // factorisation each made their own workspaces (more peak memory). Where the caller
-        // keeps to one thread (`RAYON_NUM_THREADS=1`), one after the other: the same numbers.
-        let (a, b) = if rayon::current_num_threads() >= 2 {
-            factorisation_pool().join(
-                || first.factorize(&analysis.parts[0], values),
-                || second.factorize(&analysis.parts[1], values),
-            )
-        } else {
-            (
-                first.factorize(&analysis.parts[0], values),
-                second.factorize(&analysis.parts[1], values),
-            )
-        };
+        let (a, b) = both_sides(
+            || first.factorize(&analysis.parts[0], values),
+            || second.factorize(&analysis.parts[1], values),
+        );
         if !(a && b) {
             self.separator = None;
             return false;
@@ -314,7 +302,7 @@ impl SplitFactor {
         let [first, second] = &mut self.parts;
         let (pa, pb) = (&analysis.parts[0], &analysis.parts[1]);
         let rhs_read: &[f64] = rhs;
-        rayon::join(|| first.forward(pa, rhs_read), || second.forward(pb, rhs_read));
+        both_sides(|| first.forward(pa, rhs_read), || second.forward(pb, rhs_read));
         let s = analysis.separator.len();
         let mut xs = Mat::<f64>::zeros(s, 1);
         for (t, &g) in analysis.separator.iter().enumerate() {
@@ -324,7 +312,7 @@ impl SplitFactor {
         }
         self.separator.as_ref().expect("factorised").solve_in_place(&mut xs);
         let xs = xs.col(0).try_as_col_major().expect("one column").as_slice();
-        rayon::join(|| first.backward(pa, xs), || second.backward(pb, xs));
+        both_sides(|| first.backward(pa, xs), || second.backward(pb, xs));
         for (part, factor) in analysis.parts.iter().zip(&self.parts) {
             for (l, &g) in part.interior.iter().enumerate() {
                 rhs[g] = factor.work[part.position[l]];
@@ -516,15 +504,20 @@ fn dot<T: Copy + Into<f64>>(a: &[T], b: &[f64]) -> f64 {
     (sums[0] + sums[1]) + (sums[2] + sums[3]) + tail
 }
 
-/// The two threads that factorise the sides, made once.
-fn factorisation_pool() -> &'static rayon::ThreadPool {
-    static POOL: std::sync::OnceLock<rayon::ThreadPool> = std::sync::OnceLock::new();
-    POOL.get_or_init(|| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(2)
-            .thread_name(|i| format!("factorisation-{i}"))
-            .build()
-            .expect("two threads can be started")
+/// `(first(), second())`, the second on a thread of its own while the first runs on the
+/// caller's; one after the other where the caller keeps to one thread (`RAYON_NUM_THREADS=1`:
+/// the same numbers). Not rayon: faer's kernels on the global pool's threads slowed the
+/// assemblies that followed on them (coarse mesh: 0.6 -> 1.0 s), and a pool's worker waiting on
+/// another pool runs its own pool's queued work meanwhile (`reproduce` then started all its
+/// figures at once: 2.1 GB).
+fn both_sides<A: Send, B: Send>(first: impl FnOnce() -> A + Send, second: impl FnOnce() -> B + Send) -> (A, B) {
+    if rayon::current_num_threads() < 2 {
+        return (first(), second());
+    }
+    std::thread::scope(|scope| {
+        let second = scope.spawn(second);
+        let first = first();
+        (first, second.join().expect("a side does not panic"))
     })
 }
 
