@@ -48,6 +48,8 @@ pub(super) struct SplitAnalysis {
     /// Global indices of the separator's unknowns.
     separator: Vec<usize>,
     parts: [PartAnalysis; 2],
+    /// Stored entries of the analysed pattern (a matrix of another pattern is refused).
+    stored: usize,
 }
 
 /// One part: its interior unknowns, then the separator, in the factor's order.
@@ -82,7 +84,12 @@ impl SplitAnalysis {
         let parts = [FIRST, SECOND].map(|p| PartAnalysis::new(pattern, &side, p, &separator));
         let [first, second] = parts;
         let parts = [first?, second?];
-        Some(SplitAnalysis { separator, parts })
+        let stored = (0..n).map(|col| pattern.row_idx_of_col_raw(col).len()).sum();
+        Some(SplitAnalysis {
+            separator,
+            parts,
+            stored,
+        })
     }
 
     /// Number of stored factor values of both parts and the separator's dense block.
@@ -262,6 +269,7 @@ impl SplitFactor {
     /// Factorises the matrix with the lower-triangle values `values` (of the analysed
     /// pattern); `false` where a part meets a zero pivot (the caller then pivots the whole).
     pub(super) fn factorize(&mut self, analysis: &SplitAnalysis, values: &[f64]) -> bool {
+        assert_eq!(values.len(), analysis.stored, "matrix of another pattern");
         let [first, second] = &mut self.parts;
         let (a, b) = both_sides(
             || first.factorize(&analysis.parts[0], values),
