@@ -1,6 +1,7 @@
 //! Sparse symmetric direct solver: faer's supernodal `L D L^T` with the symbolic analysis (AMD
 //! ordering) done once per sparsity pattern, sequential (`Par::Seq`: on a two-core machine
-//! faer on two threads was 2-3x slower). The inertia comes for free from `D`: by Sylvester's law
+//! faer on two threads was 2-3x slower); a large pattern is instead split in two halves
+//! factorised at once on two cores ([`split`]). The inertia comes for free from `D`: by Sylvester's law
 //! the number of negative pivots is the number of negative eigenvalues of `K`. When `L D L^T`
 //! meets a zero pivot, the intranode Bunch-Kaufman `L B L^T` takes over. An iteration that
 //! checks its own residual (modified Newton) may solve with the factor rounded to single
@@ -43,7 +44,8 @@ pub enum Factorisation {
 /// The symbolic analysis of one sparsity pattern, shared by the solvers of its matrices.
 struct Analysis {
     symbolic: SymbolicCholesky<usize>,
-    /// Made on first use where the pattern is split (only a side's zero pivot needs it).
+    /// The map into the whole factor's order, made on its first factorisation (where the
+    /// pattern is split, only a side's zero pivot needs it).
     order: std::sync::OnceLock<FactorOrder>,
     /// The pattern split in two parts factorised on two cores ([`split`]), if it is large
     /// enough and splits well; `L B L^T` always factorises the whole.
@@ -97,9 +99,6 @@ impl SparseLdlt {
             Some(_) => None,
         };
         let order = std::sync::OnceLock::new();
-        if split.is_none() {
-            order.get_or_init(|| FactorOrder::new(pattern, &symbolic));
-        }
         let mut solver = SparseLdlt::with_analysis(Arc::new(Analysis { symbolic, order, split }));
         solver.symbolic_time = start.elapsed();
         solver
@@ -181,10 +180,7 @@ impl SparseLdlt {
             LdltRegularization::default(),
             supernodal,
             Par::Seq,
-            MemStack::new(
-                self.scratch
-                    .get_or_insert_with(|| whole_scratch(&self.analysis.symbolic)),
-            ),
+            whole_workspace(&mut self.scratch, &self.analysis.symbolic),
             Default::default(),
         );
         let kind = if ldlt.is_ok() {
@@ -275,10 +271,7 @@ impl SparseLdlt {
                 Conj::No,
                 x,
                 Par::Seq,
-                MemStack::new(
-                    self.scratch
-                        .get_or_insert_with(|| whole_scratch(&self.analysis.symbolic)),
-                ),
+                whole_workspace(&mut self.scratch, &self.analysis.symbolic),
             ),
             Some(Factorisation::Lblt) => {
                 let stack = MemStack::new(
@@ -319,10 +312,7 @@ impl SparseLdlt {
             Conj::No,
             MatMut::from_column_major_slice_mut(&mut x, n, 1),
             Par::Seq,
-            MemStack::new(
-                self.scratch
-                    .get_or_insert_with(|| whole_scratch(&self.analysis.symbolic)),
-            ),
+            whole_workspace(&mut self.scratch, &self.analysis.symbolic),
         );
         rhs.iter_mut().zip(&x).for_each(|(r, &v)| *r = f64::from(v));
         self.solve_time = start.elapsed();
@@ -391,16 +381,20 @@ impl SparseLdlt {
     }
 }
 
-/// The workspace of the whole factor's `L D L^T` and its solves (double and single precision).
-fn whole_scratch(symbolic: &SymbolicCholesky<usize>) -> MemBuffer {
-    let SymbolicCholeskyRaw::Supernodal(supernodal) = symbolic.raw() else {
-        unreachable!("the symbolic analysis forces a supernodal factor")
-    };
-    MemBuffer::new(StackReq::any_of(&[
-        factorize_supernodal_numeric_ldlt_scratch::<usize, f64>(supernodal, Par::Seq, Default::default()),
-        symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
-        symbolic.solve_in_place_scratch::<f32>(1, Par::Seq),
-    ]))
+/// The workspace of the whole factor's `L D L^T` and its solves (double and single
+/// precision), made in `scratch` on first use.
+fn whole_workspace<'a>(scratch: &'a mut Option<MemBuffer>, symbolic: &SymbolicCholesky<usize>) -> &'a mut MemStack {
+    let buffer = scratch.get_or_insert_with(|| {
+        let SymbolicCholeskyRaw::Supernodal(supernodal) = symbolic.raw() else {
+            unreachable!("the symbolic analysis forces a supernodal factor")
+        };
+        MemBuffer::new(StackReq::any_of(&[
+            factorize_supernodal_numeric_ldlt_scratch::<usize, f64>(supernodal, Par::Seq, Default::default()),
+            symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
+            symbolic.solve_in_place_scratch::<f32>(1, Par::Seq),
+        ]))
+    });
+    MemStack::new(buffer)
 }
 
 /// Rounds `values` to `f32` in place: value `i` goes to the `i`-th `f32` slot, which lies in

@@ -39,6 +39,7 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Accum, Conj, Mat, Par, Side};
 
 use super::separator::{bisect, Graph, FIRST, SECOND, SEPARATOR};
+use super::FactorOrder;
 
 /// Smallest dimension that is split: below it one core factorises faster than two exchange.
 pub(super) const SMALLEST_SPLIT: usize = 4000;
@@ -129,12 +130,15 @@ impl PartAnalysis {
         entries.iter().for_each(|&(_, j, _)| col_ptr[j as usize + 1] += 1);
         (0..m).for_each(|j| col_ptr[j + 1] += col_ptr[j]);
         let mut row_idx = vec![0usize; entries.len()];
+        // The global stored entry of each of the part's, in the part's storage order.
+        let mut global = vec![0u32; entries.len()];
         let mut next = col_ptr.clone();
-        for &(i, j, _) in &entries {
+        for &(i, j, k) in &entries {
             let j = j as usize;
-            row_idx[next[j]] = i as usize;
+            (row_idx[next[j]], global[next[j]]) = (i as usize, k);
             next[j] += 1;
         }
+        drop(entries);
         let local_pattern = SymbolicSparseColMatRef::new_unsorted_checked(m, m, &col_ptr, None, &row_idx);
         let symbolic = ordered_symbolic(local_pattern, n_a)?;
         let (perm_forward, position) = symbolic.perm()?.arrays();
@@ -143,27 +147,18 @@ impl PartAnalysis {
             return None;
         }
         let position = position.to_vec();
-        // The same pattern in the factor's order: entry (i, j) goes to (pos i, pos j), lower.
-        let mut factor_ptr = vec![0usize; m + 1];
-        let placed = |i: usize, j: usize| (position[i].max(position[j]), position[i].min(position[j]));
-        entries
-            .iter()
-            .for_each(|&(i, j, _)| factor_ptr[placed(i as usize, j as usize).1 + 1] += 1);
-        (0..m).for_each(|j| factor_ptr[j + 1] += factor_ptr[j]);
-        let mut factor_rows = vec![0usize; entries.len()];
-        let mut next = factor_ptr.clone();
-        let mut gather: Vec<(u32, u32)> = Vec::with_capacity(entries.len());
+        let order = FactorOrder::new(local_pattern, &symbolic);
+        // The separator's own entries (both indices at or after n_a) are halved: last.
+        let mut gather: Vec<(u32, u32)> = Vec::with_capacity(global.len());
         let mut halved = Vec::new();
-        for &(i, j, k) in &entries {
-            let (i, j) = (i as usize, j as usize);
-            let (r, c) = placed(i, j);
-            factor_rows[next[c]] = r;
-            let pair = (k, next[c] as u32);
-            next[c] += 1;
-            if i >= n_a && j >= n_a {
-                halved.push(pair);
-            } else {
-                gather.push(pair);
+        for col in 0..m {
+            for (e, &row) in (col_ptr[col]..col_ptr[col + 1]).zip(&row_idx[col_ptr[col]..col_ptr[col + 1]]) {
+                let pair = (global[e], order.slot[e] as u32);
+                if row >= n_a && col >= n_a {
+                    halved.push(pair);
+                } else {
+                    gather.push(pair);
+                }
             }
         }
         let halved_from = gather.len();
@@ -171,8 +166,8 @@ impl PartAnalysis {
         Some(PartAnalysis {
             interior,
             symbolic,
-            col_ptr: factor_ptr,
-            row_idx: factor_rows,
+            col_ptr: order.col_ptr,
+            row_idx: order.row_idx,
             gather,
             halved_from,
             position,
