@@ -72,6 +72,9 @@ pub struct Assembled {
     pub reactions: Vec<f64>,
     /// Total strain energy.
     pub energy: f64,
+    /// The potential whose gradient the residual is (without the added terms): `energy`,
+    /// except where the mixed element's multipliers are held fixed ([`crate::fem::mixed`]).
+    pub potential: f64,
     /// Energy of the added terms (zero without them).
     pub added_energy: f64,
     /// Smallest `J = det F` over all Gauss points.
@@ -350,7 +353,7 @@ impl System {
 
         let mut residual = vec![0.0; pattern.free.len()];
         let mut reactions = vec![0.0; bc.len()];
-        let (mut energy, mut min_jacobian) = (0.0, f64::INFINITY);
+        let (mut energy, mut potential, mut min_jacobian) = (0.0, 0.0, f64::INFINITY);
         for (nodes, (state, lifted)) in self.mesh.elements().iter().zip(&results) {
             for i in 0..DOFS {
                 match pattern.slots[2 * nodes[i / 2] + i % 2] {
@@ -359,6 +362,7 @@ impl System {
                 }
             }
             energy += state.energy;
+            potential += state.potential;
             min_jacobian = min_jacobian.min(state.min_jacobian);
         }
         let mut added_energy = 0.0;
@@ -399,6 +403,7 @@ impl System {
             tangent,
             reactions,
             energy,
+            potential,
             added_energy,
             min_jacobian,
             pattern: pattern.id,

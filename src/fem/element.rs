@@ -150,6 +150,9 @@ pub struct ElementState {
     pub force: ElementVector,
     /// Strain energy `int W(F) dV`.
     pub energy: f64,
+    /// The potential whose gradient `force` is: `energy`, except for the mixed element's
+    /// volumetric term at fixed multipliers ([`crate::fem::mixed`]).
+    pub potential: f64,
     /// Smallest `J = det F` over the Gauss points.
     pub min_jacobian: f64,
 }
@@ -166,6 +169,7 @@ pub fn evaluate<M: Hyperelastic>(
     let mut state = ElementState {
         force: [0.0; DOFS],
         energy: 0.0,
+        potential: 0.0,
         min_jacobian: f64::INFINITY,
     };
     if let Some(k) = stiffness.as_deref_mut() {
@@ -196,6 +200,7 @@ pub fn evaluate<M: Hyperelastic>(
     if let Some(k) = stiffness {
         mirror_upper_triangle(k);
     }
+    state.potential = state.energy;
     Ok(state)
 }
 
@@ -285,7 +290,7 @@ pub(super) mod tests {
                 evaluate(&v, None)
             };
             let (plus, minus) = (shifted(1.0), shifted(-1.0));
-            let force = (plus.energy - minus.energy) / (2.0 * h);
+            let force = (plus.potential - minus.potential) / (2.0 * h);
             worst_force = worst_force.max((force - state.force[j]).abs() / (1.0 + state.force[j].abs()));
             for (i, row) in k.iter().enumerate() {
                 worst_tangent = worst_tangent.max(((plus.force[i] - minus.force[i]) / (2.0 * h) - row[j]).abs());

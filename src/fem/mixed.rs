@@ -184,17 +184,21 @@ impl MixedElement {
             (gradients[g], jacobians[g]) = (f, j);
         }
         let projected_log_j = multiply3(&self.mass_inverse, &moments);
-        let (modulus, pressure, volumetric_energy, violation) = match self.volumetric {
+        let (modulus, pressure, (volumetric_energy, volumetric_potential), violation) = match self.volumetric {
             // p = kappa M^-1 g; the condensed energy kappa/2 g^T M^-1 g = g . p / 2.
             Volumetric::Bulk(kappa) => {
                 let p = projected_log_j.map(|x| kappa * x);
-                (kappa, p, 0.5 * dot3(&moments, &p), [0.0; PRESSURES])
+                let energy = 0.5 * dot3(&moments, &p);
+                (kappa, p, (energy, energy), [0.0; PRESSURES])
             }
             // For fixed lambda, the energy `int W_rest + (1 - kappa/K) lambda . g + kappa/2
             // g^T M^-1 g` has the force of p = (1 - kappa/K) lambda + kappa M^-1 g; its fixed
             // point lambda = p is K M^-1 g, the bulk mode's pressure (M^-1 g = 0 for K = inf).
             // The energy reported is the true one, K/2 g^T M^-1 g at the fixed point (with the
-            // augmentation's, which tends to zero with g, when K = inf).
+            // augmentation's, which tends to zero with g, when K = inf); the potential, whose
+            // gradient the force is, the augmented one for fixed lambda (a minimisation
+            // measured by the true energy finds it rising along directions its force says lower
+            // it: the snaps of K / mu = 1e4 stopped so).
             Volumetric::Augmented { penalty, bulk } => {
                 let kappa = (penalty * penalty_scale).min(bulk);
                 let relaxation = 1.0 - kappa / bulk;
@@ -204,13 +208,15 @@ impl MixedElement {
                 } else {
                     dot3(lambda, &moments) + 0.5 * kappa * dot3(&moments, &projected_log_j)
                 };
+                let potential = relaxation * dot3(lambda, &moments) + 0.5 * kappa * dot3(&moments, &projected_log_j);
                 let violation = std::array::from_fn(|i| (p[i] - lambda[i]) / kappa);
-                (kappa, p, energy, violation)
+                (kappa, p, (energy, potential), violation)
             }
         };
         let mut state = ElementState {
             force: [0.0; DOFS],
             energy: volumetric_energy,
+            potential: volumetric_potential,
             min_jacobian: jacobians.iter().copied().fold(f64::INFINITY, f64::min),
         };
         if let Some(k) = stiffness.as_deref_mut() {
@@ -225,12 +231,14 @@ impl MixedElement {
                     add_pressure(&mut response.stress, Some(&mut response.tangent), f, p);
                     add_tangent(k, grads, &response.tangent, w);
                     state.energy += w * response.energy;
+                    state.potential += w * response.energy;
                     response.stress
                 }
                 None => {
                     let (energy, mut stress) = self.rest.plane_stress(f);
                     add_pressure(&mut stress, None, f, p);
                     state.energy += w * energy;
+                    state.potential += w * energy;
                     stress
                 }
             };

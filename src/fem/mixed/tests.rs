@@ -156,3 +156,35 @@ fn constraint_mode_derivatives_match_central_differences() {
     assert!(state.pressure.iter().zip(&expected).all(|(a, b)| (a - b).abs() < 1e-12));
     assert_consistent_derivatives(&u, |v, k| mixed.evaluate(&geometry, v, &lambda, 2.5, k).unwrap().state);
 }
+
+/// A finite bulk modulus above the penalty (`K / mu = 1e4`): for fixed multipliers the force and
+/// tangent are the derivatives of the augmented potential
+/// `int W_rest + (1 - kappa/K) lambda . g + kappa/2 g^T M^-1 g`, not of the energy reported
+/// (`int W_rest + K/2 g^T M^-1 g`, the condensed element's, right only at the multipliers'
+/// fixed point): away from it the two differ, and their gradients too.
+#[test]
+fn augmented_mode_with_a_finite_bulk_has_the_force_of_its_potential() {
+    let (nodes, u) = distorted();
+    let geometry = ElementGeometry::new(&nodes).unwrap();
+    let constraint = Volumetric::Augmented {
+        penalty: 40.0,
+        bulk: 1e4,
+    };
+    let mixed = MixedElement::new(&geometry, &substrate(), Some(constraint));
+    let lambda = [0.7, -0.3, 0.2];
+    assert_consistent_derivatives(&u, |v, k| mixed.evaluate(&geometry, v, &lambda, 1.0, k).unwrap().state);
+    // The reported energy's own derivative is not the force there.
+    let state = mixed.evaluate(&geometry, &u, &lambda, 1.0, None).unwrap().state;
+    let h = 1e-6;
+    let worst = (0..DOFS)
+        .map(|j| {
+            let energy = |s: f64| {
+                let mut v = u;
+                v[j] += s * h;
+                mixed.evaluate(&geometry, &v, &lambda, 1.0, None).unwrap().state.energy
+            };
+            ((energy(1.0) - energy(-1.0)) / (2.0 * h) - state.force[j]).abs()
+        })
+        .fold(0.0, f64::max);
+    assert!(worst > 1e-3, "the energy's gradient differs from the force: {worst:e}");
+}

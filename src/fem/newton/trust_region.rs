@@ -192,9 +192,10 @@ impl<'a> Landscape<'a> {
     }
 }
 
-/// The total energy (strain plus added) of an assembly.
+/// The total potential (strain plus added) of an assembly: the energy whose gradient its
+/// residual is (with the mixed element's multipliers held fixed).
 fn total(a: &Assembled) -> f64 {
-    a.energy + a.added_energy
+    a.potential + a.added_energy
 }
 
 impl Newton {
