@@ -1,7 +1,9 @@
 //! Runs as a user would make them, far from Table 1: every fibre angle `beta` in {0, pi/4,
 //! pi/2}, stiffness contrasts `mu_l / mu_s` in {3, 10, 30} and bulk moduli `K / mu` of 100 and
 //! 1e4, each along the crease path (contact) to `d = 0.48` on a small mesh, crossing snaps by
-//! the default viscous damper, and (ignored: a measurement, 2 min) by energy minimisation.
+//! the default viscous damper, and (ignored: a measurement) by energy minimisation, where the
+//! run with beta = pi/4, mu_l/mu_s = 3, K/mu = 1e4 crawls through contact for many minutes, each
+//! closing pair a snap of its own.
 //! Every run either reaches 0.48 with finite, admissible states, or stops with an error that
 //! names the `d` where it stopped and keeps the states before it. No recorded state may carry
 //! damping silently: wherever the damper dissipated, the record says so.
