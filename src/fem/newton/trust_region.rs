@@ -71,7 +71,11 @@ impl Shift {
         if rho < 0.25 {
             self.raise(4.0);
         } else if rho > 0.75 {
-            self.sigma = if self.sigma / self.fall < SIGMA_MIN { 0.0 } else { self.sigma / self.fall };
+            self.sigma = if self.sigma / self.fall < SIGMA_MIN {
+                0.0
+            } else {
+                self.sigma / self.fall
+            };
             self.fall = (4.0 * self.fall).min(MAX_FALL);
         } else {
             self.fall = 4.0;
