@@ -203,12 +203,11 @@ impl MixedElement {
                 let kappa = (penalty * penalty_scale).min(bulk);
                 let relaxation = 1.0 - kappa / bulk;
                 let p: [f64; PRESSURES] = std::array::from_fn(|i| relaxation * lambda[i] + kappa * projected_log_j[i]);
-                let energy = if bulk.is_finite() {
-                    0.5 * bulk * dot3(&moments, &projected_log_j)
-                } else {
-                    dot3(lambda, &moments) + 0.5 * kappa * dot3(&moments, &projected_log_j)
-                };
                 let potential = relaxation * dot3(lambda, &moments) + 0.5 * kappa * dot3(&moments, &projected_log_j);
+                let energy = match bulk.is_finite() {
+                    true => 0.5 * bulk * dot3(&moments, &projected_log_j),
+                    false => potential,
+                };
                 let violation = std::array::from_fn(|i| (p[i] - lambda[i]) / kappa);
                 (kappa, p, (energy, potential), violation)
             }

@@ -15,16 +15,19 @@ fn substrate() -> Tissue {
     Bilayer::new(&p).substrate_tissue()
 }
 
-fn mixed_on_distorted(tissue: &Tissue) -> (ElementGeometry, MixedElement, ElementVector) {
+fn mixed_on_distorted(
+    tissue: &Tissue,
+    constraint: Option<Volumetric>,
+) -> (ElementGeometry, MixedElement, ElementVector) {
     let (nodes, u) = distorted();
     let geometry = ElementGeometry::new(&nodes).unwrap();
-    let mixed = MixedElement::new(&geometry, tissue, None);
+    let mixed = MixedElement::new(&geometry, tissue, constraint);
     (geometry, mixed, u)
 }
 
 #[test]
 fn condensed_force_and_tangent_are_the_derivatives_of_the_energy() {
-    let (geometry, mixed, u) = mixed_on_distorted(&substrate());
+    let (geometry, mixed, u) = mixed_on_distorted(&substrate(), None);
     assert_consistent_derivatives(&u, |v, k| {
         mixed.evaluate(&geometry, v, &[0.0; PRESSURES], 1.0, k).unwrap().state
     });
@@ -143,13 +146,11 @@ fn saddle_point_inertia_is_the_condensed_plus_pressures() {
 /// `lambda + kappa M^-1 g`.
 #[test]
 fn constraint_mode_derivatives_match_central_differences() {
-    let (nodes, u) = distorted();
-    let geometry = ElementGeometry::new(&nodes).unwrap();
     let constraint = Volumetric::Augmented {
         penalty: 40.0,
         bulk: f64::INFINITY,
     };
-    let mixed = MixedElement::new(&geometry, &substrate(), Some(constraint));
+    let (geometry, mixed, u) = mixed_on_distorted(&substrate(), Some(constraint));
     let lambda = [0.7, -0.3, 0.2];
     let state = mixed.evaluate(&geometry, &u, &lambda, 2.5, None).unwrap();
     let expected: [f64; PRESSURES] = std::array::from_fn(|i| lambda[i] + 2.5 * 40.0 * state.violation[i]);
@@ -164,13 +165,11 @@ fn constraint_mode_derivatives_match_central_differences() {
 /// fixed point): away from it the two differ, and their gradients too.
 #[test]
 fn augmented_mode_with_a_finite_bulk_has_the_force_of_its_potential() {
-    let (nodes, u) = distorted();
-    let geometry = ElementGeometry::new(&nodes).unwrap();
     let constraint = Volumetric::Augmented {
         penalty: 40.0,
         bulk: 1e4,
     };
-    let mixed = MixedElement::new(&geometry, &substrate(), Some(constraint));
+    let (geometry, mixed, u) = mixed_on_distorted(&substrate(), Some(constraint));
     let lambda = [0.7, -0.3, 0.2];
     assert_consistent_derivatives(&u, |v, k| mixed.evaluate(&geometry, v, &lambda, 1.0, k).unwrap().state);
     // The reported energy's own derivative is not the force there.

@@ -268,6 +268,7 @@ impl Newton {
                 None if !indefinite => break,
                 _ => {
                     let step = self.curvature_step(&mut land, u, &current, shift.sigma, &mut factorisations)?;
+                    // A shift of at least SIGMA_MIN for the next step, falling fourfold again.
                     shift.raise(1.0);
                     step.ok_or(NewtonError::LineSearch { iteration, residual })?
                 }
