@@ -248,3 +248,56 @@ fn every_state_of_a_run_through_a_snap_is_an_undamped_equilibrium_with_the_repor
     }
     assert!(in_contact > 0, "the snap closes a trough");
 }
+
+/// The onset is read off the branch the path starts on, before its first snap: a snap's jump of
+/// `A` within a step of `1e-6` gives a slope of millions, which drowned the peak of `A'` near the
+/// onset (the coarse Fig. 7 case had reported `d_steepest` at its snap, 0.2567). A run through
+/// the snap gives the estimates of the same run stopped well before it.
+#[test]
+fn a_run_through_a_snap_reads_its_onset_off_the_branch_before_the_snap() {
+    let onset = |d_max: &str| -> serde_json::Value {
+        let out = common::scratch(&format!("onset-snap-{d_max}"));
+        let args = [
+            "simulate",
+            "--set",
+            "beta=0.785398",
+            "--waves",
+            "5",
+            "--mesh",
+            "coarse",
+            "--stabilisation",
+            "snap",
+            "--d-max",
+            d_max,
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        let run = common::fiberfold(&args);
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+        let snaps: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("snaps.json")).unwrap_or("[]".into())).unwrap();
+        let onset: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("onset.json")).unwrap()).unwrap();
+        serde_json::json!({ "onset": onset, "snaps": snaps })
+    };
+    let (through, before) = (onset("0.26"), onset("0.2"));
+    println!("{through:#}");
+    assert!(
+        through["snaps"].to_string().contains("energy_released"),
+        "the run to 0.26 snaps: {}",
+        through["snaps"]
+    );
+    for estimate in ["d_max_curvature", "d_steepest", "d_a2_fit"] {
+        let (a, b) = (through["onset"][estimate].as_f64(), before["onset"][estimate].as_f64());
+        assert!(
+            a.zip(b).is_some_and(|(a, b)| (a - b).abs() < 1e-12),
+            "{estimate}: {a:?} through the snap, {b:?} before it"
+        );
+    }
+    let steepest = through["onset"]["d_steepest"].as_f64().unwrap();
+    let theory = through["onset"]["d_linear_theory"].as_f64().unwrap();
+    assert!(
+        (steepest - theory).abs() < 0.01,
+        "{steepest} against the linear theory's {theory}"
+    );
+}

@@ -155,6 +155,17 @@ impl Curve {
     pub fn points(&self) -> (Vec<f64>, Vec<f64>) {
         self.records.iter().map(|r| (r.d, r.amplitude)).unzip()
     }
+
+    /// `(d_i, A_i)` of the states of the first branch, up to its last equilibrium before the
+    /// first snap: a snap's jump of `A` within a step of `1e-6` makes its slope millions, which
+    /// would drown the onset's peaks of `A'` and of the curvature ([`OnsetEstimates`]).
+    pub fn first_branch(&self) -> (Vec<f64>, Vec<f64>) {
+        self.records
+            .iter()
+            .take_while(|r| r.snap.is_none())
+            .map(|r| (r.d, r.amplitude))
+            .unzip()
+    }
 }
 
 /// Keeps the converged states and cuts of a run and passes every event on to a monitor.
@@ -223,7 +234,8 @@ pub struct OnsetReport {
     pub note: &'static str,
 }
 
-const ONSET_NOTE: &str = "d_max_curvature is the first peak (largest within +-0.01 in d) of \
+const ONSET_NOTE: &str = "All three are read off the states before the first snap (the branch the path starts on). \
+    d_max_curvature is the first peak (largest within +-0.01 in d) of \
     kappa = A''/(1 + A'^2)^(3/2), the paper's rule; kappa, and so this estimate, depends on the relative scaling \
     of A (in units of H) and d, and on the imperfection. d_steepest is the first peak of A'. d_a2_fit is where a \
     straight line fitted to A^2 against d over [d_steepest, d_steepest + a2_fit_window] crosses zero (null if that \
@@ -235,7 +247,7 @@ const ONSET_NOTE: &str = "d_max_curvature is the first peak (largest within +-0.
 impl OnsetReport {
     /// The estimates of `curve` and the linear theory's `d_c(k)`.
     pub fn new(params: &Parameters, k: f64, length: f64, curve: &Curve) -> Result<Self> {
-        let (d, a) = curve.points();
+        let (d, a) = curve.first_branch();
         let theory = StabilityAnalysis::new(params, Method::Exact)?;
         Ok(OnsetReport {
             k,
