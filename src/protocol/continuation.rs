@@ -350,14 +350,21 @@ impl Continuation {
             let attempt = self.attempt(d, step);
             let attempt_seconds = attempt_started.elapsed().as_secs_f64();
             self.report_pending(observer, true)?;
+            // Time of the tries a cut discards: the attempt, and its minimisation and snap if any.
+            let mut discarded_seconds = attempt_seconds;
             let attempt = match attempt {
-                Err(reason) if self.snaps.is_some() => match self.attempt_by_minimisation(d) {
-                    Some(solved) => {
-                        clock.failed_seconds += attempt_seconds;
-                        Ok((solved, Reached::Minimisation))
+                Err(reason) if self.snaps.is_some() => {
+                    let started = Instant::now();
+                    let minimised = self.attempt_by_minimisation(d);
+                    discarded_seconds += started.elapsed().as_secs_f64();
+                    match minimised {
+                        Some(solved) => {
+                            clock.failed_seconds += attempt_seconds;
+                            Ok((solved, Reached::Minimisation))
+                        }
+                        None => Err(reason),
                     }
-                    None => Err(reason),
-                },
+                }
                 attempt => attempt.map(|solved| (solved, Reached::Newton)),
             };
             let reason = match attempt {
@@ -369,18 +376,25 @@ impl Continuation {
                 Err(reason) => reason,
             };
             let reason = match self.snaps {
-                Some(snaps) if step <= snaps.below.max(self.control.min) * (1.0 + 1e-9) => match self.snap(d) {
-                    Ok((solved, snap)) => {
-                        self.accept((d, step), (solved, Reached::Snap(snap)), &clock, observer)?;
-                        clock = StepClock::start();
-                        continue;
+                Some(snaps) if step <= snaps.below.max(self.control.min) * (1.0 + 1e-9) => {
+                    let started = Instant::now();
+                    match self.snap(d) {
+                        Ok((solved, snap)) => {
+                            clock.failed_seconds += discarded_seconds;
+                            self.accept((d, step), (solved, Reached::Snap(snap)), &clock, observer)?;
+                            clock = StepClock::start();
+                            continue;
+                        }
+                        Err(e) => {
+                            discarded_seconds += started.elapsed().as_secs_f64();
+                            Error::Solver(format!("{reason}; the snap at this d failed too: {e}"))
+                        }
                     }
-                    Err(e) => Error::Solver(format!("{reason}; the snap at this d failed too: {e}")),
-                },
+                }
                 _ => reason,
             };
             self.cut(d, step, reason, observer)?;
-            clock.failed_seconds += attempt_seconds;
+            clock.failed_seconds += discarded_seconds;
         }
         Ok(())
     }
