@@ -164,6 +164,8 @@ fn solve_equilibrium(
 ) -> Result<NewtonReport, NewtonError> {
     let policy = for_system(policy, system);
     let (start, saved) = (u.to_vec(), contact.as_deref().cloned());
+    // The shift a minimisation's pass ended with, for the next pass to start from.
+    let mut shift = policy.initial_shift;
     let mut pressure_passes = |added: &dyn AddedEnergy, system: &mut System, u: &mut [f64]| {
         repeat(&mut PressureUpdate::new(), system, u, |pressure, system, u| {
             let equations = Equations {
@@ -174,7 +176,15 @@ fn solve_equilibrium(
             };
             match inner {
                 Inner::Newton => newton.iterate(equations, u, &policy),
-                Inner::Minimise => newton.minimise(equations, u, &policy),
+                Inner::Minimise => {
+                    let pass = NewtonPolicy {
+                        initial_shift: shift,
+                        ..policy
+                    };
+                    let report = newton.minimise(equations, u, &pass)?;
+                    shift = report.final_shift;
+                    Ok(report)
+                }
             }
         })
     };

@@ -184,6 +184,7 @@ impl Newton {
                     updates: Updates::default(),
                     timings: problem.timings,
                     unfinished: false,
+                    final_shift: 0.0,
                 });
             }
             // Reused steps each contract |r| by `contraction`, so they are few; bound them anyway.

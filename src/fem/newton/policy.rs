@@ -46,6 +46,11 @@ pub struct NewtonPolicy {
     /// For a minimisation: the largest number of its steps in one pass, beyond which it fails
     /// as not converged.
     pub max_minimisation_steps: usize,
+    /// For a minimisation: the shift `sigma` of its first step. A pass after a contact update
+    /// starts from the shift the pass before ended with ([`super::NewtonReport::final_shift`]):
+    /// from zero, an indefinite tangent costs a factorisation per sixteenfold raise of the
+    /// shift before the first step is taken.
+    pub initial_shift: f64,
 }
 
 /// Which factorisations a solve keeps as its iteration matrix (modified Newton).
@@ -109,6 +114,7 @@ impl Default for NewtonPolicy {
             diverging_after: None,
             max_pass_move: None,
             max_minimisation_steps: 400,
+            initial_shift: 0.0,
         }
     }
 }

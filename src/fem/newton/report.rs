@@ -70,6 +70,9 @@ pub struct NewtonReport {
     /// A minimisation that stopped after its largest move ([`super::NewtonPolicy::max_pass_move`]):
     /// lower in energy than its start but not yet a minimum, nor an equilibrium.
     pub unfinished: bool,
+    /// The shift `sigma` a minimisation ended with (see [`super::NewtonPolicy::initial_shift`]);
+    /// zero for Newton's iteration.
+    pub final_shift: f64,
 }
 
 /// How often each outer loop around Newton's iteration updated its unknowns and solved again

@@ -55,9 +55,12 @@ struct Shift {
 }
 
 impl Shift {
-    /// Newton's step first.
-    fn new() -> Self {
-        Shift { sigma: 0.0, fall: 4.0 }
+    /// `sigma` first (Newton's step if it is below `SIGMA_MIN`).
+    fn starting_at(sigma: f64) -> Self {
+        Shift {
+            sigma: if sigma < SIGMA_MIN { 0.0 } else { sigma.min(SIGMA_MAX) },
+            fall: 4.0,
+        }
     }
 
     /// Raised `factor`-fold (at least to `SIGMA_MIN`), its fall back to fourfold.
@@ -218,7 +221,7 @@ impl Newton {
         let mut land = Landscape::new(equations)?;
         let mut current = land.assemble(u).map_err(|e| super::inverted(e, 0))?;
         let mut history = vec![current.residual_norm()];
-        let (mut shift, mut rejected, mut factorisations) = (Shift::new(), 0, 0);
+        let (mut shift, mut rejected, mut factorisations) = (Shift::starting_at(policy.initial_shift), 0, 0);
         let tolerance_at = |a: &Assembled| policy.tolerance(a.force_norm(), penalty_scale);
         // The largest nodal move from the start (the displacements, not the multipliers after them).
         let start = u[..land.problem.system.mesh().num_dofs()].to_vec();
@@ -250,6 +253,7 @@ impl Newton {
                     updates: Updates::default(),
                     timings: land.problem.timings,
                     unfinished,
+                    final_shift: shift.sigma,
                 });
             }
             let next = match negative.is_some_and(|n| n != Some(0)) && residual <= tolerance {
