@@ -149,6 +149,46 @@ fn a_bistable_chain_snaps_past_its_limit_point_to_the_far_branch_releasing_the_c
     assert!(added.energy(u[x], beyond) < start_energy);
 }
 
+/// A minimisation with a largest move (`NewtonPolicy::max_move`, what a continuation's
+/// correction of a failed step allows) gives up once it has moved that far, and leaves the
+/// state as it was; with room enough it reaches the same far branch as without a limit.
+#[test]
+fn a_minimisation_gives_up_beyond_its_largest_move_and_leaves_the_state() {
+    let k = 0.2;
+    let x_star = -((1.0 - k) / 3.0f64).sqrt();
+    let beyond = x_star + (x_star.powi(3) - x_star) / k + 1e-3;
+    let (mut system, added, x, g) = chain(k);
+    let bc = held(&system, (g, beyond));
+    let mut start = vec![0.0; system.num_dofs()];
+    (start[x], start[g]) = (x_star, beyond);
+    let far = far_root(k, beyond);
+    for (limit, reaches) in [(0.3, false), (10.0, true)] {
+        let policy = NewtonPolicy {
+            max_move: Some(limit),
+            ..NewtonPolicy::default()
+        };
+        let mut u = start.clone();
+        let result = equilibrium::minimise(&mut Newton::new(), (&mut system, &mut u, &bc), None, &added, &policy);
+        println!(
+            "limit {limit}: {:?}, x = {}",
+            result.as_ref().map(|r| r.iterations),
+            u[x]
+        );
+        match reaches {
+            true => {
+                assert!(result.is_ok());
+                assert!((u[x] - far).abs() < 1e-6, "x = {} against the far root {far}", u[x]);
+            }
+            false => {
+                let message = result.expect_err("the far root lies beyond the limit").to_string();
+                assert!(message.contains("moved beyond"), "{message}");
+                assert_eq!(u, start, "the state is left as it was");
+            }
+        }
+    }
+    assert!((far - x_star).abs() > 0.3, "the far root lies beyond the small limit");
+}
+
 /// From a saddle (the maximum of the bistable element between its wells, `x = 0` at `g = 0`,
 /// where the residual is zero), the minimisation leaves along the negative curvature and
 /// ends in a well: a minimum with the closed-form energy `E(x_well; 0)`.

@@ -156,6 +156,14 @@ pub fn minimise(
     solve_equilibrium(newton, (system, u, bc), (contact, other), (Inner::Minimise, policy))
 }
 
+/// The largest difference of the displacements (the first `n` unknowns) of `u` and `start`.
+fn largest_move(u: &[f64], start: &[f64], n: usize) -> f64 {
+    u[..n]
+        .iter()
+        .zip(&start[..n])
+        .fold(0.0, |m, (a, b)| m.max((a - b).abs()))
+}
+
 fn solve_equilibrium(
     newton: &mut Newton,
     (system, u, bc): (&mut System, &mut [f64], &Dirichlet),
@@ -179,11 +187,22 @@ fn solve_equilibrium(
                 Inner::Minimise => {
                     let pass = NewtonPolicy {
                         initial_shift: shift,
+                        max_pass_move: [policy.max_pass_move, policy.max_move]
+                            .into_iter()
+                            .flatten()
+                            .reduce(f64::min),
                         ..policy
                     };
                     let report = newton.minimise(equations, u, &pass)?;
                     shift = report.final_shift;
-                    Ok(report)
+                    match policy.max_move {
+                        Some(limit) if largest_move(u, &start, system.mesh().num_dofs()) > limit => {
+                            Err(NewtonError::Model(crate::Error::Solver(format!(
+                                "energy minimisation: moved beyond {limit:.3e} from its start"
+                            ))))
+                        }
+                        _ => Ok(report),
+                    }
                 }
             }
         })

@@ -51,6 +51,11 @@ pub struct NewtonPolicy {
     /// from zero, an indefinite tangent costs a factorisation per sixteenfold raise of the
     /// shift before the first step is taken.
     pub initial_shift: f64,
+    /// For a minimisation: the largest nodal move from the start of the solve, over all its
+    /// passes, beyond which it fails; each pass stops (unfinished) within it. A correction of a
+    /// step whose minimum lies farther than this is no correction, and is better given up at
+    /// once than minimised to the end. `None`: no limit.
+    pub max_move: Option<f64>,
 }
 
 /// Which factorisations a solve keeps as its iteration matrix (modified Newton).
@@ -115,6 +120,7 @@ impl Default for NewtonPolicy {
             max_pass_move: None,
             max_minimisation_steps: 400,
             initial_shift: 0.0,
+            max_move: None,
         }
     }
 }

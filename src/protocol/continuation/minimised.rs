@@ -98,15 +98,17 @@ impl Continuation {
         bc.impose(&mut u);
         let predictor = u.clone();
         let saved_contact = self.augmentation.as_ref().and_then(|a| a.contact.clone());
-        let policy = NewtonPolicy {
-            inertia_at_solution: true,
-            max_minimisation_steps: CORRECTOR_STEPS,
-            ..self.policy
-        };
-        let (report, augmented) = self.stable_minimum(&mut u, (&bc, d), &policy).ok()?;
         let n = self.system.mesh().num_dofs();
         let u0 = &self.history.back().expect("never empty").1;
         let reach = (CORRECTOR_REACH * distance(&predictor, u0, n)).max(CORRECTOR_FLOOR);
+        // A minimisation heading beyond the reach stops there (it would be discarded).
+        let policy = NewtonPolicy {
+            inertia_at_solution: true,
+            max_minimisation_steps: CORRECTOR_STEPS,
+            max_move: Some(reach),
+            ..self.policy
+        };
+        let (report, augmented) = self.stable_minimum(&mut u, (&bc, d), &policy).ok()?;
         if distance(&u, &predictor, n) > reach {
             if let Some(augmentation) = &mut self.augmentation {
                 augmentation.contact = saved_contact;
