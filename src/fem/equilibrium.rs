@@ -19,7 +19,7 @@ use super::assembly::System;
 use super::boundary::Dirichlet;
 use super::contact::{Contact, ContactUpdate};
 use super::mixed::PressureUpdate;
-use super::newton::{Equations, Newton, NewtonError, NewtonPolicy, NewtonReport, Precision, Updates};
+use super::newton::{largest_move, Equations, Newton, NewtonError, NewtonPolicy, NewtonReport, Precision, Updates};
 
 /// What an outer loop does between two converged solves.
 pub trait Update {
@@ -154,14 +154,6 @@ pub fn minimise(
     policy: &NewtonPolicy,
 ) -> Result<NewtonReport, NewtonError> {
     solve_equilibrium(newton, (system, u, bc), (contact, other), (Inner::Minimise, policy))
-}
-
-/// The largest difference of the displacements (the first `n` unknowns) of `u` and `start`.
-fn largest_move(u: &[f64], start: &[f64], n: usize) -> f64 {
-    u[..n]
-        .iter()
-        .zip(&start[..n])
-        .fold(0.0, |m, (a, b)| m.max((a - b).abs()))
 }
 
 fn solve_equilibrium(

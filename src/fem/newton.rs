@@ -418,6 +418,12 @@ fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m, x| m.max(x.abs()))
 }
 
+/// The largest nodal move between two states: the largest difference of their displacements
+/// (the first `n` unknowns, before the multipliers).
+pub(crate) fn largest_move(a: &[f64], b: &[f64], n: usize) -> f64 {
+    a[..n].iter().zip(&b[..n]).fold(0.0, |m, (x, y)| m.max((x - y).abs()))
+}
+
 /// The equations being solved, with their free unknowns and the wall times a solve accumulates.
 struct Problem<'a> {
     system: &'a mut System,

@@ -25,7 +25,7 @@
 //! (a snap onto a closing trough moves the surface by more than the pairs found at its start
 //! can follow).
 
-use super::{max_abs, Equations, Newton, NewtonError, NewtonPolicy, NewtonReport, Problem, Updates};
+use super::{largest_move, max_abs, Equations, Newton, NewtonError, NewtonPolicy, NewtonReport, Problem, Updates};
 use crate::error::Error;
 use crate::fem::assembly::Assembled;
 
@@ -223,13 +223,13 @@ impl Newton {
         let mut history = vec![current.residual_norm()];
         let (mut shift, mut rejected, mut factorisations) = (Shift::starting_at(policy.initial_shift), 0, 0);
         let tolerance_at = |a: &Assembled| policy.tolerance(a.force_norm(), penalty_scale);
-        // The largest nodal move from the start (the displacements, not the multipliers after them).
-        let start = u[..land.problem.system.mesh().num_dofs()].to_vec();
-        let moved = |u: &[f64]| u.iter().zip(&start).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        let (start, n) = (u.to_vec(), land.problem.system.mesh().num_dofs());
         for iteration in 0..policy.max_minimisation_steps {
             let residual = current.residual_norm();
             let tolerance = tolerance_at(&current);
-            let unfinished = policy.max_pass_move.is_some_and(|limit| moved(u) > limit);
+            let unfinished = policy
+                .max_pass_move
+                .is_some_and(|limit| largest_move(u, &start, n) > limit);
             // The unshifted factor is needed for a Newton step (`sigma = 0`) and for the test of
             // a minimum; a shifted step makes its own, so the inertia waits until it decides.
             let mut negative = None;

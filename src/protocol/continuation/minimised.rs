@@ -17,6 +17,7 @@ use super::{Continuation, Solved};
 use crate::error::{Error, Result};
 use crate::fem::added::NoAddedEnergy;
 use crate::fem::equilibrium;
+use crate::fem::newton::largest_move;
 use crate::fem::{Dirichlet, NewtonPolicy, NewtonReport};
 use crate::protocol::augmentation::AugmentedRecord;
 use crate::protocol::snap::SnapRecord;
@@ -41,11 +42,6 @@ const CORRECTOR_REACH: f64 = 1.0;
 /// Smallest reach of that minimisation, in units of the layer thickness: right after a snap
 /// the predictor is the last state itself, whose move is the boundary's alone.
 const CORRECTOR_FLOOR: f64 = 1e-3;
-
-/// Largest absolute difference of the displacements (the first `n` unknowns) of two states.
-fn distance(a: &[f64], b: &[f64], n: usize) -> f64 {
-    a[..n].iter().zip(&b[..n]).fold(0.0, |m, (x, y)| m.max((x - y).abs()))
-}
 
 impl Continuation {
     /// The snap at `d`: the stable equilibrium there reached by minimising the energy from the
@@ -100,7 +96,7 @@ impl Continuation {
         let saved_contact = self.augmentation.as_ref().and_then(|a| a.contact.clone());
         let n = self.system.mesh().num_dofs();
         let u0 = &self.history.back().expect("never empty").1;
-        let reach = (CORRECTOR_REACH * distance(&predictor, u0, n)).max(CORRECTOR_FLOOR);
+        let reach = (CORRECTOR_REACH * largest_move(&predictor, u0, n)).max(CORRECTOR_FLOOR);
         // A minimisation heading beyond the reach stops there (it would be discarded).
         let policy = NewtonPolicy {
             inertia_at_solution: true,
@@ -109,7 +105,7 @@ impl Continuation {
             ..self.policy
         };
         let (report, augmented) = self.stable_minimum(&mut u, (&bc, d), &policy).ok()?;
-        if distance(&u, &predictor, n) > reach {
+        if largest_move(&u, &predictor, n) > reach {
             if let Some(augmentation) = &mut self.augmentation {
                 augmentation.contact = saved_contact;
             }
