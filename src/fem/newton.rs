@@ -95,6 +95,12 @@ impl Newton {
         }
     }
 
+    /// A new solver sharing the held solver's analysis, with the structure id that analysis is
+    /// for (no factor of its own yet), if a solver is held.
+    pub fn analysed_solver(&self) -> Option<(usize, SparseLdlt)> {
+        self.solver.as_ref().map(|held| (held.structure, held.solver.sibling()))
+    }
+
     /// A new solver sharing the held solver's analysis, if that is of the given structure.
     pub fn sibling_solver(&self, structure: usize) -> Option<SparseLdlt> {
         self.solver

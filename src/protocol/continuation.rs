@@ -23,7 +23,7 @@ use super::surface::amplitude;
 use crate::error::{Error, Result};
 use crate::fem::ellipticity::{ellipticity_margins, EllipticityMargins};
 use crate::fem::equilibrium;
-use crate::fem::{Newton, NewtonPolicy, NewtonReport, Reuse, System, Timings};
+use crate::fem::{Newton, NewtonPolicy, NewtonReport, Reuse, SparseLdlt, System, Timings};
 use serde::Serialize;
 use std::collections::VecDeque;
 use std::time::Instant;
@@ -308,6 +308,12 @@ impl Continuation {
     /// The current converged displacement.
     pub fn displacement(&self) -> &[f64] {
         &self.history.back().expect("never empty").1
+    }
+
+    /// A solver sharing the analysis of the path's tangents, and the structure id it is for
+    /// ([`Newton::analysed_solver`]): post-processing on the same pattern skips its own.
+    pub fn analysed_solver(&self) -> Option<(usize, SparseLdlt)> {
+        self.newton.analysed_solver()
     }
 
     /// Frees the factorisation Newton keeps between steps (before post-processing a finished

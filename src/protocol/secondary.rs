@@ -50,16 +50,19 @@ pub fn inertia_changes(records: &[StepRecord]) -> Vec<InertiaChange> {
 /// is nearest zero: Lanczos on `K^-1`, the mode on all unknowns (zero where prescribed) scaled to
 /// a largest top-surface `|u_y|` of 1.
 pub fn mode_nearest_zero(system: &mut System, u: &[f64], d: f64, iterations: usize) -> Result<(Vec<f64>, f64)> {
-    let mut modes = modes_nearest_zero(system, &[(d, u)], iterations)?;
+    let mut modes = modes_nearest_zero(system, &[(d, u)], iterations, None)?;
     Ok(modes.pop().expect("one state, one mode"))
 }
 
 /// [`mode_nearest_zero`] of each state `(d, u)`, two at a time on two threads: each factor
-/// and its Lanczos iteration on a thread of its own, the factors sharing one analysis.
+/// and its Lanczos iteration on a thread of its own, the factors sharing one analysis: that of
+/// `analysed` (a solver and the structure id its analysis is for, e.g. the path's) where the
+/// tangents have that structure, else their own.
 pub fn modes_nearest_zero(
     system: &mut System,
     states: &[(f64, &[f64])],
     iterations: usize,
+    mut analysed: Option<(usize, SparseLdlt)>,
 ) -> Result<Vec<(Vec<f64>, f64)>> {
     let mut solvers: Vec<SparseLdlt> = Vec::new();
     let mut modes = Vec::with_capacity(states.len());
@@ -69,15 +72,18 @@ pub fn modes_nearest_zero(
             .map(|&(d, u)| {
                 let bc = system.load_to(d)?;
                 let assembled = system.assemble_for_stability(u, &bc, &NoAddedEnergy)?;
-                Ok((bc, assembled.tangent.expect("assembled with the tangent")))
+                let structure = assembled.structure;
+                Ok((bc, (structure, assembled.tangent.expect("assembled with the tangent"))))
             })
             .collect::<Result<Vec<_>>>()?
             .into_iter()
             .unzip();
+        let (structure, _) = &tangents[0];
         while solvers.len() < tangents.len() {
-            let solver = match solvers.first() {
-                Some(first) => first.sibling(),
-                None => SparseLdlt::new(tangents[0].symbolic()),
+            let solver = match (solvers.first(), analysed.take()) {
+                (Some(first), _) => first.sibling(),
+                (None, Some((of, solver))) if of == *structure => solver,
+                (None, _) => SparseLdlt::new(tangents[0].1.symbolic()),
             };
             solvers.push(solver);
         }
@@ -85,7 +91,7 @@ pub fn modes_nearest_zero(
             let running: Vec<_> = solvers
                 .iter_mut()
                 .zip(&tangents)
-                .map(|(solver, k)| {
+                .map(|(solver, (_, k))| {
                     scope.spawn(move || {
                         solver.factorize(k.as_ref());
                         inverse_lanczos(solver, k.as_ref(), iterations, 1e-10)

@@ -82,8 +82,8 @@ impl SplitAnalysis {
         if separator.is_empty() {
             return None;
         }
-        let parts = [FIRST, SECOND].map(|p| PartAnalysis::new(pattern, &side, p, &separator));
-        let [first, second] = parts;
+        let analyse = |p| PartAnalysis::new(pattern, &side, p, &separator);
+        let (first, second) = both_sides(|| analyse(FIRST), || analyse(SECOND));
         let parts = [first?, second?];
         let stored = (0..n).map(|col| pattern.row_idx_of_col_raw(col).len()).sum();
         Some(SplitAnalysis {

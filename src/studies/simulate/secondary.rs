@@ -5,7 +5,7 @@
 
 use super::write_state;
 use crate::error::Result;
-use crate::fem::System;
+use crate::fem::{SparseLdlt, System};
 use crate::material::Bilayer;
 use crate::mesh::Mesh;
 use crate::output::vtu::DataArray;
@@ -97,6 +97,7 @@ impl SecondaryTracker {
         system: &mut System,
         branch: Branch,
         (imperfection2, imperfection2_waves): (f64, f64),
+        analysed: Option<(usize, SparseLdlt)>,
     ) -> Result<(SecondaryReport, Vec<ModeState>)> {
         let mut changes: Vec<SecondaryChange> = inertia_changes(records)
             .into_iter()
@@ -109,7 +110,7 @@ impl SecondaryTracker {
             .collect();
         // The path's system: its pattern (and so its memory) serves the modes too.
         let states: Vec<(f64, &[f64])> = self.states.iter().map(|(d, u)| (*d, &u[..])).collect();
-        let found = modes_nearest_zero(system, &states, MODE_SOLVES)?;
+        let found = modes_nearest_zero(system, &states, MODE_SOLVES, analysed)?;
         let mesh = system.mesh();
         let mut modes = Vec::with_capacity(found.len());
         for (((d, u), change), (mode, eigenvalue)) in self.states.into_iter().zip(changes.iter_mut()).zip(found) {

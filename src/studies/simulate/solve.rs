@@ -137,7 +137,9 @@ fn finish(
     tracker: SecondaryTracker,
     mut outcome: stages::Outcome,
 ) -> Result<Solved> {
-    // No two factors at once: the path's is freed before the modes factorise their tangents.
+    // No two factors at once: the path's is freed before the modes factorise their tangents
+    // (its analysis is kept for them).
+    let analysed = outcome.continuation.analysed_solver();
     outcome.continuation.release_factorisation();
     let d_reached = outcome.continuation.d();
     let (mut system, u) = outcome.continuation.into_state();
@@ -155,6 +157,7 @@ fn finish(
         &mut system,
         branch(&mesh, &u, p.k),
         (p.imperfection2, p.imperfection2_waves),
+        analysed,
     )?;
     // The modes load the system to their states; it is handed back at the last one.
     system.load_to(d_reached)?;
