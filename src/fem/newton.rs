@@ -300,6 +300,8 @@ impl Newton {
 
     /// `du_f = -K_ff^-1 r_f` (with the held factorisation if it is `current`'s, `factorised`),
     /// retried with `L B L^T` if the `L D L^T` solve's relative residual is above `tolerance`.
+    /// A positive definite `L D L^T` (no negative pivot) is backward stable without pivoting,
+    /// as Cholesky's is, so its solve is not checked (the check is a product with `K`).
     fn newton_step(
         &mut self,
         current: &Assembled,
@@ -317,14 +319,15 @@ impl Newton {
             solver.solve_in_place(&mut du)?;
             timings.solve += solver.solve_time();
             timings.solves += 1;
+            if solver.factorisation() == Some(Factorisation::Lblt) || solver.negative_pivots() == Some(0) {
+                return Ok(du);
+            }
             let mismatch: Vec<f64> = multiply(k, &du)
                 .iter()
                 .zip(&current.residual)
                 .map(|(a, r)| a + r)
                 .collect();
-            if norm(&mismatch) <= tolerance * current.residual_norm()
-                || solver.factorisation() == Some(Factorisation::Lblt)
-            {
+            if norm(&mismatch) <= tolerance * current.residual_norm() {
                 return Ok(du);
             }
             solver.factorize_pivoted(k);
