@@ -190,6 +190,11 @@ impl System {
         Ok(conditions)
     }
 
+    /// The load's strain `d` the system is at.
+    pub fn load(&self) -> f64 {
+        self.load
+    }
+
     /// What the load does to the bilayer.
     pub fn load_path(&self) -> &LoadPath {
         &self.load_path

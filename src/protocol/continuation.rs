@@ -484,7 +484,8 @@ impl Continuation {
 
     /// Reports the state whose inertia was pending, with its count (waiting for it; the wait
     /// is booked as that state's inertia time if `within_step`, i.e. inside the next step's
-    /// wall time).
+    /// wall time). The observer sees the system at that state's load, not the next attempt's
+    /// (under growth the tissues depend on it).
     fn report_pending(&mut self, observer: &mut dyn FnMut(Event<'_>) -> Result<()>, within_step: bool) -> Result<()> {
         let Some(mut record) = self.pending.take() else {
             return Ok(());
@@ -499,11 +500,16 @@ impl Continuation {
                 augmented.inertia_seconds += waited.elapsed().as_secs_f64();
             }
         }
+        let load = self.system.load();
+        self.system.load_to(record.d)?;
+        let (_, u) = self.history.back().expect("never empty");
         observer(Event::Step {
             record: &record,
             system: &self.system,
-            u: self.displacement(),
-        })
+            u,
+        })?;
+        self.system.load_to(load)?;
+        Ok(())
     }
 
     /// Predictor and Newton corrector at `d`, reached by a step of `step`; the converged
