@@ -212,11 +212,8 @@ pub fn run(
         diverging_after: None,
         ..protocol.newton
     };
-    // Where stage 2 follows, stage 1's state has no inertia to count, and its tangent (if
-    // Newton needs one at all from the exact state) is not factorised first.
     let stage_one = NewtonPolicy {
         inertia_at_solution: protocol.newton.inertia_at_solution && !imperfect,
-        factorise_start: single_solve.factorise_start && !imperfect,
         ..single_solve
     };
     let mut report = equilibrium::solve(&mut newton, &mut system, &mut u, &bc, &stage_one)
