@@ -23,7 +23,7 @@ use faer::sparse::linalg::cholesky::{
     SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -44,9 +44,10 @@ pub enum Factorisation {
 /// The symbolic analysis of one sparsity pattern, shared by the solvers of its matrices.
 struct Analysis {
     /// The whole pattern's supernodal analysis: made at once where the pattern is not split;
-    /// where it is, on first use (a side's zero pivot, or `L B L^T`), from the matrix then
-    /// factorised.
+    /// where it is, on first use (a side's zero pivot, or `L B L^T`), from `pattern`.
     symbolic: std::sync::OnceLock<SymbolicCholesky<usize>>,
+    /// The pattern, kept for that late analysis (split patterns only).
+    pattern: Option<SymbolicSparseColMat<usize>>,
     dimension: usize,
     /// The map into the whole factor's order, made on its first factorisation (where the
     /// pattern is split, only a side's zero pivot needs it).
@@ -57,14 +58,12 @@ struct Analysis {
 }
 
 impl Analysis {
-    /// Makes the whole pattern's analysis, of `pattern`, if it was left for first use.
-    fn analyse_whole(&self, pattern: SymbolicSparseColMatRef<'_, usize>) {
-        self.symbolic.get_or_init(|| whole_analysis(pattern));
-    }
-
-    /// The whole pattern's analysis, made before any factorisation of the whole.
+    /// The whole pattern's supernodal analysis (made now if it was left for first use).
     fn whole(&self) -> &SymbolicCholesky<usize> {
-        self.symbolic.get().expect("analysed before the whole is factorised")
+        self.symbolic.get_or_init(|| {
+            let pattern = self.pattern.as_ref().expect("kept wherever the analysis was left");
+            whole_analysis(pattern.as_ref())
+        })
     }
 }
 
@@ -119,11 +118,16 @@ impl SparseLdlt {
             Some(_) => None,
         };
         let symbolic = std::sync::OnceLock::new();
-        if split.is_none() {
-            let _ = symbolic.set(whole_analysis(pattern));
-        }
+        let kept = match split {
+            Some(_) => Some(pattern.to_owned().expect("a copy fails only when out of memory")),
+            None => {
+                let _ = symbolic.set(whole_analysis(pattern));
+                None
+            }
+        };
         let analysis = Analysis {
             symbolic,
+            pattern: kept,
             dimension: pattern.nrows(),
             order: std::sync::OnceLock::new(),
             split,
@@ -194,7 +198,6 @@ impl SparseLdlt {
             }
         }
         self.split = None; // a side met a zero pivot: its memory goes to the whole's factor
-        self.analysis.analyse_whole(a.symbolic());
         self.prepare();
         let SymbolicCholeskyRaw::Supernodal(supernodal) = self.analysis.whole().raw() else {
             unreachable!("the symbolic analysis forces a supernodal factor")
@@ -252,7 +255,6 @@ impl SparseLdlt {
     pub fn factorize_pivoted(&mut self, a: SparseColMatRef<'_, usize, f64>) -> Factorisation {
         let start = Instant::now();
         self.split = None; // the sides' factors give their memory to the whole's
-        self.analysis.analyse_whole(a.symbolic());
         self.prepare();
         let symbolic = self.analysis.whole();
         let scratch = self.pivoted_scratch.get_or_insert_with(|| {
