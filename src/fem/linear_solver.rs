@@ -23,7 +23,7 @@ use faer::sparse::linalg::cholesky::{
     SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -43,38 +43,13 @@ pub enum Factorisation {
 
 /// The symbolic analysis of one sparsity pattern, shared by the solvers of its matrices.
 struct Analysis {
-    /// The whole pattern's supernodal analysis: made at once where the pattern is not split;
-    /// where it is, on first use (a side's zero pivot, or `L B L^T`), from `pattern`.
-    symbolic: std::sync::OnceLock<SymbolicCholesky<usize>>,
-    /// The pattern, kept for that late analysis (split patterns only).
-    pattern: Option<SymbolicSparseColMat<usize>>,
-    dimension: usize,
+    symbolic: SymbolicCholesky<usize>,
     /// The map into the whole factor's order, made on its first factorisation (where the
     /// pattern is split, only a side's zero pivot needs it).
     order: std::sync::OnceLock<FactorOrder>,
     /// The pattern split in two parts factorised on two cores ([`split`]), if it is large
     /// enough and splits well; `L B L^T` always factorises the whole.
     split: Option<SplitAnalysis>,
-}
-
-impl Analysis {
-    /// The whole pattern's supernodal analysis (made now if it was left for first use).
-    fn whole(&self) -> &SymbolicCholesky<usize> {
-        self.symbolic.get_or_init(|| {
-            let pattern = self.pattern.as_ref().expect("kept wherever the analysis was left");
-            whole_analysis(pattern.as_ref())
-        })
-    }
-}
-
-/// The supernodal analysis (AMD ordering) of the whole pattern whose lower triangle is `pattern`.
-fn whole_analysis(pattern: SymbolicSparseColMatRef<'_, usize>) -> SymbolicCholesky<usize> {
-    let params = CholeskySymbolicParams {
-        supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-        ..Default::default()
-    };
-    factorize_symbolic_cholesky(pattern, Side::Lower, SymmetricOrdering::Amd, params)
-        .expect("symbolic factorisation fails only when out of memory")
 }
 
 /// A reusable factorisation of symmetric matrices sharing one sparsity pattern.
@@ -110,6 +85,12 @@ impl SparseLdlt {
     /// Panics only if memory runs out, like any allocation.
     pub fn new(pattern: SymbolicSparseColMatRef<'_, usize>) -> Self {
         let start = Instant::now();
+        let params = CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            ..Default::default()
+        };
+        let symbolic = factorize_symbolic_cholesky(pattern, Side::Lower, SymmetricOrdering::Amd, params)
+            .expect("symbolic factorisation fails only when out of memory");
         // The split takes the second core; a caller on a rayon pool's thread (`reproduce`'s
         // figures, `map`'s points) already runs in parallel and keeps the whole factor
         // (`reproduce` split: 96 s against 89 s).
@@ -117,22 +98,8 @@ impl SparseLdlt {
             None => SplitAnalysis::new(pattern, SMALLEST_SPLIT),
             Some(_) => None,
         };
-        let symbolic = std::sync::OnceLock::new();
-        let kept = match split {
-            Some(_) => Some(pattern.to_owned().expect("a copy fails only when out of memory")),
-            None => {
-                let _ = symbolic.set(whole_analysis(pattern));
-                None
-            }
-        };
-        let analysis = Analysis {
-            symbolic,
-            pattern: kept,
-            dimension: pattern.nrows(),
-            order: std::sync::OnceLock::new(),
-            split,
-        };
-        let mut solver = SparseLdlt::with_analysis(Arc::new(analysis));
+        let order = std::sync::OnceLock::new();
+        let mut solver = SparseLdlt::with_analysis(Arc::new(Analysis { symbolic, order, split }));
         solver.symbolic_time = start.elapsed();
         solver
     }
@@ -145,7 +112,8 @@ impl SparseLdlt {
     }
 
     fn with_analysis(analysis: Arc<Analysis>) -> Self {
-        let n = analysis.dimension;
+        let symbolic = &analysis.symbolic;
+        let n = symbolic.nrows();
         SparseLdlt {
             permuted: Vec::new(),
             values: Vec::new(),
@@ -168,7 +136,7 @@ impl SparseLdlt {
 
     /// Dimension of the matrices.
     pub fn dimension(&self) -> usize {
-        self.analysis.dimension
+        self.analysis.symbolic.nrows()
     }
 
     /// Number of stored factor values (lower triangle plus the dense diagonal blocks; of both
@@ -176,7 +144,7 @@ impl SparseLdlt {
     pub fn factor_size(&self) -> usize {
         match &self.analysis.split {
             Some(split) => split.factor_size(),
-            None => self.analysis.whole().len_val(),
+            None => self.analysis.symbolic.len_val(),
         }
     }
 
@@ -199,10 +167,10 @@ impl SparseLdlt {
         }
         self.split = None; // a side met a zero pivot: its memory goes to the whole's factor
         self.prepare();
-        let SymbolicCholeskyRaw::Supernodal(supernodal) = self.analysis.whole().raw() else {
+        let SymbolicCholeskyRaw::Supernodal(supernodal) = self.analysis.symbolic.raw() else {
             unreachable!("the symbolic analysis forces a supernodal factor")
         };
-        let order = (self.analysis.order).get_or_init(|| FactorOrder::new(a.symbolic(), self.analysis.whole()));
+        let order = (self.analysis.order).get_or_init(|| FactorOrder::new(a.symbolic(), &self.analysis.symbolic));
         if self.permuted.len() != order.row_idx.len() {
             self.permuted = vec![0.0; order.row_idx.len()];
         }
@@ -212,7 +180,7 @@ impl SparseLdlt {
             LdltRegularization::default(),
             supernodal,
             Par::Seq,
-            whole_workspace(&mut self.scratch, self.analysis.whole()),
+            whole_workspace(&mut self.scratch, &self.analysis.symbolic),
             Default::default(),
         );
         let kind = if ldlt.is_ok() {
@@ -237,7 +205,7 @@ impl SparseLdlt {
     fn prepare(&mut self) {
         self.forget();
         if self.values.is_empty() {
-            self.values = vec![0.0; self.analysis.whole().len_val()];
+            self.values = vec![0.0; self.analysis.symbolic.len_val()];
         }
     }
 
@@ -256,7 +224,7 @@ impl SparseLdlt {
         let start = Instant::now();
         self.split = None; // the sides' factors give their memory to the whole's
         self.prepare();
-        let symbolic = self.analysis.whole();
+        let symbolic = &self.analysis.symbolic;
         let scratch = self.pivoted_scratch.get_or_insert_with(|| {
             MemBuffer::new(StackReq::any_of(&[
                 symbolic.factorize_numeric_intranode_lblt_scratch::<f64>(Par::Seq, Default::default()),
@@ -299,11 +267,11 @@ impl SparseLdlt {
         let x = MatMut::from_column_major_slice_mut(rhs, n, 1);
         match self.state {
             None => panic!("solve_in_place called before factorize"),
-            Some(Factorisation::Ldlt) => LdltRef::new(self.analysis.whole(), &self.values).solve_in_place_with_conj(
+            Some(Factorisation::Ldlt) => LdltRef::new(&self.analysis.symbolic, &self.values).solve_in_place_with_conj(
                 Conj::No,
                 x,
                 Par::Seq,
-                whole_workspace(&mut self.scratch, self.analysis.whole()),
+                whole_workspace(&mut self.scratch, &self.analysis.symbolic),
             ),
             Some(Factorisation::Lblt) => {
                 let stack = MemStack::new(
@@ -312,7 +280,7 @@ impl SparseLdlt {
                         .expect("made by the L B L^T factorisation"),
                 );
                 let perm = PermRef::new_checked(&self.perm_forward, &self.perm_inverse, n);
-                IntranodeLbltRef::new(self.analysis.whole(), &self.values, &self.subdiag, perm)
+                IntranodeLbltRef::new(&self.analysis.symbolic, &self.values, &self.subdiag, perm)
                     .solve_in_place_with_conj(Conj::No, x, Par::Seq, stack)
             }
         }
@@ -340,11 +308,11 @@ impl SparseLdlt {
         let n = self.dimension();
         assert_eq!(rhs.len(), n, "right-hand side length");
         let mut x: Vec<f32> = rhs.iter().map(|&v| v as f32).collect();
-        LdltRef::new(self.analysis.whole(), as_single(&self.values)).solve_in_place_with_conj(
+        LdltRef::new(&self.analysis.symbolic, as_single(&self.values)).solve_in_place_with_conj(
             Conj::No,
             MatMut::from_column_major_slice_mut(&mut x, n, 1),
             Par::Seq,
-            whole_workspace(&mut self.scratch, self.analysis.whole()),
+            whole_workspace(&mut self.scratch, &self.analysis.symbolic),
         );
         rhs.iter_mut().zip(&x).for_each(|(r, &v)| *r = f64::from(v));
         self.solve_time = start.elapsed();
@@ -373,14 +341,13 @@ impl SparseLdlt {
     /// Number of negative eigenvalues of the factorised matrix (negative pivots of `D` or `B`).
     pub fn negative_pivots(&self) -> Option<usize> {
         let kind = self.state?;
-        let supernodal = || match self.analysis.whole().raw() {
-            SymbolicCholeskyRaw::Supernodal(supernodal) => supernodal,
-            _ => unreachable!("the symbolic analysis forces a supernodal factor"),
+        let SymbolicCholeskyRaw::Supernodal(supernodal) = self.analysis.symbolic.raw() else {
+            unreachable!("the symbolic analysis forces a supernodal factor")
         };
         Some(*self.negative.get_or_init(|| match kind {
             Factorisation::Ldlt if self.split_holds => self.split.as_ref().expect("factorised").negative_pivots(),
-            Factorisation::Ldlt => self.diagonal_blocks(supernodal()).filter(|&(d, _)| d < 0.0).count(),
-            Factorisation::Lblt => block_inertia(&self.diagonal_blocks(supernodal()).collect::<Vec<_>>()),
+            Factorisation::Ldlt => self.diagonal_blocks(supernodal).filter(|&(d, _)| d < 0.0).count(),
+            Factorisation::Lblt => block_inertia(&self.diagonal_blocks(supernodal).collect::<Vec<_>>()),
         }))
     }
 
