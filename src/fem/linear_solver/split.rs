@@ -513,7 +513,10 @@ fn dot<T: Copy + Into<f64>>(a: &[T], b: &[f64]) -> f64 {
 /// assemblies that followed on them (coarse mesh: 0.6 -> 1.0 s), and a pool's worker waiting on
 /// another pool runs its own pool's queued work meanwhile (`reproduce` then started all its
 /// figures at once: 2.1 GB).
-fn both_sides<A: Send, B: Send>(first: impl FnOnce() -> A + Send, second: impl FnOnce() -> B + Send) -> (A, B) {
+pub(super) fn both_sides<A: Send, B: Send>(
+    first: impl FnOnce() -> A + Send,
+    second: impl FnOnce() -> B + Send,
+) -> (A, B) {
     if rayon::current_num_threads() < 2 {
         return (first(), second());
     }
