@@ -137,8 +137,9 @@ impl SmallestEigenvalue {
         let (m, h, o) = (at(self.mean), at(self.half_difference), at(self.off));
         let r = (h[0] * h[0] + o[0] * o[0]).sqrt();
         if r == 0.0 {
-            // Coincident eigenvalues: a peak of `-r`, never the minimum sought; no derivatives.
-            return [m[0], 0.0, f64::NAN];
+            // Coincident eigenvalues: a peak of `-r`, never the minimum sought, where `r` has
+            // no derivative; a zero `f''` sends the refinement to parabolic steps.
+            return [m[0], 0.0, 0.0];
         }
         let r1 = (h[0] * h[1] + o[0] * o[1]) / r;
         let r2 = (h[1] * h[1] + h[0] * h[2] + o[1] * o[1] + o[0] * o[2]) / r - r1 * r1 / r;
@@ -147,9 +148,9 @@ impl SmallestEigenvalue {
 
     /// The minimum in the bracket `[(a, f(a)), (b, f(b)), (c, f(c))]` of sampled directions
     /// (in `theta`; `f(b)` the least): Newton's iteration on `f'(phi) = 0` from the bracket's
-    /// parabolic vertex, which converges quadratically where `f'' > 0`; where it would leave
-    /// the bracket or meet `f'' <= 0`, successive parabolic interpolation instead. The best
-    /// value met, never above `f(b)`.
+    /// parabolic vertex, which converges quadratically where `f'' > 0`, until its step is below
+    /// `1e-4` of the bracket; where it would leave the bracket or meet `f'' <= 0`, successive
+    /// parabolic interpolation instead. The best value met, never above `f(b)`.
     fn minimum(&self, bracket: [(f64, f64); 3]) -> f64 {
         let [(a, fa), (b, fb), (c, fc)] = bracket;
         let (p, q) = ((b - a) * (fb - fc), (b - c) * (fb - fa));
