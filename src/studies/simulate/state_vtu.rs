@@ -11,11 +11,21 @@ use std::path::Path;
 /// Writes the state `u` of `system` to `path`, with `extra` point data (e.g. a mode).
 pub fn write_state(path: &Path, system: &System, materials: &Bilayer, u: &[f64], extra: Vec<DataArray>) -> Result<()> {
     let mesh = system.mesh();
-    let nodal = &u[..mesh.num_dofs()];
+    let (point_data, cell_data) = state_arrays(system, materials, u, extra)?;
+    write_vtu(path, mesh.coordinates(), mesh.elements(), &point_data, &cell_data)
+}
+
+/// The point data (the displacement, then `extra`) and cell data of the state `u` of `system`.
+pub(super) fn state_arrays(
+    system: &System,
+    materials: &Bilayer,
+    u: &[f64],
+    extra: Vec<DataArray>,
+) -> Result<(Vec<DataArray>, Vec<DataArray>)> {
+    let nodal = &u[..system.mesh().num_dofs()];
     let mut point_data = vec![displacement_array(nodal.chunks(2).map(|c| [c[0], c[1]]))];
     point_data.extend(extra);
-    let cell_data = cell_arrays(cell_fields(system, materials, u)?);
-    write_vtu(path, mesh.coordinates(), mesh.elements(), &point_data, &cell_data)
+    Ok((point_data, cell_arrays(cell_fields(system, materials, u)?)))
 }
 
 /// The nodal displacement as the snapshots' point data.
