@@ -292,20 +292,19 @@ impl SplitFactor {
     /// `single` (the first such solve rounds them; no double-precision solve follows until the
     /// next factorisation).
     pub(super) fn solve_in_place(&mut self, analysis: &SplitAnalysis, rhs: &mut [f64], single: bool) {
-        for part in &mut self.parts {
+        for part in &self.parts {
             assert!(
                 single || !part.single,
                 "double-precision solve with a factor rounded to single"
             );
-            if single && !part.single {
-                super::round_to_single(&mut part.values);
-                part.single = true;
-            }
         }
         let [first, second] = &mut self.parts;
         let (pa, pb) = (&analysis.parts[0], &analysis.parts[1]);
         let rhs_read: &[f64] = rhs;
-        both_sides(|| first.forward(pa, rhs_read), || second.forward(pb, rhs_read));
+        both_sides(
+            || first.forward(pa, rhs_read, single),
+            || second.forward(pb, rhs_read, single),
+        );
         let s = analysis.separator.len();
         let mut xs = Mat::<f64>::zeros(s, 1);
         for (t, &g) in analysis.separator.iter().enumerate() {
@@ -398,8 +397,13 @@ impl PartFactor {
 
     /// Forward substitution over the interior's columns for the right-hand side `[b_p, 0]`:
     /// afterwards `work` holds `L_11^-1 b_p` on the interior and `-B_p^T A_p^-1 b_p` on the
-    /// separator.
-    fn forward(&mut self, part: &PartAnalysis, rhs: &[f64]) {
+    /// separator. With `single`, the factor is first rounded to single precision (on this
+    /// part's own thread) if it is not yet.
+    fn forward(&mut self, part: &PartAnalysis, rhs: &[f64], single: bool) {
+        if single && !self.single {
+            super::round_to_single(&mut self.values);
+            self.single = true;
+        }
         let x = &mut self.work;
         x.iter_mut().for_each(|v| *v = 0.0);
         for (l, &g) in part.interior.iter().enumerate() {
