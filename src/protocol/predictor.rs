@@ -2,12 +2,13 @@
 //! states, or along a given slope from a single state.
 //!
 //! Through up to four states the predictor is the polynomial through all of them (cubic through
-//! four). With a fifth, the order is chosen as a variable-order multistep integrator chooses
-//! its own: the change that each added state makes to the prediction estimates the error of
-//! the lower order, and the quartic is taken only where that change falls fast with the order,
-//! `|P_5 - P_4| <= |P_4 - P_3| / 4` (the path is smooth on the scale of the steps). Where it
-//! does not (a fold, a trough closing, a damped stretch) a quartic through the same states
-//! extrapolates their roughness further, and the cubic is kept.
+//! four). With a fifth, on a stretch of equal steps (none cut or grown between the five), the
+//! order is chosen as a variable-order multistep integrator chooses its own: the change that
+//! each added state makes to the prediction estimates the error of the lower order, and the
+//! quartic is taken only where that change falls fast with the order,
+//! `|P_5 - P_4| <= |P_4 - P_3| / 4` (the path is smooth on the scale of the steps). Elsewhere
+//! (a fold, a trough closing, a damped stretch) a quartic through the same states extrapolates
+//! their roughness further, and the cubic through the newest four is kept.
 
 use std::collections::VecDeque;
 
@@ -29,12 +30,28 @@ pub(super) fn extrapolate(history: &VecDeque<(f64, Vec<f64>)>, slope: Option<&[f
     if n < PREDICTOR_POINTS {
         return lagrange(history, n, d);
     }
+    if !equally_spaced(history) {
+        return lagrange(history, PREDICTOR_POINTS - 1, d);
+    }
     let [quadratic, cubic, quartic] = [3, 4, 5].map(|points| lagrange(history, points, d));
     if distance(&quartic, &cubic) <= ORDER_DECREASE * distance(&cubic, &quadratic) {
         quartic
     } else {
         cubic
     }
+}
+
+/// Whether the states' `d` are equally spaced (to `1e-9` of the spacing): no step between them
+/// was cut or grown.
+fn equally_spaced(history: &VecDeque<(f64, Vec<f64>)>) -> bool {
+    let spacing: Vec<f64> = history
+        .iter()
+        .zip(history.iter().skip(1))
+        .map(|(a, b)| b.0 - a.0)
+        .collect();
+    spacing
+        .iter()
+        .all(|h| (h - spacing[0]).abs() <= 1e-9 * spacing[0].abs())
 }
 
 /// Lagrange extrapolation through the newest `points` of the converged states, at `d`.
@@ -114,5 +131,17 @@ mod tests {
         assert!((at(lagrange(&history, 3, 5.0)) - 3.0).abs() < 1e-12);
         assert!((at(lagrange(&history, 5, 5.0)) - 5.0).abs() < 1e-12);
         assert!((at(extrapolate(&history, None, 5.0)) - 4.0).abs() < 1e-12);
+    }
+
+    /// After a cut or a grown step among the five states the cubic through the newest four is
+    /// taken, however smooth the path.
+    #[test]
+    fn unequal_steps_are_extrapolated_by_the_cubic() {
+        let path = |d: f64| vec![(d / 0.04).exp()];
+        let ds = [0.0, 0.005, 0.01, 0.01125, 0.0125];
+        let history: VecDeque<_> = ds.iter().map(|&d| (d, path(d))).collect();
+        assert_eq!(extrapolate(&history, None, 0.014), lagrange(&history, 4, 0.014));
+        let uniform: VecDeque<_> = (0..5).map(|n| (0.00125 * n as f64, path(0.00125 * n as f64))).collect();
+        assert_eq!(extrapolate(&uniform, None, 0.00625), lagrange(&uniform, 5, 0.00625));
     }
 }
