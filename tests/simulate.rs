@@ -163,6 +163,7 @@ fn the_binary_exits_non_zero_with_the_message_after_a_final_failure() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("stopped at d = "), "{stderr}");
+    assert!(stderr.contains("stabilisation = snap crosses"), "{stderr}");
     // The message names the last converged d, which is the last row of amplitude.csv.
     let last_converged: f64 = stderr.split("last converged d = ").nth(1).expect("names the last d")[..8]
         .parse()
