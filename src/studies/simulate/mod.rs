@@ -426,7 +426,7 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
         ))),
         Some(e) => {
             // Measured: a damped crawl through a closing trough (mu_l = 3, K/mu = 1e4, beta
-            // 1e-7 off pi/2) stalled at the smallest step where the minimisation crossed it.
+            // 1.5707961) stalled at the smallest step where the minimisation crossed it.
             let hint = match study.protocol.snaps {
                 Some(_) => "",
                 None => "; where the path snaps, stabilisation = snap crosses by minimising the energy",
