@@ -1,12 +1,13 @@
 //! Runs as a user would make them, far from Table 1: every fibre angle `beta` in {0, pi/4,
 //! pi/2}, stiffness contrasts `mu_l / mu_s` in {3, 10, 30} and bulk moduli `K / mu` of 100 and
 //! 1e4, each along the crease path (contact) to `d = 0.48` on a small mesh, crossing snaps by
-//! the default viscous damper, and (ignored: a measurement) by energy minimisation, where the
-//! run with beta = pi/4, mu_l/mu_s = 3, K/mu = 1e4 crawls through contact for many minutes, each
-//! closing pair a snap of its own.
-//! Every run either reaches 0.48 with finite, admissible states, or stops with an error that
-//! names the `d` where it stopped and keeps the states before it. No recorded state may carry
-//! damping silently: wherever the damper dissipated, the record says so.
+//! the default viscous damper, and by energy minimisation.
+//! Every damped run either reaches 0.48 with finite, admissible states, or stops with an error
+//! that names the `d` where it stopped and keeps the states before it (measured: 15 of the 18
+//! reach it). No recorded state may carry damping silently: wherever the damper dissipated, the
+//! record says so. Every run crossing its snaps by minimisation reaches 0.48 (measured: all 18,
+//! in 0.7 to 8 s each, with 1 to 15 snaps). No run may crawl: one that takes more than
+//! [`MAX_STATES`] states fails (the runs took 128 to 462).
 
 mod common;
 
@@ -16,32 +17,36 @@ use fiberfold::protocol::{stages, Event, Protocol, SnapSettings};
 use fiberfold::Parameters;
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
-/// How far the corrected steps' case runs: measured, its first corrected step comes at
-/// d = 0.3153, its tenth at 0.3426 (338 up to 0.4006).
-const CORRECTED_D_MAX: f64 = 0.343;
-
 /// `L = 10` (two half waves of `k = 0.628`), depth 10: 20 x (2 + 8) elements.
 fn small_mesh() -> MeshSpec {
     MeshSpec::new(20, 2, 8, 0.5, 10.0, 10.0)
 }
 
+/// Most states of one run of the sweep: a run that needs more crawls (before the inertia was
+/// counted along a run with snaps, beta = pi/4, mu_l/mu_s = 3 took 2987 states at K/mu = 100
+/// and crawled on at K/mu = 1e4, each contact pair that closed a snap of its own).
+const MAX_STATES: usize = 1000;
+
 #[test]
 fn every_damped_run_of_the_sweep_reaches_the_end_or_says_where_it_stopped() {
-    sweep(|protocol| protocol);
+    sweep(|protocol| protocol, false);
 }
 
 #[test]
-#[ignore]
-fn every_run_of_the_sweep_crossing_snaps_by_minimisation_reaches_the_end_or_says_where_it_stopped() {
-    sweep(|mut protocol| {
-        protocol.stabilisation = None;
-        protocol.snaps = Some(SnapSettings::default());
-        protocol
-    });
+fn every_run_of_the_sweep_crossing_snaps_by_minimisation_reaches_the_end() {
+    sweep(
+        |mut protocol| {
+            protocol.stabilisation = None;
+            protocol.snaps = Some(SnapSettings::default());
+            protocol
+        },
+        true,
+    );
 }
 
-/// The sweep, each run's protocol the crease path changed by `crossing`; prints one line per run.
-fn sweep(crossing: impl Fn(Protocol) -> Protocol) {
+/// The sweep, each run's protocol the crease path changed by `crossing`, every run to reach
+/// 0.48 if `must_reach`; prints one line per run.
+fn sweep(crossing: impl Fn(Protocol) -> Protocol, must_reach: bool) {
     let mut summary = Vec::new();
     for beta in [0.0, FRAC_PI_4, FRAC_PI_2] {
         for ratio in [3.0, 10.0, 30.0] {
@@ -56,6 +61,7 @@ fn sweep(crossing: impl Fn(Protocol) -> Protocol) {
                 params.validate().unwrap();
                 let protocol = crossing(Protocol::new(2.0 * PI / 10.0, 0.05, 0.48).with_crease_path());
                 let (mut states, mut last_d, mut damped, mut snaps, mut minimised) = (0, 0.0, 0, 0, 0);
+                let started = std::time::Instant::now();
                 let outcome = stages::run(&Bilayer::new(&params), small_mesh(), &protocol, &mut |event| {
                     if let Event::Step { record, .. } = event {
                         assert!(record.amplitude.is_finite() && record.strain_energy.is_finite());
@@ -63,6 +69,11 @@ fn sweep(crossing: impl Fn(Protocol) -> Protocol) {
                         assert!(record.d > last_d, "states advance in d");
                         last_d = record.d;
                         states += 1;
+                        assert!(
+                            states <= MAX_STATES,
+                            "beta {beta}, mu_l/mu_s {ratio}, K/mu {bulk}: crawls at d = {}",
+                            record.d
+                        );
                         snaps += usize::from(record.snap.is_some());
                         minimised += usize::from(record.minimised);
                         if let Some(snap) = &record.snap {
@@ -84,6 +95,7 @@ fn sweep(crossing: impl Fn(Protocol) -> Protocol) {
                         }
                         Some(stop) => {
                             let message = stop.to_string();
+                            assert!(!must_reach, "{label}: stopped: {message}");
                             assert!(message.contains("d = "), "{label}: the stop names d: {message}");
                             assert!(states > 0, "{label}: the states before the stop are kept");
                             format!("stopped: {message}")
@@ -91,9 +103,13 @@ fn sweep(crossing: impl Fn(Protocol) -> Protocol) {
                     },
                     Err(e) => panic!("{label}: the run failed without keeping its path: {e}"),
                 };
-                summary.push(format!(
-                    "{label}: {states} states to {last_d:.4}, {damped} damped, {snaps} snaps, {minimised} minimised; {end}"
-                ));
+                let line = format!(
+                    "{label}: {states} states to {last_d:.4}, {damped} damped, {snaps} snaps, {minimised} minimised; {end} ({:.1} s)",
+                    started.elapsed().as_secs_f64()
+                );
+                // Each run's line as it ends too: a measurement stopped midway keeps what it measured.
+                eprintln!("{line}");
+                summary.push(line);
             }
         }
     }
@@ -103,8 +119,8 @@ fn sweep(crossing: impl Fn(Protocol) -> Protocol) {
 /// The steps that a minimisation from the predictor corrected after Newton's iteration failed
 /// (on a stable branch in contact) are undamped equilibria: each, re-assembled on a fresh
 /// system, has its elastic residual within Newton's tolerance off the nodes the contact pushes,
-/// and is stable. The case (beta = pi/4, mu_l / mu_s = 3, K / mu = 100, snaps) is the sweep's
-/// with the most such steps.
+/// and is stable. The case (beta = pi/4, mu_l / mu_s = 3, K / mu = 100, snaps) is one of the
+/// sweep's with the most such steps (17 to d = 0.48, measured).
 #[test]
 fn the_steps_corrected_by_minimisation_are_undamped_stable_equilibria() {
     let params = Parameters {
@@ -115,7 +131,7 @@ fn the_steps_corrected_by_minimisation_are_undamped_stable_equilibria() {
         ..Parameters::default()
     };
     let materials = Bilayer::new(&params);
-    let mut protocol = Protocol::new(2.0 * PI / 10.0, 0.05, CORRECTED_D_MAX).with_crease_path();
+    let mut protocol = Protocol::new(2.0 * PI / 10.0, 0.05, 0.48).with_crease_path();
     (protocol.stabilisation, protocol.snaps) = (None, Some(SnapSettings::default()));
     let policy = fiberfold::fem::NewtonPolicy::default();
     let (mut corrected, mut worst) = (0, 0.0f64);

@@ -241,7 +241,8 @@ pub struct SimulateArgs {
 
     /// Do not track the number of negative eigenvalues of the tangent at every converged state
     /// (saves the extra factorisation of damped and contact states; secondary.json then has no
-    /// bifurcations).
+    /// bifurcations). Ignored with --stabilisation snap, which needs the inertia to tell a
+    /// stable state.
     #[arg(long)]
     pub no_inertia: bool,
 

@@ -281,9 +281,16 @@ impl Continuation {
         self
     }
 
-    /// The same continuation retrying failed short steps as snaps.
+    /// The same continuation retrying failed short steps as snaps, and counting the inertia
+    /// of every accepted state: a failed step is corrected by minimisation only from a state
+    /// known to be stable ([`Continuation::attempt_by_minimisation`]). Without the count every
+    /// contact pair that closed or opened within a step was cut down to a snap of its own:
+    /// measured on the small mesh of `tests/sweep.rs` (beta = pi/4, mu_l / mu_s = 3), 716
+    /// snaps and 2987 states to d = 0.48 in 108 s at K/mu = 100, and no end in 18 minutes at
+    /// K/mu = 1e4, against 2 snaps in 2 s and 15 snaps in 8 s with it.
     pub fn with_snaps(mut self, snaps: SnapSettings) -> Self {
         self.snaps = Some(snaps);
+        self.policy.inertia_at_solution = true;
         self
     }
 
