@@ -224,6 +224,8 @@ impl Newton {
         let (mut shift, mut rejected, mut factorisations) = (Shift::starting_at(policy.initial_shift), 0, 0);
         let tolerance_at = |a: &Assembled| policy.tolerance(a.force_norm(), penalty_scale);
         let (start, n) = (u.to_vec(), land.problem.system.mesh().num_dofs());
+        // Whether the steps ran out of shifts (rather than of the pass's step limit).
+        let mut stalled = false;
         for iteration in 0..policy.max_minimisation_steps {
             let residual = current.residual_norm();
             let tolerance = tolerance_at(&current);
@@ -269,7 +271,10 @@ impl Newton {
                 }) != Some(0);
             let (trial, assembled) = match next {
                 Some((trial, assembled, _)) if !indefinite => (trial, assembled),
-                None if !indefinite => break,
+                None if !indefinite => {
+                    stalled = true;
+                    break;
+                }
                 _ => {
                     let step = self.curvature_step(&mut land, u, &current, shift.sigma, &mut factorisations)?;
                     // A shift of at least SIGMA_MIN for the next step, falling fourfold again.
@@ -281,15 +286,21 @@ impl Newton {
             current = assembled;
             history.push(current.residual_norm());
             if shift.sigma > SIGMA_MAX {
+                stalled = true;
                 break;
             }
         }
-        Err(NewtonError::NotConverged {
-            iterations: history.len() - 1,
-            residual: current.residual_norm(),
-            tolerance: tolerance_at(&current),
-            residual_history: history,
-        })
+        // Said as what it is: a snap's failure read "Newton did not converge" before.
+        let why = match stalled {
+            true => format!("no shift up to {SIGMA_MAX:.0e} gives a step that lowers the energy"),
+            false => format!("the limit of {} steps in one pass", policy.max_minimisation_steps),
+        };
+        Err(NewtonError::Model(Error::Solver(format!(
+            "energy minimisation stopped after {} steps with the residual at {:.3e} (tolerance {:.3e}): {why}",
+            history.len() - 1,
+            current.residual_norm(),
+            tolerance_at(&current),
+        ))))
     }
 
     /// A step of the shifted Newton method from `u` (with `current` its assembly), its shift
