@@ -194,7 +194,8 @@ def simulate(
     ``"mixed"`` (the default, as ``fiberfold simulate``'s: more accurate, and needed for nearly
     and exactly incompressible tissue) or ``"displacement"`` (the paper's). ``stabilisation`` is how a snap is crossed: ``"viscous"`` (damped
     steps, with ``eta``), ``"snap"`` (the energy is minimised at that d and the stable
-    equilibrium reached is recorded, see ``summary["snaps"]``) or ``"none"``. ``progress`` is
+    equilibrium reached is recorded, see ``summary["snaps"]``; the inertia of every state is then
+    counted, whatever ``inertia`` says) or ``"none"``. ``progress`` is
     called with a dict (``event``: ``"stage"``, ``"step"`` or ``"cut"``; ``d``, ``A``,
     ``message``...) after every stage, accepted state and cut. An unknown option raises
     ``ValueError``, a value of the wrong type ``TypeError``. Raises :class:`SolverError` (with
