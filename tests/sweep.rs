@@ -47,7 +47,6 @@ fn every_run_of_the_sweep_crossing_snaps_by_minimisation_reaches_the_end() {
 /// The sweep, each run's protocol the crease path changed by `crossing`, every run to reach
 /// 0.48 if `must_reach`; prints one line per run.
 fn sweep(crossing: impl Fn(Protocol) -> Protocol, must_reach: bool) {
-    let mut summary = Vec::new();
     for beta in [0.0, FRAC_PI_4, FRAC_PI_2] {
         for ratio in [3.0, 10.0, 30.0] {
             for bulk in [100.0, 1e4] {
@@ -103,17 +102,14 @@ fn sweep(crossing: impl Fn(Protocol) -> Protocol, must_reach: bool) {
                     },
                     Err(e) => panic!("{label}: the run failed without keeping its path: {e}"),
                 };
-                let line = format!(
+                // Each run's line as it ends, so that a failing run leaves the lines of those before it.
+                println!(
                     "{label}: {states} states to {last_d:.4}, {damped} damped, {snaps} snaps, {minimised} minimised; {end} ({:.1} s)",
                     started.elapsed().as_secs_f64()
                 );
-                // Each run's line as it ends too: a measurement stopped midway keeps what it measured.
-                eprintln!("{line}");
-                summary.push(line);
             }
         }
     }
-    println!("{}", summary.join("\n"));
 }
 
 /// The steps that a minimisation from the predictor corrected after Newton's iteration failed
