@@ -7,9 +7,10 @@
 //! wherever that is the same energy's) is the exact inertia of the converged state's tangent.
 
 use fiberfold::fem::added::NoAddedEnergy;
-use fiberfold::fem::{model_conditions, ElementKind, Newton, System};
+use fiberfold::fem::{ElementKind, Newton, System};
 use fiberfold::material::Bilayer;
 use fiberfold::mesh::MeshSpec;
+use fiberfold::protocol::model_conditions;
 use fiberfold::protocol::secondary::{branch, BranchKind};
 use fiberfold::protocol::{stages, Event, Protocol, StepRecord};
 use fiberfold::Parameters;

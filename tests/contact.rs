@@ -8,12 +8,11 @@ use fiberfold::fem::added::AddedEnergy;
 mod common;
 
 use common::homogeneous_material;
-use fiberfold::fem::boundary::{X, Y};
 use fiberfold::fem::contact::{Contact, ContactSettings, End, Pair, Plane};
 use fiberfold::fem::equilibrium::solve_with_contact;
 use fiberfold::fem::fields::cell_fields;
-use fiberfold::fem::{dof, Dirichlet, Newton, NewtonPolicy, System};
-use fiberfold::mesh::{Mesh, MeshSpec};
+use fiberfold::fem::{Dirichlet, Newton, NewtonPolicy, System};
+use fiberfold::mesh::{Mesh, MeshSpec, X, Y};
 
 /// Energy and gradient (all unknowns) of an added energy at `u`.
 fn energy_and_gradient(added: &dyn AddedEnergy, u: &[f64]) -> (f64, Vec<f64>) {
@@ -53,11 +52,11 @@ fn contact_force_and_tangent_match_central_differences() {
         let s = (x - 1.5).abs();
         let side = (x - 1.5).signum();
         if s < 1.2 {
-            u[dof(n, X)] = 1.5 + side * (0.1 * s - 0.04 + 0.003 * x * x) - x;
-            u[dof(n, Y)] = -2.0 * (1.2 - s) + 0.01 * x;
+            u[mesh.dofs().dof(n, X)] = 1.5 + side * (0.1 * s - 0.04 + 0.003 * x * x) - x;
+            u[mesh.dofs().dof(n, Y)] = -2.0 * (1.2 - s) + 0.01 * x;
         }
     }
-    u[dof(mesh.top()[1], X)] = -0.26;
+    u[mesh.dofs().dof(mesh.top()[1], X)] = -0.26;
     let settings = ContactSettings {
         penalty: 50.0,
         tolerance: 1e-3,
@@ -112,9 +111,9 @@ fn pressed_block(penalty: f64) -> (System, Vec<f64>, Contact, usize, Newton) {
         .left()
         .into_iter()
         .chain(mesh.right())
-        .map(|n| (dof(n, X), 0.0))
+        .map(|n| (mesh.dofs().dof(n, X), 0.0))
         .collect();
-    pairs.extend(mesh.bottom().into_iter().map(|n| (dof(n, Y), 0.0)));
+    pairs.extend(mesh.bottom().into_iter().map(|n| (mesh.dofs().dof(n, Y), 0.0)));
     let bc = Dirichlet::new(pairs).unwrap();
     let plane = Plane {
         normal: [0.0, -1.0],
@@ -203,7 +202,7 @@ fn the_line_search_starts_where_the_first_open_pair_closes() {
     let mut contact = Contact::new(&mesh, vec![Plane::left(0.0)], settings);
     let at = |x: f64| {
         let mut u = vec![0.0; mesh.num_dofs()];
-        u[dof(node, X)] = x - 0.25;
+        u[mesh.dofs().dof(node, X)] = x - 0.25;
         u
     };
     contact.search(&at(0.01));

@@ -7,13 +7,13 @@ mod common;
 
 use common::{boundary_values, distortion, error_norms, homogeneous_material, worst_nodal_error};
 use fiberfold::fem::added::{AddedEnergy, Block, Diagonal};
-use fiberfold::fem::boundary::{X, Y};
 use fiberfold::fem::linear_solver::multiply;
 use fiberfold::fem::ElementKind;
-use fiberfold::fem::{dof, equilibrium, model_conditions, Newton, NewtonError, NewtonPolicy, Reuse, System};
+use fiberfold::fem::{equilibrium, Newton, NewtonError, NewtonPolicy, Reuse, System};
 use fiberfold::homogeneous::homogeneous_state;
 use fiberfold::material::Bilayer;
-use fiberfold::mesh::{Mesh, MeshSpec};
+use fiberfold::mesh::{Mesh, MeshSpec, X, Y};
+use fiberfold::protocol::model_conditions;
 use fiberfold::Parameters;
 
 /// Numbers in scientific notation, for messages.
@@ -78,8 +78,8 @@ fn assembled_tangent_and_lifting_match_central_differences() {
     let bc = model_conditions(&mesh, 0.05).unwrap();
     let u: Vec<f64> = (0..mesh.num_dofs())
         .map(|i| {
-            let [x, y] = mesh.coordinates()[i / 2];
-            if i % 2 == 0 {
+            let [x, y] = mesh.coordinates()[mesh.dofs().node(i)];
+            if mesh.dofs().component(i) == X {
                 0.05 * (x + 2.0 * y).sin()
             } else {
                 0.04 * (1.3 * x - y).cos()
@@ -324,8 +324,8 @@ fn perfect_mesh_reproduces_the_homogeneous_state() {
             let bc = model_conditions(&mesh, d).unwrap();
             equilibrium::solve(&mut newton, &mut system, &mut u, &bc, &NewtonPolicy::default()).unwrap();
             for (&top, &interface) in mesh.top().iter().zip(&mesh.interface()) {
-                let lambda2_layer = 1.0 + (u[dof(top, Y)] - u[dof(interface, Y)]);
-                let lambda2_substrate = 1.0 + u[dof(interface, Y)] / depth;
+                let lambda2_layer = 1.0 + (u[mesh.dofs().dof(top, Y)] - u[mesh.dofs().dof(interface, Y)]);
+                let lambda2_substrate = 1.0 + u[mesh.dofs().dof(interface, Y)] / depth;
                 assert!((lambda2_layer - exact.lambda2_layer).abs() < 1e-10, "beta {beta} d {d}");
                 assert!(
                     (lambda2_substrate - exact.lambda2_substrate).abs() < 1e-10,
@@ -333,7 +333,10 @@ fn perfect_mesh_reproduces_the_homogeneous_state() {
                 );
             }
             for (n, &[x, _]) in mesh.coordinates().iter().enumerate() {
-                assert!((u[dof(n, X)] + d * x).abs() < 1e-10, "u_x = -d X at node {n}");
+                assert!(
+                    (u[mesh.dofs().dof(n, X)] + d * x).abs() < 1e-10,
+                    "u_x = -d X at node {n}"
+                );
             }
         }
     }
@@ -348,8 +351,8 @@ fn inertia_of_the_tangent_matches_dense_eigenvalues() {
     let bc = model_conditions(&mesh, 0.3).unwrap();
     let u: Vec<f64> = (0..mesh.num_dofs())
         .map(|i| {
-            let [x, y] = mesh.coordinates()[i / 2];
-            if i % 2 == X {
+            let [x, y] = mesh.coordinates()[mesh.dofs().node(i)];
+            if mesh.dofs().component(i) == X {
                 -0.3 * x + 0.1 * (2.0 * x).sin()
             } else {
                 0.2 * (y + 3.0) * (x + 0.5 * y).cos()
@@ -467,8 +470,8 @@ fn timing_of_one_newton_iteration() {
         let bc = model_conditions(&mesh, 0.02).unwrap();
         let u: Vec<f64> = (0..mesh.num_dofs())
             .map(|i| {
-                if i % 2 == X {
-                    -0.02 * mesh.coordinates()[i / 2][0]
+                if mesh.dofs().component(i) == X {
+                    -0.02 * mesh.coordinates()[mesh.dofs().node(i)][0]
                 } else {
                     0.0
                 }

@@ -7,11 +7,11 @@ mod common;
 
 use common::{boundary_values, distortion, error_norms, mixed_bifurcation, ErrorNorms};
 use fiberfold::fem::added::{AddedEnergy, Block, Diagonal};
-use fiberfold::fem::element::{gauss_rule, shape_functions};
+use fiberfold::fem::element::{PlaneElement, ReferenceElement};
 use fiberfold::fem::ElementKind;
 use fiberfold::fem::{equilibrium, Newton, NewtonPolicy, System};
 use fiberfold::material::{Bilayer, Hyperelastic, NeoHookean, Tensor2};
-use fiberfold::mesh::{Mesh, MeshSpec};
+use fiberfold::mesh::{Mesh, MeshSpec, X, Y};
 use fiberfold::Parameters;
 use std::f64::consts::PI;
 
@@ -79,11 +79,11 @@ impl AddedEnergy for NodalLoad {
 fn nodal_load(system: &System, a: f64) -> NodalLoad {
     let mut load = vec![0.0; system.mesh().num_dofs()];
     for (nodes, geometry) in system.mesh().elements().iter().zip(system.geometry()) {
-        for (g, (xi, _)) in gauss_rule().into_iter().enumerate() {
+        for (g, (xi, _)) in PlaneElement::quadrature().into_iter().enumerate() {
             let (b, w) = (body_force(a, geometry.points()[g]), geometry.weights()[g]);
-            for (&node, n) in nodes.iter().zip(shape_functions(xi)) {
-                load[2 * node] += w * n * b[0];
-                load[2 * node + 1] += w * n * b[1];
+            for (&node, n) in nodes.iter().zip(PlaneElement::shape_functions(xi)) {
+                load[system.mesh().dofs().dof(node, X)] += w * n * b[0];
+                load[system.mesh().dofs().dof(node, Y)] += w * n * b[1];
             }
         }
     }

@@ -12,9 +12,9 @@
 mod common;
 
 use fiberfold::fem::added::{AddedEnergy, Block};
-use fiberfold::fem::{dof, equilibrium, Dirichlet, Newton, NewtonPolicy, System};
+use fiberfold::fem::{equilibrium, Dirichlet, Newton, NewtonPolicy, System};
 use fiberfold::material::Bilayer;
-use fiberfold::mesh::{Mesh, MeshSpec};
+use fiberfold::mesh::{Mesh, MeshSpec, X};
 use fiberfold::Parameters;
 
 /// The bistable element and its spring: one group, `[x, g]`.
@@ -84,7 +84,7 @@ fn chain(k: f64) -> (System, BistableChain, usize, usize) {
         })
         .unwrap();
     let corner = mesh.top()[0];
-    let (x, g) = (dof(centre, 0), dof(corner, 0));
+    let (x, g) = (mesh.dofs().dof(centre, X), mesh.dofs().dof(corner, X));
     let system = System::new(mesh, &Bilayer::new(&soft)).unwrap();
     let added = BistableChain {
         groups: vec![vec![x, g]],
@@ -97,7 +97,7 @@ fn chain(k: f64) -> (System, BistableChain, usize, usize) {
 fn held(system: &System, g: (usize, f64)) -> Dirichlet {
     let on_boundary = |[x, y]: [f64; 2]| x == 0.0 || x == 100.0 || y == -100.0 || y == 1.0;
     let pairs = (0..system.num_dofs())
-        .filter(|&d| on_boundary(system.mesh().coordinates()[d / 2]))
+        .filter(|&d| on_boundary(system.mesh().coordinates()[system.mesh().dofs().node(d)]))
         .map(|d| (d, if d == g.0 { g.1 } else { 0.0 }))
         .collect();
     Dirichlet::new(pairs).unwrap()
@@ -222,8 +222,8 @@ fn the_minimisation_leaves_a_saddle_along_its_negative_curvature() {
 #[test]
 fn every_state_of_a_run_through_a_snap_is_an_undamped_equilibrium_with_the_reported_inertia() {
     use fiberfold::fem::added::NoAddedEnergy;
-    use fiberfold::fem::model_conditions;
     use fiberfold::fem::ElementKind;
+    use fiberfold::protocol::model_conditions;
     use fiberfold::protocol::{stages, Event};
     use fiberfold::studies::simulate::{Crossing, MeshChoice, SimulateOptions};
 

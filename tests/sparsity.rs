@@ -6,9 +6,10 @@
 use fiberfold::fem::added::{AddedEnergy, Block};
 use fiberfold::fem::inertia::BackgroundInertia;
 use fiberfold::fem::linear_solver::multiply;
-use fiberfold::fem::{model_conditions, SparseLdlt, System};
+use fiberfold::fem::{SparseLdlt, System};
 use fiberfold::material::Bilayer;
-use fiberfold::mesh::{Mesh, MeshSpec};
+use fiberfold::mesh::{Mesh, MeshSpec, X, Y};
+use fiberfold::protocol::model_conditions;
 use fiberfold::Parameters;
 
 /// A quadratic energy `1/2 c |u_g - 0.1|^2` on each group's unknowns, announcing `likely`
@@ -61,10 +62,11 @@ fn groups_that_fit_keep_the_stored_entries_and_the_tangent_adds_them() {
     let elastic_times_v = multiply(elastic.tangent.as_ref().unwrap().as_ref(), &v);
     let top = mesh.top();
     let (left, right) = (top[1], top[top.len() - 2]);
-    let one_node = vec![vec![2 * left, 2 * left + 1]];
-    let distant = vec![vec![2 * left, 2 * left + 1, 2 * right, 2 * right + 1]];
+    let dofs = mesh.dofs();
+    let one_node = vec![dofs.node_dofs(left).collect()];
+    let distant = vec![dofs.node_dofs(left).chain(dofs.node_dofs(right)).collect()];
     let (middle, bottom) = (top[top.len() / 2], mesh.bottom()[1]);
-    let announced = vec![vec![2 * middle + 1, 2 * bottom]];
+    let announced = vec![vec![dofs.dof(middle, Y), dofs.dof(bottom, X)]];
     let mut check = |groups: &Vec<Vec<usize>>| {
         let springs = Springs {
             groups: groups.clone(),

@@ -13,7 +13,7 @@ mod common;
 
 use fiberfold::material::Bilayer;
 use fiberfold::mesh::MeshSpec;
-use fiberfold::protocol::{stages, Event, Protocol, SnapSettings};
+use fiberfold::protocol::{stages, Event, Protocol, SnapCrossing, SnapSettings};
 use fiberfold::Parameters;
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
@@ -36,8 +36,7 @@ fn every_damped_run_of_the_sweep_reaches_the_end_or_says_where_it_stopped() {
 fn every_run_of_the_sweep_crossing_snaps_by_minimisation_reaches_the_end() {
     sweep(
         |mut protocol| {
-            protocol.stabilisation = None;
-            protocol.snaps = Some(SnapSettings::default());
+            protocol.crossing = SnapCrossing::Minimised(SnapSettings::default());
             protocol
         },
         true,
@@ -128,7 +127,7 @@ fn the_steps_corrected_by_minimisation_are_undamped_stable_equilibria() {
     };
     let materials = Bilayer::new(&params);
     let mut protocol = Protocol::new(2.0 * PI / 10.0, 0.05, 0.48).with_crease_path();
-    (protocol.stabilisation, protocol.snaps) = (None, Some(SnapSettings::default()));
+    protocol.crossing = SnapCrossing::Minimised(SnapSettings::default());
     let policy = fiberfold::fem::NewtonPolicy::default();
     let (mut corrected, mut worst) = (0, 0.0f64);
     let outcome = stages::run(&materials, small_mesh(), &protocol, &mut |event| {
@@ -168,7 +167,7 @@ fn a_nearly_incompressible_run_crosses_its_snaps_by_minimisation() {
         ..Parameters::default()
     };
     let mut protocol = Protocol::new(2.0 * PI / 10.0, 0.05, 0.48).with_crease_path();
-    (protocol.stabilisation, protocol.snaps) = (None, Some(SnapSettings::default()));
+    protocol.crossing = SnapCrossing::Minimised(SnapSettings::default());
     let mut snaps = 0;
     let outcome = stages::run(&Bilayer::new(&params), small_mesh(), &protocol, &mut |event| {
         if let Event::Step { record, .. } = event {

@@ -7,7 +7,7 @@ use fiberfold::fem::ElementKind;
 use fiberfold::homogeneous::HomogeneousRow;
 use fiberfold::material::Bilayer;
 use fiberfold::mesh::MeshSpec;
-use fiberfold::output::vtu::{vtk_cell, write_vtu, DataArray};
+use fiberfold::output::vtu::{write_vtu, DataArray};
 use fiberfold::parameters::validate_compression;
 use fiberfold::stability::discrete::DiscreteOptions;
 use fiberfold::stability::{Method, K_MAX};
@@ -15,7 +15,7 @@ use fiberfold::studies::homogeneous::{columns, CSV_HEADER};
 use fiberfold::studies::orientation::Modes;
 use fiberfold::studies::simulate::{
     self, amplitude_header, amplitude_row, cell_arrays, displacement_array, Progress, SimulateOptions,
-    SimulationSummary, StateFields,
+    SimulationSummary, StateFields, CELL_TYPE,
 };
 use fiberfold::studies::stability::{DispersionCurve, OnsetSummary, SweepStudy};
 use fiberfold::Error;
@@ -219,7 +219,7 @@ impl PyState {
             .fields
             .cells
             .iter()
-            .flat_map(|c| vtk_cell(c).map(|n| n as i64))
+            .flat_map(|c| CELL_TYPE.vtk_cell(c).map(|n| n as i64))
             .collect();
         Array2::from_shape_vec((self.fields.cells.len(), 9), flat)
             .expect("9 per cell")
@@ -250,7 +250,15 @@ impl PyState {
     /// Writes the state as a `.vtu` file (the CLI's snapshot format).
     fn write_vtu(&self, path: PathBuf) -> PyResult<()> {
         let f = &self.fields;
-        write_vtu(&path, &f.points, &f.cells, &self.point_arrays(), &self.cell_arrays()).map_err(to_py)
+        write_vtu(
+            &path,
+            &f.points,
+            &CELL_TYPE,
+            &f.cells,
+            &self.point_arrays(),
+            &self.cell_arrays(),
+        )
+        .map_err(to_py)
     }
 }
 

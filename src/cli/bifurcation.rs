@@ -42,7 +42,10 @@ pub fn run(args: &BifurcationArgs) -> Result<()> {
         "bifurcation of the perfect system: inertia of the tangent along the homogeneous path, {} unknowns",
         mesh.num_dofs()
     );
-    if let Some(note) = mesh.element.locking_note(&params) {
+    if let Some(note) = mesh
+        .element
+        .locking_note(params.bulk_to_shear_ratio(), params.incompressible)
+    {
         println!("{note}");
     }
     let r = bifurcation::run(&params, &study, &args.out)?;

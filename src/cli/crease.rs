@@ -1,40 +1,12 @@
 //! `fiberfold crease`: the crease onset of the bilayer (energy criterion), converged in the mesh.
 
 use super::common::{report_files, ParamArgs};
-use super::simulate::ElementChoice;
-use clap::{Args, ValueEnum};
+use clap::Args;
+use fiberfold::fem::ElementKind;
 use fiberfold::studies::crease::{self, CreaseOptions, CreaseReport, CreaseStudy, Criterion, FoldThreshold};
 use fiberfold::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
-
-/// Which creased state the energy criterion compares with the flat state.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum CriterionChoice {
-    /// The fold held on the symmetry plane over its whole length a (Hong, Zhao & Suo's).
-    Held,
-    /// The fold released to frictionless contact with the plane: the equilibrium crease it
-    /// closes to (a search from the held fold's threshold, each step a fold and a release).
-    Released,
-}
-
-impl From<CriterionChoice> for Criterion {
-    fn from(choice: CriterionChoice) -> Self {
-        match choice {
-            CriterionChoice::Held => Criterion::Held,
-            CriterionChoice::Released => Criterion::Released,
-        }
-    }
-}
-
-impl From<Criterion> for CriterionChoice {
-    fn from(criterion: Criterion) -> Self {
-        match criterion {
-            Criterion::Held => CriterionChoice::Held,
-            Criterion::Released => CriterionChoice::Released,
-        }
-    }
-}
 
 #[derive(Args)]
 pub struct CreaseArgs {
@@ -89,12 +61,12 @@ pub struct CreaseArgs {
 
     /// Finite element (mixed, the default: the more accurate, and the only one for
     /// incompressible = true; displacement locks above K/mu ~ 100).
-    #[arg(long, value_enum, default_value_t = defaults().element.into())]
-    pub element: ElementChoice,
+    #[arg(long, value_enum, default_value_t = defaults().element)]
+    pub element: ElementKind,
 
     /// The creased state compared with the flat state.
-    #[arg(long, value_enum, default_value_t = defaults().criterion.into())]
-    pub criterion: CriterionChoice,
+    #[arg(long, value_enum, default_value_t = defaults().criterion)]
+    pub criterion: Criterion,
 
     /// Converge each threshold in the mesh: the base mesh (--nx, --layer-elements,
     /// --substrate-elements) with its element counts times 1, 2, 3, ... until the threshold
@@ -129,8 +101,8 @@ pub fn run(args: &CreaseArgs) -> Result<()> {
         substrate_elements: args.substrate_elements,
         ratio: args.ratio,
         layer_grading: args.layer_grading,
-        element: args.element.into(),
-        criterion: args.criterion.into(),
+        element: args.element,
+        criterion: args.criterion,
         convergence: !args.no_convergence,
         mesh_tolerance: args.mesh_tolerance,
         max_meshes: args.max_meshes,
@@ -146,7 +118,11 @@ pub fn run(args: &CreaseArgs) -> Result<()> {
         study.scan.from,
         study.scan.to
     );
-    if let Some(note) = study.mesh.element.locking_note(&params) {
+    if let Some(note) = study
+        .mesh
+        .element
+        .locking_note(params.bulk_to_shear_ratio(), params.incompressible)
+    {
         println!("{note}");
     }
     let bar = ProgressBar::new_spinner();

@@ -1,11 +1,10 @@
 //! `fiberfold map`: the instability map over two parameters, resumable and shardable.
 
 use super::common::{progress, report_files, ParamArgs};
-use super::crease::CriterionChoice;
-use super::simulate::ElementChoice;
 use clap::Args;
+use fiberfold::fem::ElementKind;
 use fiberfold::output::lock::OutputLock;
-use fiberfold::studies::crease::CreaseMesh;
+use fiberfold::studies::crease::{CreaseMesh, Criterion};
 use fiberfold::studies::map::{self, Axis, MapSettings, MapStudy, Shard};
 use fiberfold::Result;
 use std::path::PathBuf;
@@ -68,8 +67,8 @@ pub struct MapArgs {
     /// Finite element of the crease search and the nonlinear runs (mixed, the default: the more
     /// accurate, and the only one for incompressible = true; displacement locks above
     /// K/mu ~ 100).
-    #[arg(long, value_enum, default_value_t = MapSettings::default().crease_mesh.element.into())]
-    pub element: ElementChoice,
+    #[arg(long, value_enum, default_value_t = MapSettings::default().crease_mesh.element)]
+    pub element: ElementKind,
 
     /// Nonlinear run: wavelengths 2 pi/k0 across the half domain (2 x waves an integer).
     #[arg(long, default_value_t = 4.0, allow_negative_numbers = true)]
@@ -107,8 +106,8 @@ pub struct MapArgs {
     #[arg(long, default_value_t = MapSettings::default().crease_mesh.substrate)]
     pub crease_substrate_elements: usize,
     /// Crease search: the creased state compared with the flat state.
-    #[arg(long, value_enum, default_value_t = MapSettings::default().crease_criterion.into())]
-    pub crease_criterion: CriterionChoice,
+    #[arg(long, value_enum, default_value_t = MapSettings::default().crease_criterion)]
+    pub crease_criterion: Criterion,
 
     /// Compute only the points with index % N == I (I/N; e.g. $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT),
     /// into the same folder as the other shards; assemble them with --collect.
@@ -150,12 +149,12 @@ impl MapArgs {
                     nx: self.crease_nx,
                     layer: self.crease_layer_elements,
                     substrate: self.crease_substrate_elements,
-                    element: self.element.into(),
+                    element: self.element,
                     ..defaults.crease_mesh
                 },
                 fold_lengths: self.fold.clone(),
                 keep_poisson: !self.free_bulk,
-                crease_criterion: self.crease_criterion.into(),
+                crease_criterion: self.crease_criterion,
                 crease_refinement: match self.no_crease_convergence {
                     true => None,
                     false => defaults.crease_refinement,

@@ -1,7 +1,7 @@
 //! `fiberfold simulate`: the paper's finite-element protocol, A(d), onset estimates, VTU, Fig. 3.
 
 use super::common::{report_files, ParamArgs};
-use clap::{Args, ValueEnum};
+use clap::Args;
 use fiberfold::fem::memory::{available_bytes, MemoryEstimate};
 use fiberfold::fem::ElementKind;
 use fiberfold::mesh::{MeshPreset, MeshSpec};
@@ -12,104 +12,17 @@ use fiberfold::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 
-/// The mesh presets (coarse, fine, extra).
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum MeshChoicePreset {
-    /// 100 x (2 + 25) elements, h0 = 0.5: 22,110 unknowns.
-    Coarse,
-    /// 200 x (4 + 45) elements, h0 = 0.25: 79,398 unknowns.
-    Fine,
-    /// 400 x (8 + 90) elements, h0 = 0.125: 315,594 unknowns.
-    Extra,
-}
-
-/// The finite element.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum ElementChoice {
-    /// Q2 displacements, full 3x3 integration; locks as K/mu grows (usable up to K/mu ~ 100).
-    Displacement,
-    /// Q2 displacements with a discontinuous linear pressure condensed per element (Q2/P1disc):
-    /// no locking up to K/mu = 10^6, same unknowns, about 5 % more time per iteration.
-    Mixed,
-}
-
-impl From<MeshChoicePreset> for MeshPreset {
-    fn from(choice: MeshChoicePreset) -> Self {
-        match choice {
-            MeshChoicePreset::Coarse => MeshPreset::Coarse,
-            MeshChoicePreset::Fine => MeshPreset::Fine,
-            MeshChoicePreset::Extra => MeshPreset::Extra,
-        }
-    }
-}
-
-impl From<MeshPreset> for MeshChoicePreset {
-    fn from(preset: MeshPreset) -> Self {
-        match preset {
-            MeshPreset::Coarse => MeshChoicePreset::Coarse,
-            MeshPreset::Fine => MeshChoicePreset::Fine,
-            MeshPreset::Extra => MeshChoicePreset::Extra,
-        }
-    }
-}
-
-impl From<ElementKind> for ElementChoice {
-    fn from(kind: ElementKind) -> Self {
-        match kind {
-            ElementKind::Displacement => ElementChoice::Displacement,
-            ElementKind::Mixed => ElementChoice::Mixed,
-        }
-    }
-}
-
-impl From<Crossing> for CrossingChoice {
-    fn from(crossing: Crossing) -> Self {
-        match crossing {
-            Crossing::Snap => CrossingChoice::Snap,
-            Crossing::Viscous => CrossingChoice::Viscous,
-            Crossing::None => CrossingChoice::None,
-        }
-    }
-}
-
 /// The library's defaults, which every flag below shows.
 fn defaults() -> SimulateOptions {
     SimulateOptions::default()
-}
-
-impl From<ElementChoice> for ElementKind {
-    fn from(choice: ElementChoice) -> Self {
-        match choice {
-            ElementChoice::Displacement => ElementKind::Displacement,
-            ElementChoice::Mixed => ElementKind::Mixed,
-        }
-    }
-}
-
-/// How stage 3 crosses a snap.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum CrossingChoice {
-    Snap,
-    Viscous,
-    None,
-}
-
-impl From<CrossingChoice> for Crossing {
-    fn from(choice: CrossingChoice) -> Self {
-        match choice {
-            CrossingChoice::Snap => Crossing::Snap,
-            CrossingChoice::Viscous => Crossing::Viscous,
-            CrossingChoice::None => Crossing::None,
-        }
-    }
 }
 
 /// Mesh of the half domain 0 <= X <= 50, -50 <= Y <= 1: a preset, optionally modified.
 #[derive(Args, Clone, Debug)]
 pub struct MeshArgs {
     /// Mesh preset.
-    #[arg(long, value_enum, default_value_t = defaults().mesh.preset.into())]
-    pub mesh: MeshChoicePreset,
+    #[arg(long, value_enum, default_value_t = defaults().mesh.preset)]
+    pub mesh: MeshPreset,
     /// Elements along X (overrides the preset).
     #[arg(long)]
     pub nx: Option<usize>,
@@ -129,21 +42,21 @@ pub struct MeshArgs {
     /// (Table 1's 3 too: Fig. 7's first contact 0.239 vs 0.256 on the fine mesh, refined meshes
     /// 0.239-0.241) for about 5 % more time per Newton iteration, and the only one for
     /// incompressible = true. displacement, the paper's element, locks above K/mu ~ 100.
-    #[arg(long, value_enum, default_value_t = defaults().mesh.element.into())]
-    pub element: ElementChoice,
+    #[arg(long, value_enum, default_value_t = defaults().mesh.element)]
+    pub element: ElementKind,
 }
 
 impl MeshArgs {
     /// The mesh as chosen, for the library to resolve.
     pub fn choice(&self) -> MeshChoice {
         MeshChoice {
-            preset: self.mesh.into(),
+            preset: self.mesh,
             nx: self.nx,
             layer_elements: self.layer_elements,
             substrate_elements: self.substrate_elements,
             h0: self.h0,
             grading: self.grading,
-            element: self.element.into(),
+            element: self.element,
             ..MeshChoice::default()
         }
     }
@@ -231,8 +144,8 @@ pub struct SimulateArgs {
     /// reached (snaps.json: every recorded state an exact equilibrium; in contact a failed step
     /// from a stable state is corrected by minimisation too, `minimised` in amplitude.csv;
     /// slower than `viscous` through contact); `none` stops where Newton's method fails.
-    #[arg(long, value_enum, default_value_t = defaults().crossing.into())]
-    pub stabilisation: CrossingChoice,
+    #[arg(long, value_enum, default_value_t = defaults().crossing)]
+    pub stabilisation: Crossing,
 
     /// Viscous stabilisation's damping eta / h relative to the reference stiffness on a step h
     /// in d, in (0, inf) (with --stabilisation viscous).
@@ -276,7 +189,7 @@ impl SimulateArgs {
             imperfection2: self.imperfection2,
             imperfection2_waves: self.imperfection2_waves,
             contact: !self.no_contact,
-            crossing: self.stabilisation.into(),
+            crossing: self.stabilisation,
             eta: self.eta,
             inertia: !self.no_inertia,
             vtu_every: self.vtu_every,
@@ -306,7 +219,11 @@ pub fn run(args: &SimulateArgs) -> Result<()> {
         memory.factor_entries,
         available_bytes().map_or(String::new(), |a| format!("; {:.0} MB available", a / 1e6))
     );
-    if let Some(note) = study.mesh.element.locking_note(&params) {
+    if let Some(note) = study
+        .mesh
+        .element
+        .locking_note(params.bulk_to_shear_ratio(), params.incompressible)
+    {
         println!("{note}");
     }
     let bar = ProgressBar::new(1000);

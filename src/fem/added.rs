@@ -1,5 +1,5 @@
 //! Energies added to the elastic one, each a sum of terms that couple a few unknowns: contact
-//! penalties ([`super::contact`]) and viscous stabilisation ([`crate::protocol::stabilisation`]).
+//! penalties ([`super::contact`]) and the viscous stabilisation of a path across a snap.
 //!
 //! A term is a *group* of global unknowns with its energy, gradient and (dense) Hessian. The
 //! assembly treats a group like an element: its block enters the sparsity pattern of `K_ff`,

@@ -14,11 +14,10 @@
 
 use super::added::{AddedEnergy, Block, NoAddedEnergy};
 use super::boundary::Dirichlet;
-use super::element::{self, ElementGeometry, ElementMatrix, ElementState, ElementVector, DOFS};
-use super::load_path::LoadPath;
-use super::mixed::{MixedElement, Volumetric, PRESSURES};
+use super::element::{
+    ElementGeometry, ElementMatrix, ElementState, ElementVector, FiniteElement, PlaneElement, DOFS, PRESSURES,
+};
 use crate::error::{Error, Result};
-use crate::fem::ElementKind;
 use crate::material::{Bilayer, Tissue};
 use crate::mesh::{Mesh, Region};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
@@ -73,7 +72,7 @@ pub struct Assembled {
     /// Total strain energy.
     pub energy: f64,
     /// The potential whose gradient the residual is (without the added terms): `energy`,
-    /// except where the mixed element's multipliers are held fixed ([`crate::fem::mixed`]).
+    /// except where the mixed element's multipliers are held fixed ([`crate::fem::element::mixed`]).
     pub potential: f64,
     /// Energy of the added terms (zero without them).
     pub added_energy: f64,
@@ -110,16 +109,17 @@ pub fn norm(v: &[f64]) -> f64 {
 /// A mesh with its materials and element geometry, ready to assemble.
 pub struct System {
     mesh: Mesh,
-    /// What the load does to the bilayer, and the strain `d` the tissues are at.
-    load_path: LoadPath,
+    /// The tissues at no load, which a growth load grows.
+    unloaded: Bilayer,
+    /// The load's strain `d` the tissues are at.
     load: f64,
     materials: Vec<Tissue>,
     geometry: Vec<ElementGeometry>,
-    /// Pressure spaces of the mixed element (empty for the displacement element).
-    mixed: Vec<MixedElement>,
+    /// The finite element of every element, of the kind the mesh's spec names.
+    elements: Vec<Box<dyn FiniteElement>>,
     /// Whether some element resists volume change through multipliers (incompressible tissue,
     /// or a bulk modulus far above the shear modulus): the unknowns' vector then ends with
-    /// [`PRESSURES`] multipliers per element ([`crate::fem::mixed`]).
+    /// [`PRESSURES`] multipliers per element ([`crate::fem::element::mixed`]).
     multipliers: bool,
     pattern: Option<Pattern>,
     /// Element-matrix entries of the last assembly (reused to avoid reallocating).
@@ -135,15 +135,15 @@ impl System {
         let geometry = mesh
             .elements()
             .iter()
-            .map(|nodes| ElementGeometry::new(&nodes.map(|n| coordinates[n])))
+            .map(|nodes| ElementGeometry::new::<PlaneElement>(&nodes.map(|n| coordinates[n])))
             .collect::<Result<Vec<_>>>()?;
         let mut system = System {
             mesh,
-            load_path: LoadPath::new(materials),
+            unloaded: *materials,
             load: 0.0,
             materials: Vec::new(),
             geometry,
-            mixed: Vec::new(),
+            elements: Vec::new(),
             multipliers: false,
             pattern: None,
             entries: Vec::new(),
@@ -152,7 +152,7 @@ impl System {
         Ok(system)
     }
 
-    /// Gives every element its tissue from `materials`, and the mixed element its pressure space.
+    /// Gives every element its tissue from `materials`, in an element of the mesh's kind.
     fn set_materials(&mut self, materials: &Bilayer) {
         self.materials = self
             .mesh
@@ -163,31 +163,24 @@ impl System {
                 Region::Substrate => materials.substrate_tissue(),
             })
             .collect();
-        self.mixed = match self.mesh.spec().element {
-            ElementKind::Displacement => Vec::new(),
-            ElementKind::Mixed => self
-                .geometry
-                .iter()
-                .zip(&self.materials)
-                .map(|(g, t)| MixedElement::new(g, t, multipliers::augmentation(materials, t)))
-                .collect(),
-        };
-        self.multipliers = self
-            .mixed
+        let kind = self.mesh.spec().element;
+        self.elements = self
+            .geometry
             .iter()
-            .any(|m| matches!(m.volumetric(), Volumetric::Augmented { .. }));
+            .zip(&self.materials)
+            .map(|(g, t)| kind.element(g, t, multipliers::augmentation(materials, t)))
+            .collect();
+        self.multipliers = self.elements.iter().any(|element| element.has_multipliers());
     }
 
-    /// Puts the system at the load's strain `d`: under growth its tissues grow to `g = 1/(1 - d)`
-    /// (under compression they stay). Returns the boundary conditions at `d`.
-    pub fn load_to(&mut self, d: f64) -> Result<Dirichlet> {
-        let conditions = self.load_path.conditions(&self.mesh, d)?;
-        if self.load_path.grows() && d != self.load {
-            let materials = self.load_path.materials_at(d);
+    /// Puts the tissues at the load's strain `d`: under growth they grow to `g = 1/(1 - d)`
+    /// (under compression they stay). The boundary conditions are the load path's.
+    pub fn set_load(&mut self, d: f64) {
+        if self.unloaded.load.is_growth() && d != self.load {
+            let (materials, _) = self.unloaded.at_load(d);
             self.set_materials(&materials);
         }
         self.load = d;
-        Ok(conditions)
     }
 
     /// The load's strain `d` the system is at.
@@ -195,14 +188,9 @@ impl System {
         self.load
     }
 
-    /// What the load does to the bilayer.
-    pub fn load_path(&self) -> &LoadPath {
-        &self.load_path
-    }
-
-    /// The layer's growth `g` along `X` at the current load.
-    pub fn layer_growth(&self) -> f64 {
-        self.load_path.materials_at(self.load).layer.growth.stretches[0]
+    /// The tissues at no load.
+    pub fn unloaded_materials(&self) -> &Bilayer {
+        &self.unloaded
     }
 
     /// The system of the same elements on `mesh`, whose nodes have moved (an imperfect
@@ -211,7 +199,7 @@ impl System {
     pub fn with_moved_nodes(self, mesh: Mesh, materials: &Bilayer) -> Result<Self> {
         assert_eq!(mesh.elements(), self.mesh.elements(), "the same elements");
         let mut moved = System::new(mesh, materials)?;
-        moved.load_to(self.load)?;
+        moved.set_load(self.load);
         moved.pattern = self.pattern;
         Ok(moved)
     }
@@ -237,9 +225,9 @@ impl System {
         &self.geometry
     }
 
-    /// The mixed element's pressure spaces, one per element (empty for the displacement element).
-    pub fn mixed_elements(&self) -> &[MixedElement] {
-        &self.mixed
+    /// The finite element of every element.
+    pub fn elements(&self) -> &[Box<dyn FiniteElement>] {
+        &self.elements
     }
 
     /// Element `e`'s force, energy and smallest `J` at its nodal displacements `u` (and
@@ -254,20 +242,15 @@ impl System {
         penalty_scale: f64,
         stiffness: Option<&mut ElementMatrix>,
     ) -> Result<ElementState> {
-        match self.mixed.get(e) {
-            Some(mixed) => Ok(mixed
-                .evaluate(&self.geometry[e], u, lambda, penalty_scale, stiffness)?
-                .state),
-            None => element::evaluate(&self.geometry[e], &self.materials[e], u, stiffness),
-        }
+        self.elements[e].evaluate(&self.geometry[e], u, lambda, penalty_scale, stiffness)
     }
 
-    /// Number of unknowns: two displacements per node, then, for incompressible tissue, the
-    /// multipliers of every element.
+    /// Number of unknowns: the displacements of every node, then, for incompressible tissue,
+    /// the multipliers of every element.
     pub fn num_dofs(&self) -> usize {
         self.mesh.num_dofs()
             + if self.multipliers {
-                PRESSURES * self.mixed.len()
+                PRESSURES * self.elements.len()
             } else {
                 0
             }
@@ -275,8 +258,8 @@ impl System {
 
     /// Nodal displacements of element `e` from the global vector `u`.
     pub fn element_displacements(&self, e: usize, u: &[f64]) -> ElementVector {
-        let nodes = &self.mesh.elements()[e];
-        std::array::from_fn(|i| u[2 * nodes[i / 2] + i % 2])
+        let (dofs, nodes) = (self.mesh.dofs(), &self.mesh.elements()[e]);
+        std::array::from_fn(|i| u[dofs.global(nodes, i)])
     }
 
     /// The free unknowns when `bc` is prescribed, increasing; position = index in the reduced system.
@@ -315,7 +298,7 @@ impl System {
     }
 
     /// [`System::assemble_with`] with the multipliers' penalty multiplied by `penalty_scale`
-    /// ([`crate::fem::mixed`]; the method of multipliers raises it where they converge slowly).
+    /// ([`crate::fem::element::mixed`]; the method of multipliers raises it where they converge slowly).
     pub fn assemble_penalised(
         &mut self,
         u: &[f64],
@@ -359,11 +342,12 @@ impl System {
         let mut residual = vec![0.0; pattern.free.len()];
         let mut reactions = vec![0.0; bc.len()];
         let (mut energy, mut potential, mut min_jacobian) = (0.0, 0.0, f64::INFINITY);
+        let dofs = self.mesh.dofs();
         for (nodes, (state, lifted)) in self.mesh.elements().iter().zip(&results) {
-            for i in 0..DOFS {
-                match pattern.slots[2 * nodes[i / 2] + i % 2] {
-                    Slot::Free(f) => residual[f] += state.force[i] + lifted[i],
-                    Slot::Fixed(c) => reactions[c] += state.force[i],
+            for (i, (force, lift)) in state.force.iter().zip(lifted).enumerate() {
+                match pattern.slots[dofs.global(nodes, i)] {
+                    Slot::Free(f) => residual[f] += force + lift,
+                    Slot::Fixed(c) => reactions[c] += force,
                 }
             }
             energy += state.energy;
@@ -449,8 +433,8 @@ impl System {
         lift: Option<&[f64]>,
         chunk: &mut [f64],
     ) -> Result<(ElementState, ElementVector)> {
-        let nodes = &self.mesh.elements()[e];
-        let slots: [Slot; DOFS] = std::array::from_fn(|i| pattern.slots[2 * nodes[i / 2] + i % 2]);
+        let (dofs, nodes) = (self.mesh.dofs(), &self.mesh.elements()[e]);
+        let slots: [Slot; DOFS] = std::array::from_fn(|i| pattern.slots[dofs.global(nodes, i)]);
         let needs_tangent = !chunk.is_empty() || lift.is_some();
         let mut k = [[0.0; DOFS]; DOFS];
         let state = self.element_state(

@@ -5,7 +5,7 @@
 //! - contact ([`crate::fem::contact::solve`]): a new search on the deformed surface and Uzawa's
 //!   multiplier update, until the penetration is within tolerance and the loaded pairs no
 //!   longer change;
-//! - inside it, the mixed element's incompressibility multipliers ([`crate::fem::mixed`]): the
+//! - inside it, the mixed element's incompressibility multipliers ([`crate::fem::element::mixed`]): the
 //!   method of multipliers, until the constraint holds.
 //!
 //! The inner solver is Newton's iteration, or, for a snap, the minimisation of the energy
@@ -18,7 +18,7 @@ use super::added::{AddedEnergy, Sum};
 use super::assembly::System;
 use super::boundary::Dirichlet;
 use super::contact::{Contact, ContactUpdate};
-use super::mixed::PressureUpdate;
+use super::element::PressureUpdate;
 use super::newton::{largest_move, Equations, Newton, NewtonError, NewtonPolicy, NewtonReport, Precision, Updates};
 
 /// What an outer loop does between two converged solves.

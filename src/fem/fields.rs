@@ -2,12 +2,13 @@
 //! (the middle point of the 3x3 Gauss rule, `xi = eta = 0`).
 
 use super::assembly::System;
+use super::element::{PlaneElement, ReferenceElement};
 use crate::error::Result;
-use crate::material::{jacobian, von_mises, Bilayer, Fibre, Hyperelastic, Tensor2};
+use crate::material::{jacobian, von_mises, Bilayer, Fibre, Tensor2};
 use crate::mesh::Region;
 
-/// The Gauss point at the element centre: index 4 of the 3x3 rule.
-const CENTRE: usize = 4;
+/// The quadrature point at the element centre.
+const CENTRE: usize = PlaneElement::CENTRE;
 
 /// Element-centre fields of one displacement.
 #[derive(Clone, Debug, Default)]
@@ -40,21 +41,7 @@ pub fn cell_fields(system: &System, materials: &Bilayer, u: &[f64]) -> Result<Ce
     for (e, (geometry, material)) in system.geometry().iter().zip(system.materials()).enumerate() {
         let u_e = system.element_displacements(e, u);
         let f: Tensor2 = geometry.deformation_gradient(CENTRE, &u_e);
-        let sigma = match system.mixed_elements().get(e) {
-            None => material.cauchy(&f)?,
-            Some(mixed) => {
-                // sigma = sigma_rest + p / J I, `p` the condensed `kappa ln Je` (`fem::mixed`).
-                let pressure = mixed
-                    .evaluate(geometry, &u_e, &system.element_multipliers(e, u), 1.0, None)?
-                    .pressure;
-                let p: f64 = mixed.basis(CENTRE).iter().zip(&pressure).map(|(a, b)| a * b).sum();
-                let mut sigma = mixed.rest().cauchy(&f)?;
-                for i in [0, 2, 3] {
-                    sigma[i] += p / jacobian(&f);
-                }
-                sigma
-            }
-        };
+        let sigma = system.elements()[e].cauchy(geometry, CENTRE, &u_e, &system.element_multipliers(e, u))?;
         fields.jacobian.push(jacobian(&f));
         fields.cauchy.push(sigma);
         fields.von_mises.push(von_mises(&sigma));

@@ -27,8 +27,8 @@
 //! With `factorise_start`, the tangent at the starting iterate (the predictor of a load step)
 //! is factorised first, and the iteration starts with that factor: from a good predictor it
 //! converges in two or three steps. Its inertia is reported (`start_negative_pivots`): the
-//! caller may take it for the solution's where the predictor was close
-//! ([`crate::protocol::augmentation`]).
+//! caller may take it for the solution's where the predictor was close (the contact loop of a
+//! path to a crease does).
 //!
 //! This is the iteration alone, a function of the equations, the start and a
 //! [`NewtonPolicy`] passed per call; the solver keeps only its factorisation between calls. The

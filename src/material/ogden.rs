@@ -8,8 +8,8 @@
 use super::isotropic::{Invariants, IsotropicEnergy};
 use num_dual::DualNum;
 
-/// The most terms an Ogden law may have.
-pub const MAX_TERMS: usize = 3;
+/// The most terms an Ogden law may have (the parameters' limit).
+pub const MAX_TERMS: usize = crate::parameters::OGDEN_TERMS;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ogden {

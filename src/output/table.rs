@@ -86,6 +86,24 @@ impl CsvWriter {
     }
 }
 
+/// One named column of a table whose rows are `R`s: the header and every row of a table come
+/// from one list of these, so that a column is one entry.
+pub struct Column<R> {
+    pub name: &'static str,
+    /// The column's value in a row.
+    pub value: fn(&R) -> f64,
+}
+
+/// The header of the columns `columns`.
+pub fn header<R>(columns: &[Column<R>]) -> Vec<&'static str> {
+    columns.iter().map(|c| c.name).collect()
+}
+
+/// The row of `record` in the columns `columns`.
+pub fn row<R>(columns: &[Column<R>], record: &R) -> Vec<f64> {
+    columns.iter().map(|c| (c.value)(record)).collect()
+}
+
 /// One field of a CSV row.
 #[derive(Clone, Copy, Debug)]
 pub enum Cell<'a> {
@@ -116,5 +134,21 @@ mod tests {
         w.append(&[1.0, 2.5]).unwrap();
         assert!(w.append(&[f64::NAN, 1.0]).is_err());
         assert_eq!(std::fs::read_to_string(&path).unwrap(), "a,b\n1,2.5\n");
+    }
+
+    #[test]
+    fn a_header_and_a_row_come_from_one_list_of_columns() {
+        let columns: [Column<(f64, f64)>; 2] = [
+            Column {
+                name: "x",
+                value: |r| r.0,
+            },
+            Column {
+                name: "sum",
+                value: |r| r.0 + r.1,
+            },
+        ];
+        assert_eq!(header(&columns), ["x", "sum"]);
+        assert_eq!(row(&columns, &(1.5, 2.0)), [1.5, 3.5]);
     }
 }

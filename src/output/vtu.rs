@@ -1,25 +1,31 @@
-//! VTK XML unstructured grids (`.vtu`) of 9-node quadrilateral meshes, and ParaView
+//! VTK XML unstructured grids (`.vtu`) of meshes of one cell type, and ParaView
 //! collections (`.pvd`) that list them against a "time" (here the end-shortening `d`).
 //!
 //! Arrays are written inline in VTK's `binary` format: base64 of a `UInt64` byte count followed
 //! by the little-endian values: exact, no float formatting, and a fifth smaller than ASCII.
 //!
-//! Cells are `VTK_BIQUADRATIC_QUAD` (type 28): four corners counter-clockwise, the four edge
-//! midpoints (edges 0-1, 1-2, 2-3, 3-0), then the centre. Points are written in 3D with `z = 0`.
+//! The cell type and VTK's order of its nodes come from the element ([`CellType`]). Plane
+//! points are written in 3D with `z = 0`.
 
 use crate::error::{Error, Result};
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-/// VTK's cell type number of the 9-node quadrilateral.
-pub const VTK_BIQUADRATIC_QUAD: u8 = 28;
-/// VTK position `i` holds our local node `TO_VTK[i]` (local node `a + 3 b` sits at `(a - 1, b - 1)`).
-const TO_VTK: [usize; 9] = [0, 2, 8, 6, 1, 5, 7, 3, 4];
+/// The cells' VTK type with `N` nodes each.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CellType<const N: usize> {
+    /// VTK's cell type number.
+    pub vtk: u8,
+    /// VTK's node `k` is the cell's local node `order[k]`.
+    pub order: [usize; N],
+}
 
-/// A Q2 cell's nodes (local order of [`crate::mesh`]) in VTK's order.
-pub fn vtk_cell(cell: &[usize; 9]) -> [usize; 9] {
-    TO_VTK.map(|local| cell[local])
+impl<const N: usize> CellType<N> {
+    /// A cell's nodes (in the element's local order) in VTK's order.
+    pub fn vtk_cell(&self, cell: &[usize; N]) -> [usize; N] {
+        self.order.map(|local| cell[local])
+    }
 }
 
 /// A named array of point or cell data: `values` holds `components` numbers per entity.
@@ -62,12 +68,13 @@ impl DataArray {
     }
 }
 
-/// Writes `path` with the given points, Q2 cells (local node order of [`crate::mesh`]) and data.
-/// Arrays of the wrong length are a bug (panic); non-finite values are refused.
-pub fn write_vtu(
+/// Writes `path` with the given points, cells of `cell_type` (in the element's local node
+/// order) and data. Arrays of the wrong length are a bug (panic); non-finite values are refused.
+pub fn write_vtu<const N: usize>(
     path: &Path,
     points: &[[f64; 2]],
-    cells: &[[usize; 9]],
+    cell_type: &CellType<N>,
+    cells: &[[usize; N]],
     point_data: &[DataArray],
     cell_data: &[DataArray],
 ) -> Result<()> {
@@ -91,15 +98,16 @@ pub fn write_vtu(
     super::atomic::write_atomically(path, |temporary| {
         let io = |e| Error::io(path, e);
         let mut out = BufWriter::new(File::create(temporary).map_err(io)?);
-        write_grid(&mut out, points, cells, point_data, cell_data).map_err(io)?;
+        write_grid(&mut out, points, cell_type, cells, point_data, cell_data).map_err(io)?;
         out.flush().map_err(io)
     })
 }
 
-fn write_grid(
+fn write_grid<const N: usize>(
     out: &mut impl Write,
     points: &[[f64; 2]],
-    cells: &[[usize; 9]],
+    cell_type: &CellType<N>,
+    cells: &[[usize; N]],
     point_data: &[DataArray],
     cell_data: &[DataArray],
 ) -> std::io::Result<()> {
@@ -119,7 +127,10 @@ fn write_grid(
     let coordinates: Vec<f64> = points.iter().flat_map(|&[x, y]| [x, y, 0.0]).collect();
     write_floats(out, "Points", 3, &coordinates)?;
     writeln!(out, "</Points>\n<Cells>")?;
-    let connectivity: Vec<i64> = cells.iter().flat_map(|cell| vtk_cell(cell).map(|n| n as i64)).collect();
+    let connectivity: Vec<i64> = cells
+        .iter()
+        .flat_map(|cell| cell_type.vtk_cell(cell).map(|n| n as i64))
+        .collect();
     write_array(
         out,
         "Int64",
@@ -127,9 +138,9 @@ fn write_grid(
         1,
         &bytes_of(&connectivity, i64::to_le_bytes),
     )?;
-    let offsets: Vec<i64> = (1..=cells.len() as i64).map(|c| 9 * c).collect();
+    let offsets: Vec<i64> = (1..=cells.len() as i64).map(|c| N as i64 * c).collect();
     write_array(out, "Int64", "offsets", 1, &bytes_of(&offsets, i64::to_le_bytes))?;
-    write_array(out, "UInt8", "types", 1, &vec![VTK_BIQUADRATIC_QUAD; cells.len()])?;
+    write_array(out, "UInt8", "types", 1, &vec![cell_type.vtk; cells.len()])?;
     writeln!(out, "</Cells>")?;
     for (tag, arrays) in [("PointData", point_data), ("CellData", cell_data)] {
         writeln!(out, "<{tag}>")?;

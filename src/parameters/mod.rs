@@ -8,7 +8,7 @@ mod laws;
 mod load;
 mod table;
 
-pub use laws::{FibreLaw, MatrixLaw, FIBRE_LAWS, MATRIX_LAWS};
+pub use laws::{FibreLaw, MatrixLaw, FIBRE_LAWS, MATRIX_LAWS, OGDEN_TERMS};
 pub use load::{Load, LOADS};
 pub use table::{help as set_help, Kind, Range, Spec, TABLE};
 
@@ -355,6 +355,11 @@ impl Parameters {
             entries.extend(constants.into_iter().map(|(name, v)| (format!("{table}.{name}"), v)));
         }
         entries
+    }
+
+    /// The larger of the layer's and the substrate's `K / mu`.
+    pub fn bulk_to_shear_ratio(&self) -> f64 {
+        (self.K_l / self.mu_l).max(self.K_s / self.mu_s)
     }
 
     /// Checks every range; the message names the parameter and its allowed range.

@@ -11,6 +11,7 @@ use crate::fem::equilibrium::{minimise, solve_with, solve_with_contact};
 use crate::fem::inertia::BackgroundInertia;
 use crate::fem::{Assembled, Dirichlet, Newton, NewtonPolicy, NewtonReport, System, Updates};
 use crate::material::Bilayer;
+use crate::protocol::Loading;
 use serde::Serialize;
 
 /// Contact and stabilisation of one continuation (either may be absent).

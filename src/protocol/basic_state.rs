@@ -4,20 +4,19 @@
 //! bifurcation scan follows it.
 
 use crate::error::Result;
-use crate::fem::boundary::{dof, X, Y};
 use crate::fem::System;
 use crate::homogeneous::{constraint_pressure, HomogeneousState};
 use crate::material::{jacobian, Bilayer, VolumetricSplit};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, X, Y};
 
 /// The homogeneous displacement of `state` on `mesh`: `u_x = -d X` (0 under growth), `u_y = (lambda_2s - 1)(Y + D)`
 /// in the substrate and `(lambda_2s - 1) D + (lambda_2l - 1) Y` in the layer.
 pub fn homogeneous_displacement(mesh: &Mesh, state: &HomogeneousState) -> Vec<f64> {
     let depth = mesh.spec().depth;
-    let mut u = vec![0.0; mesh.num_dofs()];
+    let (mut u, dofs) = (vec![0.0; mesh.num_dofs()], mesh.dofs());
     for (n, &[x, y]) in mesh.coordinates().iter().enumerate() {
-        u[dof(n, X)] = -state.end_shortening() * x;
-        u[dof(n, Y)] =
+        u[dofs.dof(n, X)] = -state.end_shortening() * x;
+        u[dofs.dof(n, Y)] =
             (state.lambda2_substrate - 1.0) * (y.min(0.0) + depth) + (state.lambda2_layer - 1.0) * y.max(0.0);
     }
     u

@@ -11,12 +11,12 @@
 use super::basic_state::homogeneous_unknowns;
 use crate::error::{Error, Result};
 use crate::fem::added::NoAddedEnergy;
-use crate::fem::boundary::{dof, Y};
 use crate::fem::lanczos::inverse_lanczos;
 use crate::fem::{Assembled, SparseLdlt, System, Tangent};
 use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
-use crate::mesh::{Mesh, MeshSpec};
+use crate::mesh::{Mesh, MeshSpec, Y};
+use crate::protocol::Loading;
 
 use std::f64::consts::PI;
 
@@ -172,7 +172,7 @@ pub fn find_bifurcation(materials: &Bilayer, spec: MeshSpec, settings: &Bifurcat
 
 /// `u_y` of the top-surface nodes, sorted by `X`.
 pub(crate) fn top_uy(mesh: &Mesh, u: &[f64]) -> Vec<f64> {
-    mesh.top().into_iter().map(|n| u[dof(n, Y)]).collect()
+    mesh.top().into_iter().map(|n| u[mesh.dofs().dof(n, Y)]).collect()
 }
 
 /// Scales `u` so that the largest top-surface `|u_y|` is 1 with `u_y > 0` at `X = 0`.

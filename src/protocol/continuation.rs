@@ -24,6 +24,7 @@ use crate::error::{Error, Result};
 use crate::fem::ellipticity::{ellipticity_margins, EllipticityMargins};
 use crate::fem::equilibrium;
 use crate::fem::{Newton, NewtonPolicy, NewtonReport, Reuse, SparseLdlt, System, Timings};
+use crate::protocol::Loading;
 use serde::Serialize;
 use std::collections::VecDeque;
 use std::time::Instant;

@@ -14,14 +14,14 @@
 use super::basic_state::homogeneous_unknowns;
 use crate::error::{Error, Result};
 use crate::fem::added::NoAddedEnergy;
-use crate::fem::boundary::{dof, X};
 use crate::fem::contact::{Contact, ContactSettings, Plane};
 use crate::fem::ellipticity::{ellipticity_margins, EllipticityMargins};
 use crate::fem::equilibrium::{minimise, solve_with_contact};
 use crate::fem::{Dirichlet, Newton, NewtonPolicy, NewtonReport, System};
 use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
-use crate::mesh::{Mesh, MeshSpec};
+use crate::mesh::{Mesh, MeshSpec, X, Y};
+use crate::protocol::Loading;
 use serde::Serialize;
 
 /// Smallest ramp step of the folding before giving up.
@@ -218,7 +218,7 @@ impl Folded {
                 self.report.reactions[self
                     .held
                     .dofs()
-                    .binary_search(&dof(n, X))
+                    .binary_search(&self.system.mesh().dofs().dof(n, X))
                     .expect("folded unknowns are prescribed")]
             })
             .collect();
@@ -229,8 +229,8 @@ impl Folded {
             .iter()
             .map(|&n| {
                 (
-                    mesh.coordinates()[n][0] + u[2 * n],
-                    mesh.coordinates()[n][1] + u[2 * n + 1],
+                    mesh.coordinates()[n][0] + u[mesh.dofs().dof(n, X)],
+                    mesh.coordinates()[n][1] + u[mesh.dofs().dof(n, Y)],
                 )
             })
             .collect();
@@ -292,12 +292,19 @@ impl Folded {
             .copied()
             .zip(self.model.values().iter().copied())
             .collect();
-        pairs.extend(pressed.iter().map(|&n| (dof(n, X), u[dof(n, X)])));
+        let x_of = |n: usize| self.system.mesh().dofs().dof(n, X);
+        pairs.extend(pressed.iter().map(|&n| (x_of(n), u[x_of(n)])));
         let holding = Dirichlet::new(pairs)?;
         let elastic = self.system.assemble(u, &holding, None, false)?;
         let pulling = pressed
             .iter()
-            .filter(|&&n| elastic.reactions[holding.dofs().binary_search(&dof(n, X)).expect("held")] < 0.0)
+            .filter(|&&n| {
+                elastic.reactions[holding
+                    .dofs()
+                    .binary_search(&self.system.mesh().dofs().dof(n, X))
+                    .expect("held")]
+                    < 0.0
+            })
             .count();
         let energy = self.system.assemble(u, &self.model, None, false)?.energy;
         let mesh = self.system.mesh();
@@ -318,7 +325,7 @@ impl Folded {
 
 /// Depth of the crease: the flat surface's height (at the far end) above the lowest of `nodes`.
 fn surface_depth(mesh: &Mesh, u: &[f64], nodes: &[usize]) -> f64 {
-    let y = |n: usize| mesh.coordinates()[n][1] + u[2 * n + 1];
+    let y = |n: usize| mesh.coordinates()[n][1] + u[mesh.dofs().dof(n, Y)];
     let far = *mesh.top().last().expect("a surface");
     match nodes.is_empty() {
         true => 0.0,
@@ -337,7 +344,7 @@ fn folding_conditions(system: &System, model: &Dirichlet, folded: &[usize], lamb
         .collect();
     pairs.extend(folded.iter().map(|&n| {
         let x = coordinates[n][0];
-        (dof(n, X), (1.0 - t) * lambda1 * x - x)
+        (system.mesh().dofs().dof(n, X), (1.0 - t) * lambda1 * x - x)
     }));
     Dirichlet::new(pairs)
 }

@@ -16,7 +16,8 @@ use crate::fem::added::NoAddedEnergy;
 use crate::fem::lanczos::inverse_lanczos;
 use crate::fem::{Dirichlet, SparseLdlt, System};
 use crate::material::Bilayer;
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Y};
+use crate::protocol::Loading;
 use serde::Serialize;
 
 /// Troughs whose depths differ by more than this fraction of the deepest are clearly different.
@@ -119,7 +120,9 @@ fn scaled_mode(system: &mut System, bc: &Dirichlet, x: &[f64]) -> Result<Vec<f64
         mode[dof] = v;
     }
     let top = system.mesh().top();
-    let largest = top.iter().fold(0.0f64, |m, &n| m.max(mode[2 * n + 1].abs()));
+    let largest = top
+        .iter()
+        .fold(0.0f64, |m, &n| m.max(mode[system.mesh().dofs().dof(n, Y)].abs()));
     if largest > 0.0 {
         mode.iter_mut().for_each(|v| *v /= largest);
     }

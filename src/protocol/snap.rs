@@ -6,7 +6,41 @@
 //! energy; unlike a viscously damped step ([`super::stabilisation`]), it depends neither on a
 //! damping coefficient nor on the step sequence that led to it.
 
+use super::stabilisation::StabilisationSettings;
 use serde::Serialize;
+
+/// How a path goes on where the branch it follows has no nearby equilibrium (a limit point in
+/// `d`, a closing trough): one way at most.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum SnapCrossing {
+    /// None: the path stops where Newton's method cannot follow it.
+    #[default]
+    None,
+    /// Viscous damping of the cut steps ([`super::stabilisation`]): the recorded states carry
+    /// damping forces.
+    Viscous(StabilisationSettings),
+    /// Minimisation of the energy at the `d` of the failed step: every recorded state is an
+    /// exact equilibrium.
+    Minimised(SnapSettings),
+}
+
+impl SnapCrossing {
+    /// The damping, when the crossing is viscous.
+    pub fn damping(&self) -> Option<StabilisationSettings> {
+        match *self {
+            SnapCrossing::Viscous(settings) => Some(settings),
+            _ => None,
+        }
+    }
+
+    /// When a failed step is retried as a snap, when the crossing minimises.
+    pub fn minimisation(&self) -> Option<SnapSettings> {
+        match *self {
+            SnapCrossing::Minimised(settings) => Some(settings),
+            _ => None,
+        }
+    }
+}
 
 /// When a failed step is retried as a snap.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]

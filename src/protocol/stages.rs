@@ -7,7 +7,7 @@ use super::augmentation::Augmentation;
 use super::basic_state::homogeneous_unknowns;
 use super::continuation::{Continuation, Event, StepControl, StepRecord};
 use super::imperfection::{mode_number, wavenumber_of_waves, Imperfection};
-use super::snap::SnapSettings;
+use super::snap::SnapCrossing;
 use super::stabilisation::StabilisationSettings;
 use super::surface::amplitude;
 use crate::error::{Error, Result};
@@ -17,6 +17,7 @@ use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
 use crate::mesh::{Mesh, MeshSpec};
 use crate::parameters::validate_compression;
+use crate::protocol::Loading;
 use std::f64::consts::PI;
 use std::time::Instant;
 
@@ -38,11 +39,8 @@ pub struct Protocol {
     pub newton: NewtonPolicy,
     /// Contact of the top surface with the symmetry planes and with itself in stage 3.
     pub contact: bool,
-    /// Viscous stabilisation of stage 3, if any (the default way across a snap).
-    pub stabilisation: Option<StabilisationSettings>,
-    /// Snaps of stage 3 by energy minimisation ([`super::snap`]), if any (an option); not with
-    /// `stabilisation`.
-    pub snaps: Option<SnapSettings>,
+    /// How stage 3 crosses a snap ([`super::snap`]).
+    pub crossing: SnapCrossing,
     /// `A_2` of the long-wave imperfection `-A_2 cos(2 pi N_2 X / L)` added in stage 2 (it
     /// lowers the surface at `X = 0` and wherever the cosine is positive, deepening the troughs
     /// there: a seed for a modulated or localised pattern).
@@ -62,8 +60,7 @@ impl Protocol {
             control: StepControl::default(),
             newton: simulation_newton(),
             contact: false,
-            stabilisation: None,
-            snaps: None,
+            crossing: SnapCrossing::None,
             imperfection2: 0.0,
             imperfection2_waves: 0.5,
         }
@@ -74,8 +71,7 @@ impl Protocol {
     /// and up to 25 Newton iterations per step (contact changes cost a few).
     pub fn with_crease_path(mut self) -> Self {
         self.contact = true;
-        self.stabilisation = Some(StabilisationSettings::default());
-        self.snaps = None;
+        self.crossing = SnapCrossing::Viscous(StabilisationSettings::default());
         self.control.min = 1e-7;
         self.newton.max_iterations = 25;
         self
@@ -103,13 +99,6 @@ impl Protocol {
             if !(value.is_finite() && (0.0..1.0).contains(&value)) {
                 return Err(Error::invalid(name, value, "[0, 1)"));
             }
-        }
-        if let (Some(_), Some(snaps)) = (self.stabilisation, self.snaps) {
-            return Err(Error::invalid(
-                "stabilisation",
-                format!("viscous with snaps below {}", snaps.below),
-                "one way across a snap: viscous or snap",
-            ));
         }
         validate_compression("d-max", self.d_max)?;
         if self.d_max <= STAGE_ONE_COMPRESSION {
@@ -262,8 +251,9 @@ pub fn run(
         "stage 3: displacement control to d = {}",
         protocol.d_max
     )))?;
-    let augmentation = (protocol.contact || protocol.stabilisation.is_some())
-        .then(|| Augmentation::new(&system, materials, protocol.contact, protocol.stabilisation))
+    let damping = protocol.crossing.damping();
+    let augmentation = (protocol.contact || damping.is_some())
+        .then(|| Augmentation::new(&system, materials, protocol.contact, damping))
         .transpose()?;
     // The first step is predicted along the homogeneous path's du/dd (central difference).
     let homogeneous =
@@ -276,7 +266,7 @@ pub fn run(
     if let Some(augmentation) = augmentation {
         continuation = continuation.with_augmentation(augmentation);
     }
-    if let Some(snaps) = protocol.snaps {
+    if let Some(snaps) = protocol.crossing.minimisation() {
         continuation = continuation.with_snaps(snaps);
     }
     let stopped = continuation.advance_to(protocol.d_max, observer).err();

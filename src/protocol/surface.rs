@@ -1,15 +1,14 @@
 //! The deformed top surface: its profile and the wrinkle amplitude `A = (max y - min y) / 2`.
 
-use crate::fem::boundary::{dof, X, Y};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, TOP, X, Y};
 
 /// Deformed positions `(x, y)` of the top-surface nodes, sorted by reference `X`.
 pub fn surface_profile(mesh: &Mesh, u: &[f64]) -> Vec<(f64, f64)> {
-    mesh.top()
-        .into_iter()
-        .map(|n| {
+    mesh.node_set(TOP)
+        .iter()
+        .map(|&n| {
             let [x, y] = mesh.coordinates()[n];
-            (x + u[dof(n, X)], y + u[dof(n, Y)])
+            (x + u[mesh.dofs().dof(n, X)], y + u[mesh.dofs().dof(n, Y)])
         })
         .collect()
 }

@@ -16,6 +16,7 @@ pub mod exact;
 pub mod moduli;
 pub mod oblique;
 mod search;
+mod surface;
 
 pub use moduli::IncrementalModuli;
 pub use oblique::{Surface, SurfaceOnset};

@@ -4,7 +4,7 @@
 use super::discrete;
 use super::ellipticity::ellipticity_margin;
 use super::exact::{bifurcation_determinant, surface_impedance};
-use super::oblique::Surface;
+use super::surface::Surface;
 use super::{IncrementalModuli, Method};
 use crate::error::{Error, Result};
 use crate::homogeneous::{constraint_pressure, homogeneous_state};

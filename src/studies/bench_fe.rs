@@ -8,7 +8,8 @@ use crate::error::{Error, Result};
 use crate::fem::ElementKind;
 use crate::mesh::MeshSpec;
 use crate::parameters::Parameters;
-use crate::protocol::{wavenumber_of_waves, Protocol, SnapSettings};
+use crate::protocol::Loading;
+use crate::protocol::{wavenumber_of_waves, Protocol, SnapCrossing, SnapSettings};
 use serde::Serialize;
 use std::f64::consts::FRAC_PI_4;
 use std::fmt;
@@ -205,7 +206,7 @@ pub fn snaps(setup: &FeBenchSetup, meshes: &[(&str, MeshSpec)]) -> Result<SnapBe
     for &(name, spec) in meshes {
         let k = wavenumber_of_waves(setup.waves, spec.length)?;
         let mut protocol = Protocol::new(k, 0.05, setup.d_max).with_crease_path();
-        (protocol.stabilisation, protocol.snaps) = (None, Some(SnapSettings::default()));
+        protocol.crossing = SnapCrossing::Minimised(SnapSettings::default());
         let result = curve(&setup.params, spec, &protocol, &|_| Ok(()))?;
         let snaps: Vec<_> = result.records.iter().filter_map(|r| r.snap.as_ref()).collect();
         let per = |total: f64| total / snaps.len().max(1) as f64;

@@ -3,17 +3,16 @@
 //! Writes `bifurcation.json`, `inertia.csv` (negative pivots along the homogeneous path),
 //! `mode_surface.csv` and `mode.png/.svg` (the mode's top-surface `u_y`), and `mode.vtu`.
 
-use super::simulate::{write_state, MeshSummary};
+use super::simulate::{nodal_array, write_state, MeshSummary};
 use crate::error::{Error, Result};
-use crate::fem::boundary::{dof, Y};
 use crate::fem::System;
 use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
-use crate::mesh::{Mesh, MeshSpec};
-use crate::output::vtu::DataArray;
+use crate::mesh::{Mesh, MeshSpec, Y};
 use crate::output::{write_json, CsvWriter, Figure, LineStyle, Series};
 use crate::parameters::{Load, Parameters};
 use crate::protocol::basic_state::homogeneous_unknowns;
+use crate::protocol::Loading;
 use crate::protocol::{find_bifurcation, Bifurcation, BifurcationSettings};
 use crate::stability::{Method, StabilityAnalysis};
 use serde::Serialize;
@@ -155,7 +154,7 @@ fn write_mode(out: &Path, materials: &Bilayer, spec: MeshSpec, found: &Bifurcati
     let surface: Vec<(f64, f64)> = mesh
         .top()
         .into_iter()
-        .map(|n| (mesh.coordinates()[n][0], found.mode[dof(n, Y)]))
+        .map(|n| (mesh.coordinates()[n][0], found.mode[mesh.dofs().dof(n, Y)]))
         .collect();
     let csv = out.join("mode_surface.csv");
     let mut table = CsvWriter::create(&csv, &["X", "mode_uy"])?;
@@ -166,8 +165,7 @@ fn write_mode(out: &Path, materials: &Bilayer, spec: MeshSpec, found: &Bifurcati
     system.load_to(found.d)?;
     let u = homogeneous_unknowns(&system, materials, &homogeneous_state(materials, found.d)?)?;
     let vtu = out.join("mode.vtu");
-    let nodal = &found.mode[..system.mesh().num_dofs()];
-    let mode = DataArray::plane_vectors("mode", nodal.chunks(2).map(|c| [c[0], c[1]]));
+    let mode = nodal_array("mode", system.mesh(), &found.mode);
     write_state(&vtu, &system, materials, &u, vec![mode])?;
     let figure = Figure::new(
         format!(

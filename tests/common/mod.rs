@@ -3,11 +3,10 @@
 
 pub mod files;
 
-use fiberfold::fem::boundary::{X, Y};
-use fiberfold::fem::element::{shape_derivatives, shape_functions};
-use fiberfold::fem::{dof, Dirichlet, System};
+use fiberfold::fem::element::{PlaneElement, ReferenceElement, ELEMENT_DOFS};
+use fiberfold::fem::{Dirichlet, System};
 use fiberfold::material::Bilayer;
-use fiberfold::mesh::Mesh;
+use fiberfold::mesh::{Mesh, X, Y};
 use fiberfold::Parameters;
 use std::path::PathBuf;
 use std::process::{Command, Output};
@@ -169,7 +168,7 @@ pub fn boundary_values(mesh: &Mesh, value: impl Fn([f64; 2]) -> [f64; 2]) -> Dir
     let nodes = [mesh.left(), mesh.right(), mesh.bottom(), mesh.top()].concat();
     let pairs = nodes.iter().flat_map(|&n| {
         let v = value(mesh.coordinates()[n]);
-        [(dof(n, X), v[0]), (dof(n, Y), v[1])]
+        [(mesh.dofs().dof(n, X), v[0]), (mesh.dofs().dof(n, Y), v[1])]
     });
     Dirichlet::new(pairs.collect()).unwrap()
 }
@@ -179,7 +178,9 @@ pub fn worst_nodal_error(mesh: &Mesh, u: &[f64], exact: impl Fn([f64; 2]) -> [f6
     (0..mesh.num_nodes())
         .map(|n| {
             let v = exact(mesh.coordinates()[n]);
-            (u[2 * n] - v[0]).abs().max((u[2 * n + 1] - v[1]).abs())
+            (u[mesh.dofs().dof(n, X)] - v[0])
+                .abs()
+                .max((u[mesh.dofs().dof(n, Y)] - v[1]).abs())
         })
         .fold(0.0, f64::max)
 }
@@ -221,13 +222,16 @@ pub fn error_norms(
         let ue = system.element_displacements(e, u);
         for &(xi, wx) in &rule {
             for &(eta, wy) in &rule {
-                let (n, dn) = (shape_functions([xi, eta]), shape_derivatives([xi, eta]));
+                let (n, dn) = (
+                    PlaneElement::shape_functions([xi, eta]),
+                    PlaneElement::shape_derivatives([xi, eta]),
+                );
                 // j[I][r] = dX_I / dxi_r.
                 let (mut point, mut uh, mut j) = ([0.0; 2], [0.0; 2], [[0.0; 2]; 2]);
                 for a in 0..9 {
                     for c in 0..2 {
                         point[c] += n[a] * coordinates[nodes[a]][c];
-                        uh[c] += n[a] * ue[2 * a + c];
+                        uh[c] += n[a] * ue[ELEMENT_DOFS.dof(a, c)];
                         j[c][0] += coordinates[nodes[a]][c] * dn[a][0];
                         j[c][1] += coordinates[nodes[a]][c] * dn[a][1];
                     }
@@ -240,8 +244,8 @@ pub fn error_norms(
                         (-dn[a][0] * j[0][1] + dn[a][1] * j[0][0]) / det,
                     ];
                     for c in 0..2 {
-                        grad[2 * c] += ue[2 * a + c] * g[0];
-                        grad[2 * c + 1] += ue[2 * a + c] * g[1];
+                        grad[ELEMENT_DOFS.dof(c, 0)] += ue[ELEMENT_DOFS.dof(a, c)] * g[0];
+                        grad[ELEMENT_DOFS.dof(c, 1)] += ue[ELEMENT_DOFS.dof(a, c)] * g[1];
                     }
                 }
                 let weight = wx * wy * det;
@@ -302,11 +306,11 @@ pub fn undamped_residual(
         a.pressure
             .iter()
             .filter(|(_, p)| *p != 0.0)
-            .flat_map(|&(n, _)| [dof(n, 0), dof(n, 1)])
+            .flat_map(|&(n, _)| system.mesh().dofs().node_dofs(n))
             .collect()
     });
     let mut fresh = System::new(system.mesh().clone(), materials).unwrap();
-    let bc = fiberfold::fem::model_conditions(system.mesh(), record.d).unwrap();
+    let bc = fiberfold::protocol::model_conditions(system.mesh(), record.d).unwrap();
     let assembled = fresh.assemble(u, &bc, None, false).unwrap();
     let free = fresh.free_dofs(&bc).unwrap();
     let residual = free

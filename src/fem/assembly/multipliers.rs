@@ -1,4 +1,4 @@
-//! The multipliers of the mixed element's augmented mode ([`crate::fem::mixed`]): where they
+//! The multipliers of the mixed element's augmented mode ([`crate::fem::element::mixed`]): where they
 //! sit in the unknowns' vector, one step of the method of multipliers, their homogeneous values,
 //! and the penalties of the iteration and of the stability tangent.
 
@@ -6,8 +6,7 @@ use super::{Assembled, System};
 use crate::error::Result;
 use crate::fem::added::AddedEnergy;
 use crate::fem::boundary::Dirichlet;
-use crate::fem::element::{self, DOFS};
-use crate::fem::mixed::{Volumetric, PRESSURES};
+use crate::fem::element::{Volumetric, DOFS, PRESSURES};
 use crate::material::{Bilayer, Tissue};
 use crate::mesh::Region;
 use rayon::prelude::*;
@@ -19,7 +18,7 @@ const AUGMENTED_BULK: f64 = 1e3;
 const AUGMENTATION_PENALTY: f64 = 1e2;
 
 /// The factor on the augmentation penalty with which the tangent's inertia is counted (at most
-/// the bulk modulus, where the tangent is then exact): `fem::mixed` explains why it must be
+/// the bulk modulus, where the tangent is then exact): `fem::element::mixed` explains why it must be
 /// large. The coarse-mesh incompressible bifurcation moves between 1e2 and 1e3 and not from
 /// 1e3 to 1e5; 1e4 keeps a factor of ten in hand.
 const STABILITY_PENALTY: f64 = 1e4;
@@ -59,24 +58,16 @@ impl System {
         if !self.multipliers {
             return Ok(None);
         }
-        let steps = (0..self.mixed.len())
+        let steps = (0..self.elements.len())
             .into_par_iter()
             .with_min_len(64)
             .map(|e| {
-                let (mixed, lambda) = (&self.mixed[e], self.element_multipliers(e, u));
-                let state = mixed.evaluate(
+                self.elements[e].multiplier_step(
                     &self.geometry[e],
                     &self.element_displacements(e, u),
-                    &lambda,
+                    &self.element_multipliers(e, u),
                     penalty_scale,
-                    None,
-                )?;
-                let violation = state.violation.iter().fold(0.0f64, |v, x| v.max(x.abs()));
-                let change: [f64; PRESSURES] = match mixed.volumetric() {
-                    Volumetric::Augmented { .. } => std::array::from_fn(|i| state.pressure[i] - lambda[i]),
-                    Volumetric::Bulk(_) => [0.0; PRESSURES],
-                };
-                Ok((violation, change))
+                )
             })
             .collect::<Result<Vec<_>>>()?;
         let violation = steps.iter().fold(0.0f64, |v, (e, _)| v.max(*e));
@@ -107,16 +98,10 @@ impl System {
         let mesh = self.mesh();
         let mut stiffness = vec![0.0; mesh.num_dofs()];
         let mut k = [[0.0; DOFS]; DOFS];
-        for e in 0..mesh.elements().len() {
-            match self.mixed.get(e) {
-                Some(mixed) if matches!(mixed.volumetric(), Volumetric::Augmented { .. }) => {
-                    element::evaluate(&self.geometry[e], mixed.rest(), &[0.0; DOFS], Some(&mut k))?
-                }
-                _ => self.element_state(e, &[0.0; DOFS], &[0.0; PRESSURES], 1.0, Some(&mut k))?,
-            };
-            let nodes = &mesh.elements()[e];
+        for (e, (element, nodes)) in self.elements.iter().zip(mesh.elements()).enumerate() {
+            element.reference_stiffness(&self.geometry[e], &mut k)?;
             for (i, row) in k.iter().enumerate() {
-                stiffness[2 * nodes[i / 2] + i % 2] += row[i];
+                stiffness[mesh.dofs().global(nodes, i)] += row[i];
             }
         }
         Ok(stiffness)
@@ -124,7 +109,7 @@ impl System {
 
     /// The tangent (and residual) of the strain energy plus `added` whose inertia is the
     /// stability of `u`: [`System::assemble_with`], with multipliers at the stability penalty
-    /// ([`crate::fem::mixed`]).
+    /// ([`crate::fem::element::mixed`]).
     pub fn assemble_for_stability(&mut self, u: &[f64], bc: &Dirichlet, added: &dyn AddedEnergy) -> Result<Assembled> {
         self.assemble_penalised(u, bc, None, true, added, STABILITY_PENALTY)
     }

@@ -179,10 +179,11 @@ fn build_pattern(
             free.push(dof);
         }
     }
+    let dofs = mesh.dofs();
     let element_dofs: Vec<[usize; DOFS]> = mesh
         .elements()
         .iter()
-        .map(|nodes| std::array::from_fn(|i| 2 * nodes[i / 2] + i % 2))
+        .map(|nodes| std::array::from_fn(|i| dofs.global(nodes, i)))
         .collect();
     let GroupPairs {
         pairs: mut all,

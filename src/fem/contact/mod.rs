@@ -19,9 +19,12 @@ pub use search::{End, Pair, Plane, Surface};
 pub use solve::ContactUpdate;
 
 use super::added::{AddedEnergy, Block};
-use crate::mesh::Mesh;
+use crate::mesh::{DofMap, Mesh, X, Y};
 use gap::{differentiate, pair_energy, plane_gap, pressure, pressure_argument, segment_gap};
 use std::collections::HashMap;
+
+/// The numbering of a pair's own unknowns by its surface nodes ([`Surface::dofs`]).
+const PAIR_DOFS: DofMap = DofMap::PLANE;
 
 /// Surface nodes on either side of a contact pair whose coupling the tangent's pattern stores
 /// in advance ([`AddedEnergy::likely_groups`]).
@@ -190,8 +193,8 @@ impl Contact {
             let w = self.surface.weights[pair.slave()];
             let gradient = self.gap_gradient(pair, u, dofs);
             for (k, &node) in pair.surface_nodes().iter().enumerate() {
-                force[node][0] += w * lambda * gradient[2 * k];
-                force[node][1] += w * lambda * gradient[2 * k + 1];
+                force[node][0] += w * lambda * gradient[PAIR_DOFS.dof(k, X)];
+                force[node][1] += w * lambda * gradient[PAIR_DOFS.dof(k, Y)];
             }
             on_plane[pair.slave()] |= matches!(pair, Pair::Plane { .. });
         }
@@ -237,7 +240,7 @@ impl Contact {
     /// Deformed position of the `k`-th surface node of `pair`.
     fn position(&self, pair: &Pair, u: &[f64], dofs: &[usize], k: usize) -> [f64; 2] {
         let r = self.surface.reference[pair.surface_nodes()[k]];
-        [r[0] + u[dofs[2 * k]], r[1] + u[dofs[2 * k + 1]]]
+        [r[0] + u[dofs[PAIR_DOFS.dof(k, X)]], r[1] + u[dofs[PAIR_DOFS.dof(k, Y)]]]
     }
 
     /// The energy block of `pair` with multiplier `lambda` at `u`.
@@ -282,7 +285,7 @@ impl AddedEnergy for Contact {
                 Pair::Segment { slave, segment } => Some(
                     around(slave)
                         .chain(around(segment + 1))
-                        .flat_map(|i| [2 * self.surface.nodes[i], 2 * self.surface.nodes[i] + 1])
+                        .flat_map(|i| self.surface.dof_map.node_dofs(self.surface.nodes[i]))
                         .collect(),
                 ),
                 Pair::Plane { .. } => None,

@@ -11,7 +11,7 @@
 //! the body. The gap is the signed distance to the segment's line.
 
 use super::gap::{plane_gap, projection, segment_gap};
-use crate::mesh::Mesh;
+use crate::mesh::{DofMap, Mesh, TOP, X, Y};
 
 /// A rigid plane `{x : n . x = c}`; `n` is the unit normal towards the open side.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -91,12 +91,14 @@ pub struct Surface {
     /// Reference length each node carries: the integral of its Q2 edge shape function,
     /// `h/6` at an element's corners and `2h/3` at its mid-side node (Simpson's weights).
     pub weights: Vec<f64>,
+    /// The numbering of the mesh's unknowns.
+    pub dof_map: DofMap,
 }
 
 impl Surface {
     /// The top surface `Y = 1` of `mesh`.
     pub fn top(mesh: &Mesh) -> Self {
-        let nodes = mesh.top();
+        let nodes = mesh.node_set(TOP).to_vec();
         let reference: Vec<[f64; 2]> = nodes.iter().map(|&n| mesh.coordinates()[n]).collect();
         let mut weights = vec![0.0; nodes.len()];
         for e in 0..(nodes.len() - 1) / 2 {
@@ -110,6 +112,7 @@ impl Surface {
             nodes,
             reference,
             weights,
+            dof_map: mesh.dofs(),
         }
     }
 
@@ -128,7 +131,7 @@ impl Surface {
         self.nodes
             .iter()
             .zip(&self.reference)
-            .map(|(&n, x)| [x[0] + u[2 * n], x[1] + u[2 * n + 1]])
+            .map(|(&n, x)| [x[0] + u[self.dof_map.dof(n, X)], x[1] + u[self.dof_map.dof(n, Y)]])
             .collect()
     }
 
@@ -136,7 +139,7 @@ impl Surface {
     pub fn dofs(&self, pair: &Pair) -> Vec<usize> {
         pair.surface_nodes()
             .iter()
-            .flat_map(|&i| [2 * self.nodes[i], 2 * self.nodes[i] + 1])
+            .flat_map(|&i| self.dof_map.node_dofs(self.nodes[i]))
             .collect()
     }
 }

@@ -22,6 +22,7 @@ use crate::fem::{Dirichlet, NewtonPolicy, NewtonReport};
 use crate::protocol::augmentation::AugmentedRecord;
 use crate::protocol::snap::SnapRecord;
 use crate::protocol::surface::amplitude;
+use crate::protocol::Loading;
 use std::time::Instant;
 
 /// Most restarts of a minimisation from a minimum that the last contact update left with a

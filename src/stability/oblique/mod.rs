@@ -17,37 +17,13 @@ pub mod moduli;
 mod search;
 
 use super::search::{Onset, StabilityAnalysis};
+pub use super::surface::Surface;
 use super::Method;
 use crate::error::{Error, Result};
 use crate::homogeneous::{biaxial_state, normal_stress};
 use moduli::SurfaceModuli;
 use serde::Serialize;
 use std::f64::consts::PI;
-
-/// The loading and the mode direction of a surface analysis.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct Surface {
-    /// `R = d_3 / d`, in `[0, 1]`.
-    pub biaxial: f64,
-    /// Direction of the wave vector in the surface, from X towards Z (radians).
-    pub theta: f64,
-}
-
-impl Surface {
-    pub fn validate(&self) -> Result<()> {
-        if !(self.biaxial.is_finite() && (0.0..=1.0).contains(&self.biaxial)) {
-            return Err(Error::invalid(
-                "biaxial",
-                self.biaxial,
-                "[0, 1] (d_3 = R d: 0 plane strain, 1 equibiaxial)",
-            ));
-        }
-        if !self.theta.is_finite() {
-            return Err(Error::invalid("theta", self.theta, "a finite angle in radians"));
-        }
-        Ok(())
-    }
-}
 
 /// The onset over wavenumbers and directions.
 #[derive(Clone, Copy, Debug, Serialize)]

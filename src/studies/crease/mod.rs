@@ -19,13 +19,15 @@
 //! frictionless contact, an equilibrium.
 
 pub mod convergence;
+mod fold;
 mod options;
 mod released;
 pub mod threshold;
 mod write;
 
+pub use fold::FoldThreshold;
 pub use options::CreaseOptions;
-pub use threshold::{fold_threshold, FoldThreshold};
+pub use threshold::fold_threshold;
 pub use write::run;
 
 use super::Tick;
@@ -98,15 +100,19 @@ impl CreaseMesh {
 }
 
 /// Which creased state the energy criterion compares with the flat state.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]
 pub enum Criterion {
     /// The fold held on the plane over its whole reference length `a` (Hong, Zhao & Suo's
     /// construction).
     #[default]
+    #[value(help = "The fold held on the symmetry plane over its whole length a (Hong, Zhao & Suo's)")]
     Held,
     /// The fold released to frictionless contact with the plane: the equilibrium crease it
     /// closes to (or the flat state, where it reopens).
+    #[value(
+        help = "The fold released to frictionless contact with the plane: the equilibrium crease it closes to (a search from the held fold's threshold, each step a fold and a release)"
+    )]
     Released,
 }
 

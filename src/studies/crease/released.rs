@@ -15,7 +15,7 @@
 //! still reopens at that width, the crease appears already paying off: the threshold is the
 //! bracket's upper end.
 
-use super::threshold::FoldThreshold;
+use super::fold::FoldThreshold;
 use super::Scan;
 use crate::error::{Error, Result};
 use crate::material::Bilayer;

@@ -6,6 +6,7 @@ use crate::error::{Error, Result};
 use crate::fem::ellipticity::EllipticityReport;
 use crate::parameters::Parameters;
 use crate::protocol::secondary::{branch_kind, BranchKind};
+use crate::protocol::SnapCrossing;
 use crate::stability::{Method, Minimum, StabilityAnalysis};
 use crate::studies::crease::{crease, CreaseStudy, Scan};
 use crate::studies::orientation::{directed_onset, Modes};
@@ -341,7 +342,7 @@ fn nonlinear(
     };
     let mut study = options.study()?;
     study.secondary_modes = 0; // the branch decides; the modes are not drawn
-    if let Some(damper) = &mut study.protocol.stabilisation {
+    if let SnapCrossing::Viscous(damper) = &mut study.protocol.crossing {
         damper.budget = settings.snap_budget;
     }
     let solution = match solve_to_secondary(parameters, &study)? {

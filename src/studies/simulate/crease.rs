@@ -1,29 +1,10 @@
-//! What a run to a crease writes besides the amplitude: the contact and stabilisation columns of
-//! `amplitude.csv`, the contact pressure of the VTU snapshots, and `contact.json`.
+//! What a run to a crease writes besides the amplitude: the contact pressure of the VTU
+//! snapshots, and `contact.json` (the contact and stabilisation columns of `amplitude.csv` are
+//! among [`super::columns::AMPLITUDE_COLUMNS`]).
 
 use crate::output::vtu::DataArray;
 use crate::protocol::StepRecord;
 use serde::Serialize;
-
-/// Columns `amplitude.csv` gains: contact and stabilisation of every step.
-pub const CREASE_COLUMNS: [&str; 4] = [
-    "in_contact",
-    "contact_length",
-    "penetration",
-    "stabilisation_energy_fraction",
-];
-
-/// The values of [`CREASE_COLUMNS`] for one step (zeros without contact or stabilisation).
-pub fn crease_columns(record: &StepRecord) -> [f64; 4] {
-    record.augmented.as_ref().map_or([0.0; 4], |a| {
-        [
-            f64::from(u8::from(a.in_contact)),
-            a.contact_length,
-            a.penetration,
-            a.stabilisation_energy_fraction,
-        ]
-    })
-}
 
 /// Nominal contact pressure at every node of a mesh of `nodes` nodes (zero off the surface).
 pub fn pressure_array(record: Option<&StepRecord>, nodes: usize) -> DataArray {

@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::fem::fields::cell_fields;
 use crate::fem::System;
 use crate::material::Bilayer;
-use crate::mesh::MeshSpec;
+use crate::mesh::{MeshSpec, X, Y};
 use crate::output::atomic::write_atomically;
 use crate::output::plot::{register_font, FONT};
 use crate::output::write_json;
@@ -213,7 +213,7 @@ impl Panel {
         let u = &state.u;
         let position = |n: usize| {
             let x = mesh.coordinates()[n];
-            (x[0] + u[2 * n], x[1] + u[2 * n + 1])
+            (x[0] + u[mesh.dofs().dof(n, X)], x[1] + u[mesh.dofs().dof(n, Y)])
         };
         let surface: Vec<(f64, f64)> = mesh.top().into_iter().map(position).collect();
         let top = surface.iter().fold(f64::NEG_INFINITY, |m, p| m.max(p.1));

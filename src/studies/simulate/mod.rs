@@ -6,6 +6,7 @@
 //! reaches (when contact is on) and `simulate.json`.
 //! A run that stops early keeps all of this for the path so far and then returns the error.
 
+mod columns;
 mod crease;
 mod fig3;
 mod fig4a;
@@ -16,14 +17,15 @@ mod snapshots;
 mod solve;
 mod state_vtu;
 
-pub use crease::{crease_columns, ContactReport, CREASE_COLUMNS};
+pub use columns::{amplitude_header, amplitude_row, AMPLITUDE_COLUMNS};
+pub use crease::ContactReport;
 pub use fig3::fig3;
 pub use fig4a::{fig4a, Fig4aOptions, Fig4aRow};
 pub use fig7::{fig7, CreaseSnapshots, Fig7Facts, Fig7State, FIG7_D};
 pub use options::{Crossing, MeshChoice, SimulateOptions};
 pub use secondary::{write_secondary, ModeState, SecondaryReport, SecondaryTracker, MODES};
 pub use solve::{solve, solve_observed, solve_to_secondary, Solution, Solved, StateFields, ToSecondary};
-pub use state_vtu::{cell_arrays, displacement_array, write_state};
+pub use state_vtu::{cell_arrays, displacement_array, nodal_array, write_state, CELL_TYPE};
 
 use crate::error::{Error, Result};
 pub use crate::fem::ellipticity::EllipticityReport;
@@ -40,17 +42,6 @@ use snapshots::Snapshots;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// Columns of `amplitude.csv` (then [`CREASE_COLUMNS`]).
-pub const AMPLITUDE_HEADER: [&str; 7] = [
-    "d",
-    "A",
-    "strain_energy",
-    "newton_iterations",
-    "residual",
-    "min_J",
-    "step_seconds",
-];
-
 /// What the study reports while it runs.
 pub enum Progress<'a> {
     /// A stage starts.
@@ -59,51 +50,6 @@ pub enum Progress<'a> {
     Step(&'a StepRecord),
     /// A failed attempt; the step is cut.
     Cut(&'a Cut),
-}
-
-/// The last columns of `amplitude.csv`: `snap` (1 where a snap reached the state),
-/// `minimised` (1 where the energy's minimisation from the predictor corrected the step after
-/// Newton's iteration failed), the smallest strong-ellipticity margin of each layer over its
-/// Gauss points, and the layer's growth `g` (the load under growth; 1 without growth).
-pub const STATE_COLUMNS: [&str; 5] = [
-    "snap",
-    "minimised",
-    "ellipticity_layer",
-    "ellipticity_substrate",
-    "growth_layer",
-];
-
-/// Every column of `amplitude.csv`: [`AMPLITUDE_HEADER`], [`CREASE_COLUMNS`], [`STATE_COLUMNS`].
-pub fn amplitude_header() -> Vec<&'static str> {
-    AMPLITUDE_HEADER
-        .iter()
-        .chain(&CREASE_COLUMNS)
-        .chain(&STATE_COLUMNS)
-        .copied()
-        .collect()
-}
-
-/// One accepted step as a row of `amplitude.csv` (in the order of [`amplitude_header`]).
-pub fn amplitude_row(record: &StepRecord) -> Vec<f64> {
-    let columns = [
-        record.d,
-        record.amplitude,
-        record.strain_energy,
-        record.iterations as f64,
-        *record.residual_history.last().expect("non-empty"),
-        record.min_jacobian,
-        record.seconds,
-    ];
-    let flag = |set: bool| if set { 1.0 } else { 0.0 };
-    let margins = [record.ellipticity.layer, record.ellipticity.substrate];
-    [
-        &columns[..],
-        &crease_columns(record),
-        &[flag(record.snap.is_some()), flag(record.minimised)],
-        &margins,
-        &[record.growth_layer],
-    ]
-    .concat()
 }
 
 /// Receives [`Progress`] (prints, drives a progress bar, or ignores it); an error it returns
@@ -427,7 +373,7 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
         Some(e) => {
             // Measured: a damped crawl through a closing trough (mu_l = 3, K/mu = 1e4, beta
             // 1.5707961) stalled at the smallest step where the minimisation crossed it.
-            let hint = match study.protocol.snaps {
+            let hint = match study.protocol.crossing.minimisation() {
                 Some(_) => "",
                 None => "; where the path snaps, stabilisation = snap crosses by minimising the energy",
             };

@@ -8,7 +8,9 @@ use crate::error::{Error, Result};
 use crate::fem::memory::{available_bytes, MemoryEstimate};
 use crate::fem::ElementKind;
 use crate::mesh::{MeshPreset, MeshSpec, XRefinement};
-use crate::protocol::{mode_number, wavenumber_of_waves, Protocol, SnapSettings, StabilisationSettings, StepControl};
+use crate::protocol::{
+    mode_number, wavenumber_of_waves, Protocol, SnapCrossing, SnapSettings, StabilisationSettings, StepControl,
+};
 use crate::studies::keywords::{default_keywords, from_keywords};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -99,19 +101,22 @@ pub struct SimulateOptions {
 
 /// How stage 3 crosses a snap: where the branch it follows has no nearby equilibrium (a limit
 /// point in `d`, a closing trough).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]
 pub enum Crossing {
     /// Minimise the energy at the `d` of the failed step: the stable equilibrium the structure
     /// snaps to ([`crate::protocol::snap`]); in contact, a failed step from a stable state is
     /// corrected by the same minimisation from the predictor. Every recorded state is an
     /// exact equilibrium; slower than the damper on a path through contact.
+    #[value(help = "minimise the energy: every recorded state an exact equilibrium")]
     Snap,
     /// Viscous damping of the cut steps, as ABAQUS's `*STATIC, STABILIZE`: the recorded
     /// states carry damping forces ([`crate::protocol::stabilisation`]).
     #[default]
+    #[value(help = "viscous damping of the cut steps (recorded states carry damping forces)")]
     Viscous,
     /// Neither: the path stops where Newton's method cannot follow it.
+    #[value(help = "neither: the path stops where Newton's method cannot follow it")]
     None,
 }
 
@@ -206,16 +211,13 @@ impl SimulateOptions {
         if !(self.eta.is_finite() && self.eta > 0.0) {
             return Err(Error::invalid("eta", self.eta, "(0, inf)"));
         }
-        (protocol.snaps, protocol.stabilisation) = match self.crossing {
-            Crossing::Snap => (Some(SnapSettings::default()), None),
-            Crossing::Viscous => (
-                None,
-                Some(StabilisationSettings {
-                    eta: self.eta,
-                    ..StabilisationSettings::default()
-                }),
-            ),
-            Crossing::None => (None, None),
+        protocol.crossing = match self.crossing {
+            Crossing::Snap => SnapCrossing::Minimised(SnapSettings::default()),
+            Crossing::Viscous => SnapCrossing::Viscous(StabilisationSettings {
+                eta: self.eta,
+                ..StabilisationSettings::default()
+            }),
+            Crossing::None => SnapCrossing::None,
         };
         let study = SimulateStudy {
             mesh,

@@ -3,15 +3,15 @@
 //! (`secondary_mode_<i>.vtu`, and the top-surface `u_y` of the first in `secondary_mode.png`),
 //! and the branch the run ended on.
 
-use super::write_state;
+use super::{nodal_array, write_state};
 use crate::error::Result;
 use crate::fem::{SparseLdlt, System};
 use crate::material::Bilayer;
 use crate::mesh::Mesh;
-use crate::output::vtu::DataArray;
 use crate::output::{write_json, Figure, LineStyle, Series};
 use crate::protocol::bifurcation::{dominant_cosine, top_uy};
 use crate::protocol::secondary::{inertia_changes, modes_nearest_zero, Branch, InertiaChange};
+use crate::protocol::Loading;
 use crate::protocol::StepRecord;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -146,8 +146,7 @@ pub fn write_secondary(
         system.load_to(state.d)?; // the fields of a grown state need its growth
         let mesh = system.mesh();
         let path = out.join(format!("secondary_mode_{i}.vtu"));
-        let nodal = &state.mode[..mesh.num_dofs()];
-        let array = DataArray::plane_vectors("mode", nodal.chunks(2).map(|c| [c[0], c[1]]));
+        let array = nodal_array("mode", mesh, &state.mode);
         write_state(&path, system, materials, &state.u, vec![array])?;
         if i == 0 {
             files.extend(mode_figure(mesh, &top_uy(mesh, &state.mode), state.d).save(out, "secondary_mode")?);

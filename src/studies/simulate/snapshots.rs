@@ -2,7 +2,7 @@
 //! and written on a thread of its own while the path goes on.
 
 use super::crease;
-use super::state_vtu::state_arrays;
+use super::state_vtu::{state_arrays, CELL_TYPE};
 use crate::error::Result;
 use crate::fem::System;
 use crate::material::Bilayer;
@@ -86,7 +86,8 @@ impl Snapshots {
         self.finish_writing()?;
         let path = self.dir.join(format!("simulate_{:04}.vtu", self.collection.len()));
         let target = path.clone();
-        let writer = std::thread::spawn(move || write_vtu(&target, &points, &cells, &point_data, &cell_data));
+        let writer =
+            std::thread::spawn(move || write_vtu(&target, &points, &CELL_TYPE, &cells, &point_data, &cell_data));
         self.writing = Some((d, path, writer));
         self.last_written = Some(d);
         Ok(())

@@ -10,14 +10,14 @@ use crate::error::Result;
 use crate::fem::fields::{cell_fields, CellFields};
 use crate::fem::System;
 use crate::material::Bilayer;
-#[cfg(doc)]
-use crate::output::vtu::vtk_cell;
+use crate::mesh::{X, Y};
 use crate::parameters::Parameters;
 use crate::protocol::secondary::{branch, secondary_mode, SecondaryMode};
+use crate::protocol::Loading;
 use crate::protocol::{stages, surface_profile, Event, SnapRecord};
 
 /// A mesh state ready for a viewer: reference points, 9-node cells (the local node order of
-/// [`crate::mesh`]; [`vtk_cell`] gives VTK's), the nodal displacement and the element-centre
+/// [`crate::mesh`]; [`super::CELL_TYPE`] gives VTK's), the nodal displacement and the element-centre
 /// fields of the VTU files.
 #[derive(Clone, Debug)]
 pub struct StateFields {
@@ -147,7 +147,9 @@ fn finish(
     let state = StateFields {
         points: mesh.coordinates().to_vec(),
         cells: mesh.elements().to_vec(),
-        displacement: u[..mesh.num_dofs()].chunks(2).map(|c| [c[0], c[1]]).collect(),
+        displacement: (0..mesh.num_nodes())
+            .map(|n| [u[mesh.dofs().dof(n, X)], u[mesh.dofs().dof(n, Y)]])
+            .collect(),
         cell: cell_fields(&system, &materials, &u)?,
     };
     let curve = recorder.into_curve(outcome.stopped);

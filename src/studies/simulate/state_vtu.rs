@@ -2,17 +2,32 @@
 //! Mises stress, fibre stretches and the layer id as element-centre cell data.
 
 use crate::error::Result;
+use crate::fem::element::{PlaneElement, ReferenceElement};
 use crate::fem::fields::{cell_fields, CellFields};
 use crate::fem::System;
 use crate::material::Bilayer;
-use crate::output::vtu::{write_vtu, DataArray};
+use crate::mesh::{Mesh, X, Y};
+use crate::output::vtu::{write_vtu, CellType, DataArray};
 use std::path::Path;
+
+/// The VTK cell of the mesh's element.
+pub const CELL_TYPE: CellType<9> = CellType {
+    vtk: PlaneElement::VTK_CELL_TYPE,
+    order: PlaneElement::VTK_ORDER,
+};
 
 /// Writes the state `u` of `system` to `path`, with `extra` point data (e.g. a mode).
 pub fn write_state(path: &Path, system: &System, materials: &Bilayer, u: &[f64], extra: Vec<DataArray>) -> Result<()> {
     let mesh = system.mesh();
     let (point_data, cell_data) = state_arrays(system, materials, u, extra)?;
-    write_vtu(path, mesh.coordinates(), mesh.elements(), &point_data, &cell_data)
+    write_vtu(
+        path,
+        mesh.coordinates(),
+        &CELL_TYPE,
+        mesh.elements(),
+        &point_data,
+        &cell_data,
+    )
 }
 
 /// The point data (the displacement, then `extra`) and cell data of the state `u` of `system`.
@@ -22,10 +37,16 @@ pub(super) fn state_arrays(
     u: &[f64],
     extra: Vec<DataArray>,
 ) -> Result<(Vec<DataArray>, Vec<DataArray>)> {
-    let nodal = &u[..system.mesh().num_dofs()];
-    let mut point_data = vec![displacement_array(nodal.chunks(2).map(|c| [c[0], c[1]]))];
+    let mut point_data = vec![nodal_array("displacement", system.mesh(), u)];
     point_data.extend(extra);
     Ok((point_data, cell_arrays(cell_fields(system, materials, u)?)))
+}
+
+/// The nodal displacement part of the unknowns `u` of `mesh` as point data called `name`.
+pub fn nodal_array(name: &str, mesh: &Mesh, u: &[f64]) -> DataArray {
+    let dofs = mesh.dofs();
+    let node = |n: usize| [u[dofs.dof(n, X)], u[dofs.dof(n, Y)]];
+    DataArray::plane_vectors(name, (0..mesh.num_nodes()).map(node))
 }
 
 /// The nodal displacement as the snapshots' point data.

@@ -4,16 +4,35 @@
 //! `0 <= Y <= 1`; in the substrate they grow geometrically from `h0` at the interface,
 //! `h_k = h0 r^k`, with `r` chosen so that `sum_k h_k = D` exactly.
 //!
-//! Nodes form a `(2 nx + 1) x (2 ny + 1)` grid numbered column by column (Y fastest, the shorter
-//! direction): grid node `(i, j)` is `i (2 ny + 1) + j`, with `i = 0` at `X = 0` and `j = 0` at
-//! `Y = -D`. Element nodes are in tensor-product order: local node `a + 3 b` sits at
-//! `(xi, eta) = (a - 1, b - 1)`. Displacement unknown `c` (0: x, 1: y) of node `n` is `2 n + c`.
+//! A [`Mesh`] is nodes, cells, a region per cell and named node sets ([`LEFT`], [`RIGHT`],
+//! [`BOTTOM`], [`TOP`], [`INTERFACE`]): what boundary conditions, contact surfaces and probes
+//! address. The bilayer strip is generated here, and only its generator knows the grid: nodes
+//! form a `(2 nx + 1) x (2 ny + 1)` grid numbered column by column (Y fastest, the shorter
+//! direction), grid node `(i, j)` being `i (2 ny + 1) + j`, with `i = 0` at `X = 0` and `j = 0`
+//! at `Y = -D`. Element nodes are in tensor-product order: local node `a + 3 b` sits at
+//! `(xi, eta) = (a - 1, b - 1)`. The unknowns are numbered by the mesh's [`DofMap`].
 
 use crate::error::{Error, Result};
-use crate::fem::ElementKind;
 use crate::numerics::density::equidistribute;
 use crate::numerics::grading::geometric_ratio;
 use serde::{Deserialize, Serialize};
+
+mod dofs;
+mod element_kind;
+pub use dofs::{DofMap, X, Y, Z};
+pub use element_kind::ElementKind;
+use std::collections::BTreeMap;
+
+/// The left edge `X = 0`, bottom to top.
+pub const LEFT: &str = "left";
+/// The right edge `X = L`, bottom to top.
+pub const RIGHT: &str = "right";
+/// The bottom `Y = -D`, by increasing X.
+pub const BOTTOM: &str = "bottom";
+/// The top surface `Y = 1`, by increasing X.
+pub const TOP: &str = "top";
+/// The interface `Y = 0` of the layer and the substrate, by increasing X.
+pub const INTERFACE: &str = "interface";
 
 /// Thickness of the stiff layer: the unit of length.
 pub const LAYER_THICKNESS: f64 = 1.0;
@@ -87,15 +106,18 @@ impl XRefinement {
 }
 
 /// The three meshes of the half domain that runs are quoted on.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "lowercase")]
 pub enum MeshPreset {
     /// [`MeshSpec::coarse`].
     #[default]
+    #[value(help = "100 x (2 + 25) elements, h0 = 0.5: 22,110 unknowns")]
     Coarse,
     /// [`MeshSpec::fine`].
+    #[value(help = "200 x (4 + 45) elements, h0 = 0.25: 79,398 unknowns")]
     Fine,
     /// [`MeshSpec::extra`].
+    #[value(help = "400 x (8 + 90) elements, h0 = 0.125: 315,594 unknowns")]
     Extra,
 }
 
@@ -238,7 +260,7 @@ impl MeshSpec {
 
     /// Number of unknowns before boundary conditions, two per node.
     pub fn num_dofs(&self) -> usize {
-        2 * (2 * self.nx + 1) * (2 * self.ny() + 1)
+        DofMap::PLANE.count((2 * self.nx + 1) * (2 * self.ny() + 1))
     }
 
     /// Checks counts and lengths; the grading needs `h0 < D` (or `h0 = D` for one element).
@@ -322,13 +344,15 @@ impl MeshSpec {
     }
 }
 
-/// A structured Q2 mesh: reference node coordinates, element connectivity and regions.
+/// A mesh of Q2 elements: reference node coordinates, element connectivity, regions and named
+/// node sets.
 #[derive(Clone, Debug)]
 pub struct Mesh {
     spec: MeshSpec,
     coordinates: Vec<[f64; 2]>,
     elements: Vec<[usize; 9]>,
     regions: Vec<Region>,
+    node_sets: BTreeMap<&'static str, Vec<usize>>,
 }
 
 impl Mesh {
@@ -366,16 +390,28 @@ impl Mesh {
                 });
             }
         }
+        let grid = |i: usize, j: usize| i * rows + j;
+        let node_sets = BTreeMap::from([
+            (LEFT, (0..rows).map(|j| grid(0, j)).collect()),
+            (RIGHT, (0..rows).map(|j| grid(columns - 1, j)).collect()),
+            (BOTTOM, (0..columns).map(|i| grid(i, 0)).collect()),
+            (TOP, (0..columns).map(|i| grid(i, rows - 1)).collect()),
+            (
+                INTERFACE,
+                (0..columns).map(|i| grid(i, 2 * spec.substrate_elements)).collect(),
+            ),
+        ]);
         Ok(Mesh {
             spec,
             coordinates,
             elements,
             regions,
+            node_sets,
         })
     }
 
     /// Moves every node `X` to `X + displacement(X)` (an imperfection of the reference geometry);
-    /// node sets and regions keep following the grid.
+    /// node sets and regions stay.
     pub fn perturbed(mut self, displacement: impl Fn([f64; 2]) -> [f64; 2]) -> Self {
         for x in &mut self.coordinates {
             let [dx, dy] = displacement(*x);
@@ -409,53 +445,52 @@ impl Mesh {
         self.coordinates.len()
     }
 
+    /// How the mesh's unknowns are numbered: two displacement components per node.
+    pub fn dofs(&self) -> DofMap {
+        DofMap::PLANE
+    }
+
     /// Number of unknowns, two per node.
     pub fn num_dofs(&self) -> usize {
-        2 * self.num_nodes()
+        self.dofs().count(self.num_nodes())
     }
 
-    /// Number of node columns, `2 nx + 1`.
-    pub fn columns(&self) -> usize {
-        2 * self.spec.nx + 1
+    /// The nodes of the set called `name` ([`LEFT`], [`RIGHT`], [`BOTTOM`], [`TOP`],
+    /// [`INTERFACE`]), in the set's order. A name the mesh has no set of is a bug (panic).
+    pub fn node_set(&self, name: &str) -> &[usize] {
+        self.node_sets
+            .get(name)
+            .unwrap_or_else(|| panic!("the mesh has no node set `{name}`"))
     }
 
-    /// Number of node rows, `2 ny + 1`.
-    pub fn rows(&self) -> usize {
-        2 * self.spec.ny() + 1
+    /// The names of the node sets.
+    pub fn node_set_names(&self) -> impl Iterator<Item = &'static str> + '_ {
+        self.node_sets.keys().copied()
     }
 
-    /// The node in grid column `i` (from `X = 0`) and row `j` (from `Y = -D`).
-    pub fn node(&self, i: usize, j: usize) -> usize {
-        i * self.rows() + j
-    }
-
-    /// Nodes on the left edge `X = 0`, bottom to top.
+    /// Nodes on the left edge `X = 0`, bottom to top (the set [`LEFT`]).
     pub fn left(&self) -> Vec<usize> {
-        (0..self.rows()).map(|j| self.node(0, j)).collect()
+        self.node_set(LEFT).to_vec()
     }
 
-    /// Nodes on the right edge `X = L`, bottom to top.
+    /// Nodes on the right edge `X = L`, bottom to top (the set [`RIGHT`]).
     pub fn right(&self) -> Vec<usize> {
-        (0..self.rows()).map(|j| self.node(self.columns() - 1, j)).collect()
+        self.node_set(RIGHT).to_vec()
     }
 
-    /// Nodes on the bottom `Y = -D`, sorted by X.
+    /// Nodes on the bottom `Y = -D`, sorted by X (the set [`BOTTOM`]).
     pub fn bottom(&self) -> Vec<usize> {
-        self.grid_row(0)
+        self.node_set(BOTTOM).to_vec()
     }
 
-    /// Nodes on the top surface `Y = 1`, sorted by X.
+    /// Nodes on the top surface `Y = 1`, sorted by X (the set [`TOP`]).
     pub fn top(&self) -> Vec<usize> {
-        self.grid_row(self.rows() - 1)
+        self.node_set(TOP).to_vec()
     }
 
-    /// Nodes on the interface `Y = 0`, sorted by X.
+    /// Nodes on the interface `Y = 0`, sorted by X (the set [`INTERFACE`]).
     pub fn interface(&self) -> Vec<usize> {
-        self.grid_row(2 * self.spec.substrate_elements)
-    }
-
-    fn grid_row(&self, j: usize) -> Vec<usize> {
-        (0..self.columns()).map(|i| self.node(i, j)).collect()
+        self.node_set(INTERFACE).to_vec()
     }
 }
 
@@ -476,17 +511,25 @@ mod tests {
     #[test]
     fn small_mesh_numbering_and_sets() {
         let mesh = Mesh::new(MeshSpec::new(2, 1, 2, 2.0, 4.0, 5.0)).unwrap();
-        assert_eq!((mesh.columns(), mesh.rows(), mesh.num_nodes()), (5, 7, 35));
+        // A 5 x 7 grid of nodes, numbered column by column.
+        let node = |i: usize, j: usize| 7 * i + j;
+        assert_eq!(mesh.num_nodes(), 35);
         assert_eq!(mesh.elements().len(), 6);
         // First element: bottom-left corner at node 0, centre at grid (1, 1).
         assert_eq!(mesh.elements()[0][0], 0);
-        assert_eq!(mesh.elements()[0][4], mesh.node(1, 1));
-        assert_eq!(mesh.elements()[0][8], mesh.node(2, 2));
+        assert_eq!(mesh.elements()[0][4], node(1, 1));
+        assert_eq!(mesh.elements()[0][8], node(2, 2));
+        assert_eq!(
+            mesh.node_set_names().collect::<Vec<_>>(),
+            [BOTTOM, INTERFACE, LEFT, RIGHT, TOP]
+        );
+        assert_eq!(mesh.left(), (0..7).collect::<Vec<_>>());
+        assert_eq!(mesh.right(), (28..35).collect::<Vec<_>>());
         assert_eq!(mesh.regions()[2], Region::Layer);
         assert_eq!(mesh.coordinates()[mesh.top()[4]], [4.0, 1.0]);
         assert_eq!(mesh.coordinates()[mesh.bottom()[0]], [0.0, -5.0]);
         assert_eq!(mesh.coordinates()[mesh.interface()[2]][1], 0.0);
-        assert_eq!(mesh.coordinates()[mesh.node(0, 1)][1], -3.5);
+        assert_eq!(mesh.coordinates()[node(0, 1)][1], -3.5);
         assert_eq!(mesh.spec().substrate_thicknesses(), vec![2.0, 3.0]);
     }
 

@@ -55,11 +55,12 @@
 //! [`crate::fem::System::assemble_for_stability`]); the coarse-mesh bifurcation no longer
 //! moves beyond 10^5 times.
 
-use super::element::{
-    add_tangent, mirror_upper_triangle, ElementGeometry, ElementMatrix, ElementState, ElementVector, DOFS, GAUSS_POINTS,
+use super::displacement::{self, add_tangent, mirror_upper_triangle};
+use super::{
+    ElementGeometry, ElementMatrix, ElementState, ElementVector, FiniteElement, DOFS, ELEMENT_DOFS, GAUSS_POINTS,
 };
 use crate::error::{Error, Result};
-use crate::material::{add_pressure, cofactor, jacobian, StrainEnergy, Tissue};
+use crate::material::{add_pressure, cofactor, jacobian, Hyperelastic, StrainEnergy, Tissue};
 
 /// Pressure unknowns per element: a linear polynomial in `X`.
 pub const PRESSURES: usize = 3;
@@ -109,7 +110,7 @@ impl MixedElement {
     /// exactly incompressible with those penalties (the tissue's bulk modulus is then unused).
     pub fn new(geometry: &ElementGeometry, tissue: &Tissue, constraint: Option<Volumetric>) -> Self {
         let (points, weights) = (geometry.points(), geometry.weights());
-        let area = geometry.area();
+        let area = geometry.volume();
         let centroid: [f64; 2] =
             std::array::from_fn(|c| points.iter().zip(weights).map(|(x, w)| w * x[c]).sum::<f64>() / area);
         let h = area.sqrt();
@@ -174,8 +175,8 @@ impl MixedElement {
                 let dx = inverse_transpose[0] * grad[0] + inverse_transpose[1] * grad[1];
                 let dy = inverse_transpose[2] * grad[0] + inverse_transpose[3] * grad[1];
                 for (row, &phi_i) in moment_derivatives.iter_mut().zip(phi) {
-                    row[2 * a] += w * phi_i * dx;
-                    row[2 * a + 1] += w * phi_i * dy;
+                    row[ELEMENT_DOFS.dof(a, 0)] += w * phi_i * dx;
+                    row[ELEMENT_DOFS.dof(a, 1)] += w * phi_i * dy;
                 }
             }
             for (moment, &phi_i) in moments.iter_mut().zip(phi) {
@@ -242,8 +243,8 @@ impl MixedElement {
                 }
             };
             for (a, grad) in grads.iter().enumerate() {
-                state.force[2 * a] += w * (stress[0] * grad[0] + stress[1] * grad[1]);
-                state.force[2 * a + 1] += w * (stress[2] * grad[0] + stress[3] * grad[1]);
+                state.force[ELEMENT_DOFS.dof(a, 0)] += w * (stress[0] * grad[0] + stress[1] * grad[1]);
+                state.force[ELEMENT_DOFS.dof(a, 1)] += w * (stress[2] * grad[0] + stress[3] * grad[1]);
             }
         }
         if let Some(k) = stiffness {
@@ -270,6 +271,70 @@ impl MixedElement {
             pressure,
             violation,
         })
+    }
+}
+
+impl FiniteElement for MixedElement {
+    fn evaluate(
+        &self,
+        geometry: &ElementGeometry,
+        u: &ElementVector,
+        lambda: &[f64; PRESSURES],
+        penalty_scale: f64,
+        stiffness: Option<&mut ElementMatrix>,
+    ) -> Result<ElementState> {
+        Ok(MixedElement::evaluate(self, geometry, u, lambda, penalty_scale, stiffness)?.state)
+    }
+
+    /// Under multipliers, of the energy without its volumetric part: that part's penalty would
+    /// make the displacements it scales stiff against the multipliers' updates.
+    fn reference_stiffness(&self, geometry: &ElementGeometry, stiffness: &mut ElementMatrix) -> Result<()> {
+        match self.volumetric {
+            Volumetric::Augmented { .. } => displacement::evaluate(geometry, &self.rest, &[0.0; DOFS], Some(stiffness)),
+            Volumetric::Bulk(_) => {
+                MixedElement::evaluate(self, geometry, &[0.0; DOFS], &[0.0; PRESSURES], 1.0, Some(stiffness))
+                    .map(|m| m.state)
+            }
+        }
+        .map(|_| ())
+    }
+
+    /// `sigma = sigma_rest + p / J I`, `p` the element's pressure at the point.
+    fn cauchy(
+        &self,
+        geometry: &ElementGeometry,
+        g: usize,
+        u: &ElementVector,
+        lambda: &[f64; PRESSURES],
+    ) -> Result<[f64; 4]> {
+        let f = geometry.deformation_gradient(g, u);
+        let pressure = MixedElement::evaluate(self, geometry, u, lambda, 1.0, None)?.pressure;
+        let p: f64 = self.basis[g].iter().zip(&pressure).map(|(a, b)| a * b).sum();
+        let mut sigma = self.rest.cauchy(&f)?;
+        for i in [0, 2, 3] {
+            sigma[i] += p / jacobian(&f);
+        }
+        Ok(sigma)
+    }
+
+    fn has_multipliers(&self) -> bool {
+        matches!(self.volumetric, Volumetric::Augmented { .. })
+    }
+
+    fn multiplier_step(
+        &self,
+        geometry: &ElementGeometry,
+        u: &ElementVector,
+        lambda: &[f64; PRESSURES],
+        penalty_scale: f64,
+    ) -> Result<(f64, [f64; PRESSURES])> {
+        let state = MixedElement::evaluate(self, geometry, u, lambda, penalty_scale, None)?;
+        let violation = state.violation.iter().fold(0.0f64, |v, x| v.max(x.abs()));
+        let change: [f64; PRESSURES] = match self.volumetric {
+            Volumetric::Augmented { .. } => std::array::from_fn(|i| state.pressure[i] - lambda[i]),
+            Volumetric::Bulk(_) => [0.0; PRESSURES],
+        };
+        Ok((violation, change))
     }
 }
 

@@ -1,8 +1,13 @@
 use super::*;
-use crate::fem::element::{self, tests::assert_consistent_derivatives, tests::distorted, NODES};
+use crate::fem::element::displacement::{self, tests::assert_consistent_derivatives, tests::distorted};
+use crate::fem::element::{Quad9, NODES};
 use crate::material::Bilayer;
+use crate::mesh::DofMap;
 use crate::parameters::Parameters;
 use nalgebra::{DMatrix, SymmetricEigen};
+
+/// Row-major numbering of a plane tensor's components `iJ`.
+const PLANE_TENSOR: DofMap = DofMap::PLANE;
 
 /// A nearly incompressible fibre-reinforced substrate (`K_s = 50 mu_s`).
 fn substrate() -> Tissue {
@@ -20,7 +25,7 @@ fn mixed_on_distorted(
     constraint: Option<Volumetric>,
 ) -> (ElementGeometry, MixedElement, ElementVector) {
     let (nodes, u) = distorted();
-    let geometry = ElementGeometry::new(&nodes).unwrap();
+    let geometry = ElementGeometry::new::<Quad9>(&nodes).unwrap();
     let mixed = MixedElement::new(&geometry, tissue, constraint);
     (geometry, mixed, u)
 }
@@ -39,14 +44,15 @@ fn condensed_force_and_tangent_are_the_derivatives_of_the_energy() {
 fn homogeneous_deformation_gives_the_displacement_element_s_energy_and_pressure() {
     let tissue = substrate();
     let (nodes, _) = distorted();
-    let geometry = ElementGeometry::new(&nodes).unwrap();
+    let geometry = ElementGeometry::new::<Quad9>(&nodes).unwrap();
     let mixed = MixedElement::new(&geometry, &tissue, None);
     let f = [0.83, 0.11, -0.07, 1.12];
     let u: ElementVector = std::array::from_fn(|i| {
-        let (x, c) = (nodes[i / 2], i % 2);
-        (f[2 * c] - if c == 0 { 1.0 } else { 0.0 }) * x[0] + (f[2 * c + 1] - if c == 1 { 1.0 } else { 0.0 }) * x[1]
+        let (x, c) = (nodes[ELEMENT_DOFS.node(i)], ELEMENT_DOFS.component(i));
+        (f[PLANE_TENSOR.dof(c, 0)] - if c == 0 { 1.0 } else { 0.0 }) * x[0]
+            + (f[PLANE_TENSOR.dof(c, 1)] - if c == 1 { 1.0 } else { 0.0 }) * x[1]
     });
-    let displacement = element::evaluate(&geometry, &tissue, &u, None).unwrap();
+    let displacement = displacement::evaluate(&geometry, &tissue, &u, None).unwrap();
     let condensed = mixed.evaluate(&geometry, &u, &[0.0; PRESSURES], 1.0, None).unwrap();
     assert!((displacement.energy - condensed.state.energy).abs() < 1e-12 * displacement.energy.abs());
     for (a, b) in displacement.force.iter().zip(&condensed.state.force) {
@@ -65,12 +71,12 @@ fn homogeneous_deformation_gives_the_displacement_element_s_energy_and_pressure(
 fn saddle_point_inertia_is_the_condensed_plus_pressures() {
     let tissue = Bilayer::new(&Parameters::default()).layer_tissue();
     let (nodes, _) = distorted();
-    let geometry = ElementGeometry::new(&nodes).unwrap();
+    let geometry = ElementGeometry::new::<Quad9>(&nodes).unwrap();
     let mixed = MixedElement::new(&geometry, &tissue, None);
     // A strong lateral compression with a wrinkle-like shear, nodes 0 and 1 held (no rigid modes).
     let u: ElementVector = std::array::from_fn(|i| {
-        let x = nodes[i / 2];
-        if i % 2 == 0 {
+        let x = nodes[ELEMENT_DOFS.node(i)];
+        if ELEMENT_DOFS.component(i) == 0 {
             -0.45 * (x[0] + 1.3)
         } else {
             0.3 * (x[0] * 1.7).sin() + 0.2 * x[1]
@@ -92,9 +98,9 @@ fn saddle_point_inertia_is_the_condensed_plus_pressures() {
         let w = geometry.weights()[g];
         let grads = geometry.gradients(g);
         let dfdu = |r: usize, ij: usize| {
-            let (a_node, i) = (r / 2, r % 2);
-            if ij / 2 == i {
-                grads[a_node][ij % 2]
+            let (a_node, i) = (ELEMENT_DOFS.node(r), ELEMENT_DOFS.component(r));
+            if PLANE_TENSOR.node(ij) == i {
+                grads[a_node][PLANE_TENSOR.component(ij)]
             } else {
                 0.0
             }
