@@ -39,6 +39,27 @@ pub struct Tangent {
 }
 
 impl Tangent {
+    /// The lower triangle of the `n x n` matrix with the given entries (`(row, column, value)`
+    /// with `row >= column`, each entry once).
+    pub fn from_lower_entries(n: usize, entries: &[(usize, usize, f64)]) -> Result<Self> {
+        let pairs: Vec<faer::sparse::Pair<usize, usize>> = entries
+            .iter()
+            .map(|&(row, col, _)| faer::sparse::Pair { row, col })
+            .collect();
+        let (symbolic, _) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
+            .map_err(|e| Error::invalid("tangent entry", format!("{e:?}"), &format!("indices in [0, {n})")))?;
+        let mut values = vec![0.0; symbolic.compute_nnz()];
+        for &(row, col, value) in entries {
+            let column = symbolic.col_range(col);
+            let rows = &symbolic.row_idx()[column.clone()];
+            values[column.start + rows.binary_search(&row).expect("an entry of the pattern")] = value;
+        }
+        Ok(Tangent {
+            structure: Arc::new(symbolic),
+            values,
+        })
+    }
+
     /// The matrix.
     pub fn as_ref(&self) -> SparseColMatRef<'_, usize, f64> {
         SparseColMatRef::new(self.symbolic(), &self.values)

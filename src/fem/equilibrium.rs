@@ -19,7 +19,9 @@ use super::assembly::System;
 use super::boundary::Dirichlet;
 use super::contact::{Contact, ContactUpdate};
 use super::element::PressureUpdate;
-use super::newton::{largest_move, Equations, Newton, NewtonError, NewtonPolicy, NewtonReport, Precision, Updates};
+use super::newton::{
+    largest_move, Newton, NewtonError, NewtonPolicy, NewtonReport, Precision, SystemEquations, Updates,
+};
 
 /// What an outer loop does between two converged solves.
 pub trait Update {
@@ -168,14 +170,14 @@ fn solve_equilibrium(
     let mut shift = policy.initial_shift;
     let mut pressure_passes = |added: &dyn AddedEnergy, system: &mut System, u: &mut [f64]| {
         repeat(&mut PressureUpdate::new(), system, u, |pressure, system, u| {
-            let equations = Equations {
+            let mut equations = SystemEquations {
                 system,
                 bc,
                 added,
                 penalty_scale: pressure.penalty_scale(),
             };
             match inner {
-                Inner::Newton => newton.iterate(equations, u, &policy),
+                Inner::Newton => newton.iterate(&mut equations, u, &policy),
                 Inner::Minimise => {
                     let pass = NewtonPolicy {
                         initial_shift: shift,
@@ -185,7 +187,7 @@ fn solve_equilibrium(
                             .reduce(f64::min),
                         ..policy
                     };
-                    let report = newton.minimise(equations, u, &pass)?;
+                    let report = newton.minimise(&mut equations, u, &pass)?;
                     shift = report.final_shift;
                     match policy.max_move {
                         Some(limit) if largest_move(u, &start, system.mesh().num_dofs()) > limit => {

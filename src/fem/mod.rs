@@ -24,4 +24,7 @@ pub use assembly::{Assembled, System, Tangent};
 pub use boundary::Dirichlet;
 pub use element::{ElementKind, LOCKING_RATIO};
 pub use linear_solver::{Factorisation, SparseLdlt};
-pub use newton::{Newton, NewtonError, NewtonPolicy, NewtonReport, Precision, Reuse, Stall, Timings, Updates};
+pub use newton::{
+    EnergyEquations, Equations, Newton, NewtonError, NewtonPolicy, NewtonReport, Precision, Reuse, Stall,
+    SystemEquations, Timings, Updates,
+};

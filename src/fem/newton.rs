@@ -47,13 +47,86 @@ mod trust_region;
 pub use policy::{NewtonPolicy, Precision, Reuse, Stall};
 pub use report::{NewtonError, NewtonReport, Timings, Updates};
 
-/// The equations one Newton solve makes stationary: the strain energy of `system` plus `added`,
-/// with `bc` prescribed and the multipliers' penalty multiplied by `penalty_scale`.
-pub struct Equations<'a> {
+/// What Newton's method solves: `r(u) = 0` on the free unknowns of `u`, whose prescribed unknowns
+/// move to their given values. The equations give the residual and its tangent at a state; the
+/// method brings the linear solve.
+pub trait Equations {
+    /// The prescribed unknowns and their values.
+    fn prescribed(&self) -> &Dirichlet;
+    /// The free unknowns, increasing (position = index in the residual).
+    fn free_unknowns(&mut self) -> crate::Result<Vec<usize>>;
+    /// The residual on the free unknowns (and the tangent when `with_tangent`) at the full `u`,
+    /// plus `K_fc lift` when `lift` is given (one value per prescribed unknown).
+    fn assemble(&mut self, u: &[f64], lift: Option<&[f64]>, with_tangent: bool) -> crate::Result<Assembled>;
+    /// The factor on the convergence tolerance (a raised penalty raises the residual's
+    /// round-off in proportion).
+    fn tolerance_scale(&self) -> f64 {
+        1.0
+    }
+    /// How many leading unknowns of `u` set the scale of an update (the displacements, not the
+    /// multipliers that may follow them).
+    fn scaled_unknowns(&self) -> usize;
+    /// Where along the step from `u` to `full` the first term that the tangent at `u` lacks
+    /// switches on (1: none), for the line search to start there.
+    fn switch_on_fraction(&self, _u: &[f64], _full: &[f64]) -> f64 {
+        1.0
+    }
+}
+
+/// Equations that are the gradient of an energy (the residual's potential), which the
+/// minimiser ([`Newton::minimise`]) descends.
+pub trait EnergyEquations: Equations {
+    /// A positive scale of each unknown's stiffness (the minimiser's shift is proportional).
+    fn stiffness_scale(&self) -> crate::Result<Vec<f64>>;
+    /// `assembled` (of these equations, with its tangent) with `curvature[dof]` added to the
+    /// tangent's diagonal entry of every free unknown, without assembling again.
+    fn with_diagonal_added(&self, assembled: &Assembled, curvature: &[f64]) -> Assembled;
+}
+
+/// The equations of a finite-element system: its strain energy plus `added`, with `bc`
+/// prescribed and the multipliers' penalty multiplied by `penalty_scale`.
+pub struct SystemEquations<'a> {
     pub system: &'a mut System,
     pub bc: &'a Dirichlet,
     pub added: &'a dyn AddedEnergy,
     pub penalty_scale: f64,
+}
+
+impl Equations for SystemEquations<'_> {
+    fn prescribed(&self) -> &Dirichlet {
+        self.bc
+    }
+
+    fn free_unknowns(&mut self) -> crate::Result<Vec<usize>> {
+        Ok(self.system.free_dofs(self.bc)?.to_vec())
+    }
+
+    fn assemble(&mut self, u: &[f64], lift: Option<&[f64]>, with_tangent: bool) -> crate::Result<Assembled> {
+        self.system
+            .assemble_penalised(u, self.bc, lift, with_tangent, self.added, self.penalty_scale)
+    }
+
+    fn tolerance_scale(&self) -> f64 {
+        self.penalty_scale
+    }
+
+    fn scaled_unknowns(&self) -> usize {
+        self.system.mesh().num_dofs()
+    }
+
+    fn switch_on_fraction(&self, u: &[f64], full: &[f64]) -> f64 {
+        self.added.switch_on_fraction(u, full)
+    }
+}
+
+impl EnergyEquations for SystemEquations<'_> {
+    fn stiffness_scale(&self) -> crate::Result<Vec<f64>> {
+        self.system.reference_stiffness_diagonal()
+    }
+
+    fn with_diagonal_added(&self, assembled: &Assembled, curvature: &[f64]) -> Assembled {
+        self.system.with_diagonal_added(assembled, curvature)
+    }
 }
 
 /// Newton's method: the factorisation it keeps between solves (and the symbolic analysis
@@ -130,15 +203,15 @@ impl Newton {
     /// Newton's iteration on `equations` from `u` (full vector) with `policy`: on success `u`
     /// holds the solution (whose inertia this does not count: [`crate::fem::equilibrium`]
     /// does), on failure it is left at the last iterate.
-    pub fn iterate(
+    pub fn iterate<E: Equations + ?Sized>(
         &mut self,
-        equations: Equations,
+        equations: &mut E,
         u: &mut [f64],
         policy: &NewtonPolicy,
     ) -> Result<NewtonReport, NewtonError> {
         let s = *policy;
         let mut problem = Problem::new(equations)?;
-        let bc = problem.bc;
+        let bc = problem.equations.prescribed();
         let pending: Vec<f64> = bc.dofs().iter().zip(bc.values()).map(|(&d, &g)| g - u[d]).collect();
         let lifting = pending.iter().any(|&p| p != 0.0);
         let factorise_start = s.factorise_start && !lifting;
@@ -172,9 +245,9 @@ impl Newton {
             // A penalty raised by the multiplier updates raises the residual's round-off with it
             // (measured: in proportion), so the tolerance follows; at the largest raise the
             // equilibrium then holds to 1e-7 relative, as the constraint does.
-            let tolerance = s.tolerance(state.assembled.force_norm(), problem.penalty_scale);
+            let tolerance = s.tolerance(state.assembled.force_norm(), problem.equations.tolerance_scale());
             // The displacements' scale (not the multipliers' that may follow them).
-            let scale = 1.0 + max_abs(&u[..problem.system.mesh().num_dofs()]);
+            let scale = 1.0 + max_abs(&u[..problem.equations.scaled_unknowns()]);
             if !state.lifting && (residual <= tolerance || last_update <= s.update_tolerance * scale) {
                 return Ok(NewtonReport {
                     iterations: iteration,
@@ -267,9 +340,9 @@ impl Newton {
     /// A full step with the held factorisation: the new iterate, its displacement, the update
     /// and the residual ratio, or `None` when the step does not decrease `|r|` (or inverts an
     /// element), leaving the iterate as it was.
-    fn reused_step(
+    fn reused_step<E: Equations + ?Sized>(
         &mut self,
-        problem: &mut Problem,
+        problem: &mut Problem<'_, E>,
         u: &[f64],
         state: &Iterate,
         (residual, policy): (f64, &NewtonPolicy),
@@ -367,8 +440,8 @@ impl Newton {
 /// reached, decreases `|r|`), starting from 1 or from where the first term of the added
 /// energy switches on ([`AddedEnergy::switch_on_fraction`]); returns the new iterate, its
 /// displacement, `alpha` and the number of halvings.
-fn line_search(
-    problem: &mut Problem,
+fn line_search<E: Equations + ?Sized>(
+    problem: &mut Problem<'_, E>,
     u: &[f64],
     state: &Iterate,
     du: &[f64],
@@ -376,7 +449,7 @@ fn line_search(
 ) -> Result<(Iterate, Vec<f64>, f64, usize), NewtonError> {
     let residual = state.assembled.residual_norm();
     let full = problem.step(u, du, &state.pending, 1.0);
-    let mut alpha = problem.added.switch_on_fraction(u, &full);
+    let mut alpha = problem.equations.switch_on_fraction(u, &full);
     for halvings in 0.. {
         let trial_u = problem.step(u, du, &state.pending, alpha);
         let pending: Vec<f64> = state.pending.iter().map(|p| (1.0 - alpha) * p).collect();
@@ -434,30 +507,18 @@ pub(crate) fn largest_move(a: &[f64], b: &[f64], n: usize) -> f64 {
 }
 
 /// The equations being solved, with their free unknowns and the wall times a solve accumulates.
-struct Problem<'a> {
-    system: &'a mut System,
-    bc: &'a Dirichlet,
-    added: &'a dyn AddedEnergy,
-    penalty_scale: f64,
+struct Problem<'a, E: Equations + ?Sized> {
+    equations: &'a mut E,
     free: Vec<usize>,
     timings: Timings,
 }
 
-impl<'a> Problem<'a> {
+impl<'a, E: Equations + ?Sized> Problem<'a, E> {
     /// The problem of `equations`; no time spent yet.
-    fn new(equations: Equations<'a>) -> crate::Result<Self> {
-        let Equations {
-            system,
-            bc,
-            added,
-            penalty_scale,
-        } = equations;
-        let free = system.free_dofs(bc)?.to_vec();
+    fn new(equations: &'a mut E) -> crate::Result<Self> {
+        let free = equations.free_unknowns()?;
         Ok(Problem {
-            system,
-            bc,
-            added,
-            penalty_scale,
+            equations,
             free,
             timings: Timings::default(),
         })
@@ -466,14 +527,7 @@ impl<'a> Problem<'a> {
     /// Residual (and tangent when `with_tangent`) at `u`, lifted by `K_fc pending` when
     /// `lifting`; timed.
     fn assemble(&mut self, u: &[f64], pending: &[f64], lifting: bool, with_tangent: bool) -> crate::Result<Assembled> {
-        let assembled = self.system.assemble_penalised(
-            u,
-            self.bc,
-            lifting.then_some(pending),
-            with_tangent,
-            self.added,
-            self.penalty_scale,
-        )?;
+        let assembled = self.equations.assemble(u, lifting.then_some(pending), with_tangent)?;
         self.timings.assembly += assembled.elapsed;
         self.timings.assemblies += 1;
         Ok(assembled)
@@ -485,7 +539,8 @@ impl<'a> Problem<'a> {
         for (&dof, &d) in self.free.iter().zip(du) {
             next[dof] += alpha * d;
         }
-        for ((&dof, &g), &p) in self.bc.dofs().iter().zip(self.bc.values()).zip(pending) {
+        let bc = self.equations.prescribed();
+        for ((&dof, &g), &p) in bc.dofs().iter().zip(bc.values()).zip(pending) {
             next[dof] = if alpha == 1.0 { g } else { next[dof] + alpha * p };
         }
         next
@@ -501,5 +556,66 @@ fn inverted(e: Error, iteration: usize) -> NewtonError {
             reason: e.to_string(),
         },
         other => NewtonError::Model(other),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fem::Tangent;
+
+    /// The gradient of `Phi(x, y) = x^4/4 + x^2/2 - 2x + (y - x)^2/2`, stationary at
+    /// `x = y = 1` (`x^3 + x = 2`): equations with no mesh behind them.
+    struct Quartic {
+        prescribed: Dirichlet,
+    }
+
+    impl Equations for Quartic {
+        fn prescribed(&self) -> &Dirichlet {
+            &self.prescribed
+        }
+
+        fn free_unknowns(&mut self) -> crate::Result<Vec<usize>> {
+            Ok(vec![0, 1])
+        }
+
+        fn assemble(&mut self, u: &[f64], _lift: Option<&[f64]>, with_tangent: bool) -> crate::Result<Assembled> {
+            let (x, y) = (u[0], u[1]);
+            let energy = x.powi(4) / 4.0 + x * x / 2.0 - 2.0 * x + (y - x).powi(2) / 2.0;
+            let tangent = with_tangent
+                .then(|| Tangent::from_lower_entries(2, &[(0, 0, 3.0 * x * x + 2.0), (1, 0, -1.0), (1, 1, 1.0)]))
+                .transpose()?;
+            Ok(Assembled {
+                residual: vec![x.powi(3) + x - 2.0 - (y - x), y - x],
+                tangent,
+                reactions: Vec::new(),
+                energy,
+                potential: energy,
+                added_energy: 0.0,
+                min_jacobian: 1.0,
+                pattern: 0,
+                structure: 0,
+                elapsed: std::time::Duration::ZERO,
+            })
+        }
+
+        fn scaled_unknowns(&self) -> usize {
+            2
+        }
+    }
+
+    #[test]
+    fn newton_solves_equations_that_are_not_a_mesh_s() {
+        let mut equations = Quartic {
+            prescribed: Dirichlet::new(Vec::new()).unwrap(),
+        };
+        let mut u = vec![3.0, -2.0];
+        let policy = NewtonPolicy {
+            reuse: Reuse::Never,
+            ..NewtonPolicy::default()
+        };
+        let report = Newton::new().iterate(&mut equations, &mut u, &policy).unwrap();
+        assert!((u[0] - 1.0).abs() < 1e-9 && (u[1] - 1.0).abs() < 1e-9, "{u:?}");
+        assert!(report.iterations > 2, "from afar: {}", report.iterations);
     }
 }

@@ -25,7 +25,9 @@
 //! (a snap onto a closing trough moves the surface by more than the pairs found at its start
 //! can follow).
 
-use super::{largest_move, max_abs, Equations, Newton, NewtonError, NewtonPolicy, NewtonReport, Problem, Updates};
+use super::{
+    largest_move, max_abs, EnergyEquations, Newton, NewtonError, NewtonPolicy, NewtonReport, Problem, Updates,
+};
 use crate::error::Error;
 use crate::fem::assembly::Assembled;
 
@@ -137,18 +139,18 @@ fn lowest_generalised_mode(
 }
 
 /// The energy being minimised (Newton's [`Problem`]) and the scale `D` of its shifts.
-struct Landscape<'a> {
-    problem: Problem<'a>,
+struct Landscape<'a, E: EnergyEquations + ?Sized> {
+    problem: Problem<'a, E>,
     /// `D`, relative to its mean over the free unknowns, on every displacement unknown (the
     /// multipliers are updated outside Newton and take no shift).
     scale: Vec<f64>,
 }
 
-impl<'a> Landscape<'a> {
-    /// The landscape of `equations`, with `D` from the reference stiffness.
-    fn new(equations: Equations<'a>) -> crate::Result<Self> {
+impl<'a, E: EnergyEquations + ?Sized> Landscape<'a, E> {
+    /// The landscape of `equations`, with `D` from their stiffness scale.
+    fn new(equations: &'a mut E) -> crate::Result<Self> {
         let problem = Problem::new(equations)?;
-        let mut scale = problem.system.reference_stiffness_diagonal()?;
+        let mut scale = problem.equations.stiffness_scale()?;
         let free = &problem.free;
         let mean = free.iter().map(|&dof| scale[dof].abs()).sum::<f64>() / free.len().max(1) as f64;
         scale
@@ -160,10 +162,7 @@ impl<'a> Landscape<'a> {
     /// Energy, residual and tangent at `u`.
     fn assemble(&mut self, u: &[f64]) -> crate::Result<Assembled> {
         let problem = &mut self.problem;
-        let assembled =
-            problem
-                .system
-                .assemble_penalised(u, problem.bc, None, true, problem.added, problem.penalty_scale)?;
+        let assembled = problem.equations.assemble(u, None, true)?;
         problem.timings.assembly += assembled.elapsed;
         problem.timings.assemblies += 1;
         Ok(assembled)
@@ -174,7 +173,7 @@ impl<'a> Landscape<'a> {
     /// there and adds `sigma D` to the tangent.
     fn shifted(&mut self, current: &Assembled, sigma: f64) -> Assembled {
         let curvature: Vec<f64> = self.scale.iter().map(|d| sigma * d).collect();
-        let shifted = self.problem.system.with_diagonal_added(current, &curvature);
+        let shifted = self.problem.equations.with_diagonal_added(current, &curvature);
         self.problem.timings.assembly += shifted.elapsed;
         shifted
     }
@@ -211,19 +210,19 @@ impl Newton {
     /// negative pivot), or, past `policy.max_pass_move`, the last accepted iterate and
     /// `unfinished`; on failure `u` is the last accepted iterate. `policy` gives the
     /// tolerances (Newton's), not the step rules.
-    pub fn minimise(
+    pub fn minimise<E: EnergyEquations + ?Sized>(
         &mut self,
-        equations: Equations,
+        equations: &mut E,
         u: &mut [f64],
         policy: &NewtonPolicy,
     ) -> Result<NewtonReport, NewtonError> {
-        let penalty_scale = equations.penalty_scale;
+        let penalty_scale = equations.tolerance_scale();
         let mut land = Landscape::new(equations)?;
         let mut current = land.assemble(u).map_err(|e| super::inverted(e, 0))?;
         let mut history = vec![current.residual_norm()];
         let (mut shift, mut rejected, mut factorisations) = (Shift::starting_at(policy.initial_shift), 0, 0);
         let tolerance_at = |a: &Assembled| policy.tolerance(a.force_norm(), penalty_scale);
-        let (start, n) = (u.to_vec(), land.problem.system.mesh().num_dofs());
+        let (start, n) = (u.to_vec(), land.problem.equations.scaled_unknowns());
         // Whether the steps ran out of shifts (rather than of the pass's step limit).
         let mut stalled = false;
         for iteration in 0..policy.max_minimisation_steps {
@@ -307,9 +306,9 @@ impl Newton {
     /// raised until the factor is positive definite and the step lowers the energy as its
     /// model predicts: the new state, its assembly and the predicted decrease; `None` if the
     /// shift exceeds [`SIGMA_MAX`]. Leaves the factor of the last shifted tangent held.
-    fn shifted_step(
+    fn shifted_step<E: EnergyEquations + ?Sized>(
         &mut self,
-        land: &mut Landscape,
+        land: &mut Landscape<'_, E>,
         u: &[f64],
         current: &Assembled,
         shift: &mut Shift,
@@ -371,9 +370,9 @@ impl Newton {
     /// lowered fourfold, not below `SIGMA_MIN`), along the sign that lowers `E`, lengthened
     /// (doubled) while `E` keeps falling and shortened (halved) until it falls. `None` if no
     /// length lowers `E`.
-    fn curvature_step(
+    fn curvature_step<E: EnergyEquations + ?Sized>(
         &mut self,
-        land: &mut Landscape,
+        land: &mut Landscape<'_, E>,
         u: &[f64],
         current: &Assembled,
         sigma: f64,
@@ -424,7 +423,7 @@ impl Newton {
         if current.residual.iter().zip(&mode).map(|(r, v)| r * v).sum::<f64>() > 0.0 {
             mode.iter_mut().for_each(|v| *v = -*v);
         }
-        let energy = |land: &mut Landscape, t: f64| -> Option<(Vec<f64>, Assembled)> {
+        let energy = |land: &mut Landscape<'_, E>, t: f64| -> Option<(Vec<f64>, Assembled)> {
             let trial = land.moved(u, &mode, t);
             land.assemble(&trial).ok().map(|a| (trial, a))
         };
