@@ -17,13 +17,13 @@
 //! correct), then [`Continuation::accept`] (record, grow), or a snap, or [`Continuation::cut`].
 
 use super::augmentation::{Augmentation, AugmentedRecord};
+use super::measures::{measure_all, Measure};
 use super::predictor::{extrapolate, PREDICTOR_POINTS};
+use super::record::StepRecord;
 use super::snap::{SnapRecord, SnapSettings};
-use super::surface::amplitude;
 use crate::error::{Error, Result};
-use crate::fem::ellipticity::{ellipticity_margins, EllipticityMargins};
 use crate::fem::equilibrium;
-use crate::fem::{Newton, NewtonPolicy, NewtonReport, Reuse, SparseLdlt, System, Timings};
+use crate::fem::{Newton, NewtonPolicy, NewtonReport, Reuse, SparseLdlt, System};
 use crate::protocol::Loading;
 use serde::Serialize;
 use std::collections::VecDeque;
@@ -90,80 +90,6 @@ impl StepControl {
     }
 }
 
-/// An accepted step.
-#[derive(Clone, Debug, Serialize)]
-pub struct StepRecord {
-    /// End-shortening reached.
-    pub d: f64,
-    /// Step length that reached it.
-    pub step: f64,
-    /// Wrinkle amplitude `A` of the converged state.
-    pub amplitude: f64,
-    /// Strain energy of the converged state (per unit length out of plane, units mu_s H^2).
-    pub strain_energy: f64,
-    /// Newton iterations of the accepted attempt.
-    pub iterations: usize,
-    /// `|r_f|` before each iteration and at convergence.
-    pub residual_history: Vec<f64>,
-    /// Final residual divided by the internal-force norm.
-    pub relative_residual: f64,
-    /// Smallest `J` over all Gauss points.
-    pub min_jacobian: f64,
-    /// Negative eigenvalues of the tangent (unstable directions), when Newton reports its inertia.
-    pub negative_pivots: Option<usize>,
-    /// Wall time of the step, failed attempts included.
-    pub seconds: f64,
-    /// Wall time of the attempts discarded before this one was accepted.
-    pub failed_seconds: f64,
-    /// Wall times of the accepted attempt's phases.
-    #[serde(skip)]
-    pub timings: Timings,
-    /// Contact and stabilisation of the step, when the continuation has them.
-    pub augmented: Option<AugmentedRecord>,
-    /// The snap that reached this state, if it was reached by one.
-    pub snap: Option<SnapRecord>,
-    /// Whether this state was reached by minimising the energy from the predictor after
-    /// Newton's iteration had failed (on a stable branch in contact; `iterations` are then the
-    /// minimisation's steps).
-    pub minimised: bool,
-    /// The smallest strong-ellipticity margin of each layer over its Gauss points.
-    pub ellipticity: EllipticityMargins,
-    /// The layer's growth `g` along `X` (the load under growth; 1 without growth).
-    pub growth_layer: f64,
-}
-
-impl StepRecord {
-    /// The record of a converged Newton solve of `system`, with the state's `amplitude` and
-    /// `ellipticity`.
-    pub(super) fn new(
-        (d, step): (f64, f64),
-        (system, amplitude, ellipticity): (&System, f64, EllipticityMargins),
-        report: &NewtonReport,
-        seconds: f64,
-    ) -> Self {
-        let residual = *report.residual_history.last().expect("at least the initial residual");
-        StepRecord {
-            d,
-            step,
-            amplitude,
-            strain_energy: report.energy,
-            iterations: report.iterations,
-            residual_history: report.residual_history.clone(),
-            relative_residual: residual / report.force_norm.max(f64::MIN_POSITIVE),
-            min_jacobian: report.min_jacobian,
-            negative_pivots: report.negative_pivots,
-            seconds,
-            failed_seconds: 0.0,
-            timings: report.timings,
-            augmented: None,
-            snap: None,
-            minimised: false,
-            ellipticity,
-            growth_layer: system.layer_growth(),
-        }
-    }
-}
-
 /// A failed attempt that was discarded.
 #[derive(Clone, Debug, Serialize)]
 pub struct Cut {
@@ -208,6 +134,8 @@ pub struct Continuation {
     /// The record of the last accepted state (the newest in `history`) while its inertia is
     /// still being counted: reported once it is known.
     pending: Option<StepRecord>,
+    /// What is recorded of each accepted state.
+    measures: Vec<Box<dyn Measure>>,
     /// What is known of the last accepted state.
     last: LastState,
 }
@@ -272,8 +200,15 @@ impl Continuation {
             snaps: None,
             slope: None,
             pending: None,
+            measures: Vec::new(),
             last: LastState::default(),
         })
+    }
+
+    /// The same continuation recording `measures` of every accepted state.
+    pub fn with_measures(mut self, measures: Vec<Box<dyn Measure>>) -> Self {
+        self.measures = measures;
+        self
     }
 
     /// The same continuation with contact and stabilisation.
@@ -423,12 +358,8 @@ impl Continuation {
         clock: &StepClock,
         observer: &mut dyn FnMut(Event<'_>) -> Result<()>,
     ) -> Result<()> {
-        let state = (
-            &self.system,
-            amplitude(self.system.mesh(), &u),
-            ellipticity_margins(&self.system, &u)?,
-        );
-        let mut record = StepRecord::new((d, step), state, &report, clock.started.elapsed().as_secs_f64());
+        let mut record = StepRecord::new((d, step), &report, clock.started.elapsed().as_secs_f64());
+        measure_all(&self.measures, &self.system, &u, &mut record)?;
         let pending = augmented.as_ref().is_some_and(|a| a.inertia_pending);
         self.last = LastState {
             stable: report.negative_pivots == Some(0),

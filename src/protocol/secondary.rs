@@ -9,7 +9,7 @@
 //! troughs alternate with shallow ones (e.g. a period doubling).
 
 use super::bifurcation::{dominant_cosine, top_uy};
-use super::continuation::StepRecord;
+use super::record::StepRecord;
 use super::surface::surface_profile;
 use crate::error::Result;
 use crate::fem::added::NoAddedEnergy;

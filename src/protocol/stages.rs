@@ -5,11 +5,12 @@
 
 use super::augmentation::Augmentation;
 use super::basic_state::homogeneous_unknowns;
-use super::continuation::{Continuation, Event, StepControl, StepRecord};
+use super::continuation::{Continuation, Event, StepControl};
 use super::imperfection::{mode_number, wavenumber_of_waves, Imperfection};
+use super::measures::{bilayer_measures, measure_all};
+use super::record::StepRecord;
 use super::snap::SnapCrossing;
 use super::stabilisation::StabilisationSettings;
-use super::surface::amplitude;
 use crate::error::{Error, Result};
 use crate::fem::equilibrium;
 use crate::fem::{Newton, NewtonPolicy, Reuse, Stall, System};
@@ -239,9 +240,8 @@ pub fn run(
         report = equilibrium::solve(&mut newton, &mut system, &mut u, &bc, &single_solve)
             .map_err(|e| stage_failure(2, e.into()))?;
     }
-    let a = amplitude(system.mesh(), &u);
-    let state = (&system, a, crate::fem::ellipticity::ellipticity_margins(&system, &u)?);
-    let record = StepRecord::new((d0, d0), state, &report, start.elapsed().as_secs_f64());
+    let mut record = StepRecord::new((d0, d0), &report, start.elapsed().as_secs_f64());
+    measure_all(&bilayer_measures(), &system, &u, &mut record)?;
     observer(Event::Step {
         record: &record,
         system: &system,
@@ -261,8 +261,9 @@ pub fn run(
     let h = 1e-3;
     let (ahead, behind) = (homogeneous(d0 + h)?, homogeneous(d0 - h)?);
     let slope = ahead.iter().zip(&behind).map(|(a, b)| (a - b) / (2.0 * h)).collect();
-    let mut continuation =
-        Continuation::new((system, newton, protocol.newton), protocol.control, d0, u)?.with_first_slope(slope);
+    let mut continuation = Continuation::new((system, newton, protocol.newton), protocol.control, d0, u)?
+        .with_first_slope(slope)
+        .with_measures(bilayer_measures());
     if let Some(augmentation) = augmentation {
         continuation = continuation.with_augmentation(augmentation);
     }
