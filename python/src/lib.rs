@@ -3,21 +3,14 @@
 //! Long calls release the GIL, report to an optional progress callback and stop within a step
 //! on Ctrl-C (`KeyboardInterrupt`). The public, typed API is `fiberfold/__init__.py`.
 
-use fiberfold::fem::ElementKind;
-use fiberfold::homogeneous::HomogeneousRow;
-use fiberfold::material::Bilayer;
-use fiberfold::mesh::MeshSpec;
-use fiberfold::output::vtu::{write_vtu, DataArray};
-use fiberfold::parameters::validate_compression;
-use fiberfold::stability::discrete::DiscreteOptions;
-use fiberfold::stability::{Method, K_MAX};
-use fiberfold::studies::homogeneous::{columns, CSV_HEADER};
+use fiberfold::output::vtu::DataArray;
+use fiberfold::stability::Method;
+use fiberfold::studies::homogeneous::{table, CSV_HEADER};
 use fiberfold::studies::orientation::Modes;
 use fiberfold::studies::simulate::{
-    self, amplitude_header, amplitude_row, cell_arrays, displacement_array, Progress, SimulateOptions,
-    SimulationSummary, StateFields, CELL_TYPE,
+    self, amplitude_header, amplitude_row, Progress, SimulateOptions, SimulationSummary, StateFields,
 };
-use fiberfold::studies::stability::{DispersionCurve, OnsetSummary, SweepStudy};
+use fiberfold::studies::stability::{check_wavenumbers, DispersionCurve, OnsetSummary, Solver, SweepStudy};
 use fiberfold::Error;
 use numpy::ndarray::Array2;
 use numpy::{AllowTypeChange, IntoPyArray, PyArrayLike1};
@@ -51,13 +44,7 @@ fn to_py(error: Error) -> PyErr {
 }
 
 fn method(name: &str) -> PyResult<Method> {
-    match name {
-        "exact" => Ok(Method::Exact),
-        "discrete" => Ok(Method::Discrete(DiscreteOptions::default())),
-        other => Err(PyValueError::new_err(format!(
-            "invalid value {other} for `method`: allowed range is exact or discrete"
-        ))),
-    }
+    Solver::from_name(name).map(Solver::method).map_err(to_py)
 }
 
 /// The homogeneous state at each `d`: the columns of `homogeneous.csv`.
@@ -68,17 +55,8 @@ fn homogeneous<'py>(
     d: PyArrayLike1<'py, f64, AllowTypeChange>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let ds = d.as_array().to_vec();
-    let materials = Bilayer::new(&params.inner);
-    let rows = py
-        .detach(|| {
-            ds.iter()
-                .map(|&d| {
-                    validate_compression("d", d)?;
-                    HomogeneousRow::new(&materials, d).map(|r| columns(&r))
-                })
-                .collect::<Result<Vec<_>, Error>>()
-        })
-        .map_err(to_py)?;
+    let p = params.inner.clone();
+    let rows = py.detach(|| table(&p, &ds)).map_err(to_py)?;
     let dict = PyDict::new(py);
     for (c, name) in CSV_HEADER.iter().enumerate() {
         let column: Vec<f64> = rows.iter().map(|r| r[c]).collect();
@@ -100,11 +78,7 @@ fn dispersion<'py>(
     theta: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let ks = k.as_array().to_vec();
-    if let Some(bad) = ks.iter().find(|k| !(k.is_finite() && **k > 0.0 && **k <= K_MAX)) {
-        return Err(PyValueError::new_err(format!(
-            "invalid value {bad} for `k`: allowed range is (0, {K_MAX}] (beyond kH = {K_MAX} the layer acts as a half-space)"
-        )));
-    }
+    check_wavenumbers(&ks).map_err(to_py)?;
     let method = method(method_name)?;
     let p = params.inner.clone();
     let curve = py
@@ -217,9 +191,9 @@ impl PyState {
     fn cells<'py>(&self, py: Python<'py>) -> Bound<'py, numpy::PyArray2<i64>> {
         let flat: Vec<i64> = self
             .fields
-            .cells
+            .vtk_cells()
             .iter()
-            .flat_map(|c| CELL_TYPE.vtk_cell(c).map(|n| n as i64))
+            .flat_map(|c| c.map(|n| n as i64))
             .collect();
         Array2::from_shape_vec((self.fields.cells.len(), 9), flat)
             .expect("9 per cell")
@@ -230,7 +204,7 @@ impl PyState {
     #[getter]
     fn point_data<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let dict = PyDict::new(py);
-        for array in self.point_arrays() {
+        for array in self.fields.point_arrays() {
             dict.set_item(&array.name, shaped(py, &array))?;
         }
         Ok(dict)
@@ -241,7 +215,7 @@ impl PyState {
     #[getter]
     fn cell_data<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let dict = PyDict::new(py);
-        for array in self.cell_arrays() {
+        for array in self.fields.cell_arrays() {
             dict.set_item(&array.name, shaped(py, &array))?;
         }
         Ok(dict)
@@ -249,26 +223,7 @@ impl PyState {
 
     /// Writes the state as a `.vtu` file (the CLI's snapshot format).
     fn write_vtu(&self, path: PathBuf) -> PyResult<()> {
-        let f = &self.fields;
-        write_vtu(
-            &path,
-            &f.points,
-            &CELL_TYPE,
-            &f.cells,
-            &self.point_arrays(),
-            &self.cell_arrays(),
-        )
-        .map_err(to_py)
-    }
-}
-
-impl PyState {
-    fn point_arrays(&self) -> Vec<DataArray> {
-        vec![displacement_array(self.fields.displacement.iter().copied())]
-    }
-
-    fn cell_arrays(&self) -> Vec<DataArray> {
-        cell_arrays(self.fields.cell.clone())
+        self.fields.write_vtu(&path).map_err(to_py)
     }
 }
 
@@ -374,14 +329,7 @@ fn bifurcation_run(
     element: Option<&str>,
 ) -> PyResult<String> {
     use fiberfold::studies::bifurcation::{run, BifurcationStudy};
-    let preset = MeshSpec::preset(mesh).map_err(to_py)?;
-    let study = BifurcationStudy {
-        mesh: match element {
-            Some(name) => preset.with_element(ElementKind::from_name(name).map_err(to_py)?),
-            None => preset,
-        },
-        settings: Default::default(),
-    };
+    let study = BifurcationStudy::on_preset(mesh, element).map_err(to_py)?;
     let p = params.inner.clone();
     let report = py.detach(|| run(&p, &study, &out)).map_err(to_py)?;
     serde_json::to_string(&report).map_err(|e| PyRuntimeError::new_err(e.to_string()))

@@ -1,30 +1,12 @@
 //! `fiberfold dispersion | onset | sweep`: the linear stability analysis (Appendix A).
 
 use super::common::{progress, report_files, spinner, ParamArgs};
-use clap::{Args, ValueEnum};
-use fiberfold::stability::{discrete::DiscreteOptions, Method, Minimum};
+use clap::Args;
+use fiberfold::stability::Minimum;
 use fiberfold::studies::orientation::Modes;
-use fiberfold::studies::stability::{self, parse_series, DispersionStudy, SweepStudy};
+use fiberfold::studies::stability::{self, parse_series, DispersionStudy, Solver, SweepStudy};
 use fiberfold::Result;
 use std::path::PathBuf;
-
-/// Solver of the linear stability problem.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum MethodArg {
-    /// Stroh formalism: surface impedance of the half-space and transfer matrix of the layer.
-    Exact,
-    /// Quadratic finite elements in Y on a truncated graded depth (cross-check; slower).
-    Discrete,
-}
-
-impl MethodArg {
-    fn method(self) -> Method {
-        match self {
-            MethodArg::Exact => Method::Exact,
-            MethodArg::Discrete => Method::Discrete(DiscreteOptions::default()),
-        }
-    }
-}
 
 /// Waves in the surface under biaxial compression instead of the paper's plane strain.
 #[derive(Args)]
@@ -66,8 +48,8 @@ pub struct DispersionArgs {
     #[arg(long, default_value_t = 300)]
     pub points: usize,
     /// Solver.
-    #[arg(long, value_enum, default_value_t = MethodArg::Exact)]
-    pub method: MethodArg,
+    #[arg(long, value_enum, default_value_t = Solver::Exact)]
+    pub method: Solver,
     /// Output folder.
     #[arg(long, value_name = "DIR", default_value = "results/dispersion")]
     pub out: PathBuf,
@@ -106,8 +88,8 @@ pub struct OnsetArgs {
     #[command(flatten)]
     pub modes: ModesArgs,
     /// Solver.
-    #[arg(long, value_enum, default_value_t = MethodArg::Exact)]
-    pub method: MethodArg,
+    #[arg(long, value_enum, default_value_t = Solver::Exact)]
+    pub method: Solver,
     /// Output folder.
     #[arg(long, value_name = "DIR", default_value = "results/onset")]
     pub out: PathBuf,
@@ -203,8 +185,8 @@ pub struct SweepArgs {
     #[command(flatten)]
     pub modes: ModesArgs,
     /// Solver.
-    #[arg(long, value_enum, default_value_t = MethodArg::Exact)]
-    pub method: MethodArg,
+    #[arg(long, value_enum, default_value_t = Solver::Exact)]
+    pub method: Solver,
     /// Output folder.
     #[arg(long, value_name = "DIR", default_value = "results/sweep")]
     pub out: PathBuf,

@@ -30,6 +30,21 @@ pub struct BifurcationStudy {
     pub settings: BifurcationSettings,
 }
 
+impl BifurcationStudy {
+    /// The search with default settings on the mesh preset called `mesh`, with the element
+    /// called `element` (the preset's when `None`).
+    pub fn on_preset(mesh: &str, element: Option<&str>) -> Result<Self> {
+        let preset = MeshSpec::preset(mesh)?;
+        Ok(BifurcationStudy {
+            mesh: match element {
+                Some(name) => preset.with_element(crate::mesh::ElementKind::from_name(name)?),
+                None => preset,
+            },
+            settings: BifurcationSettings::default(),
+        })
+    }
+}
+
 /// The linear theory's smallest `d_c(m pi / L)` over the admissible wavenumbers.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct AdmissibleMinimum {

@@ -92,6 +92,18 @@ pub struct HomogeneousOutcome {
     pub stopped: Option<(f64, String)>,
 }
 
+/// The columns of `homogeneous.csv` at each `d` (each checked to be a compression in `[0, 1)`).
+pub fn table(params: &Parameters, ds: &[f64]) -> Result<Vec<[f64; 14]>> {
+    params.validate()?;
+    let materials = Bilayer::new(params);
+    ds.iter()
+        .map(|&d| {
+            validate_compression("d", d)?;
+            HomogeneousRow::new(&materials, d).map(|r| columns(&r))
+        })
+        .collect()
+}
+
 /// Computes the table, writes `homogeneous.csv`, `homogeneous.json`, `fig2.png`, `fig2.svg`.
 /// A state beyond a law's domain ends the table there; the rows before it are written.
 pub fn run(params: &Parameters, study: &HomogeneousStudy, out: &Path, tick: Tick) -> Result<HomogeneousOutcome> {

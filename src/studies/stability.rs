@@ -11,6 +11,44 @@ use rayon::prelude::*;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
+/// The solver of the linear stability problem, by name.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum Solver {
+    /// Stroh formalism: surface impedance of the half-space and transfer matrix of the layer.
+    #[default]
+    Exact,
+    /// Quadratic finite elements in Y on a truncated graded depth (cross-check; slower).
+    Discrete,
+}
+
+impl Solver {
+    /// The solver called `exact` or `discrete`.
+    pub fn from_name(name: &str) -> Result<Self> {
+        <Solver as clap::ValueEnum>::from_str(name, false)
+            .map_err(|_| Error::invalid("method", name, "exact or discrete"))
+    }
+
+    /// The method of the analysis (the discrete one with its default depth and elements).
+    pub fn method(self) -> Method {
+        match self {
+            Solver::Exact => Method::Exact,
+            Solver::Discrete => Method::Discrete(crate::stability::discrete::DiscreteOptions::default()),
+        }
+    }
+}
+
+/// Checks that every wavenumber is in `(0, K_MAX]`.
+pub fn check_wavenumbers(ks: &[f64]) -> Result<()> {
+    match ks.iter().find(|k| !(k.is_finite() && **k > 0.0 && **k <= K_MAX)) {
+        Some(&bad) => Err(Error::invalid(
+            "k",
+            bad,
+            &format!("(0, {K_MAX}] (beyond kH = {K_MAX} the layer acts as a half-space)"),
+        )),
+        None => Ok(()),
+    }
+}
+
 /// `d_c(k)` on equally spaced wavenumbers.
 #[derive(Clone, Copy, Debug)]
 pub struct DispersionStudy {

@@ -1,6 +1,7 @@
 //! One solution state as a VTU file: the displacement as point data; `J`, Cauchy stress, von
 //! Mises stress, fibre stretches and the layer id as element-centre cell data.
 
+use super::StateFields;
 use crate::error::Result;
 use crate::fem::element::{PlaneElement, ReferenceElement};
 use crate::fem::fields::{cell_fields, CellFields};
@@ -47,6 +48,35 @@ pub fn nodal_array(name: &str, mesh: &Mesh, u: &[f64]) -> DataArray {
     let dofs = mesh.dofs();
     let node = |n: usize| [u[dofs.dof(n, X)], u[dofs.dof(n, Y)]];
     DataArray::plane_vectors(name, (0..mesh.num_nodes()).map(node))
+}
+
+impl StateFields {
+    /// Its point data as the snapshots': the displacement.
+    pub fn point_arrays(&self) -> Vec<DataArray> {
+        vec![displacement_array(self.displacement.iter().copied())]
+    }
+
+    /// Its cell data as the snapshots'.
+    pub fn cell_arrays(&self) -> Vec<DataArray> {
+        cell_arrays(self.cell.clone())
+    }
+
+    /// The nodes of every cell in VTK's order.
+    pub fn vtk_cells(&self) -> Vec<[usize; 9]> {
+        self.cells.iter().map(|c| CELL_TYPE.vtk_cell(c)).collect()
+    }
+
+    /// Writes the state as a snapshot's `.vtu` file.
+    pub fn write_vtu(&self, path: &Path) -> Result<()> {
+        write_vtu(
+            path,
+            &self.points,
+            &CELL_TYPE,
+            &self.cells,
+            &self.point_arrays(),
+            &self.cell_arrays(),
+        )
+    }
 }
 
 /// The nodal displacement as the snapshots' point data.
