@@ -6,7 +6,7 @@ use super::{
     NODES, PRESSURES,
 };
 use crate::error::Result;
-use crate::material::{Hyperelastic, Tissue};
+use crate::material::{Hyperelastic, Tensor2, Tissue};
 
 /// A displacement element of one tissue.
 #[derive(Clone, Debug)]
@@ -78,16 +78,21 @@ pub fn evaluate<M: Hyperelastic>(
                 stress
             }
         };
-        for (a, grad) in grads.iter().enumerate() {
-            state.force[ELEMENT_DOFS.dof(a, 0)] += w * (p[0] * grad[0] + p[1] * grad[1]);
-            state.force[ELEMENT_DOFS.dof(a, 1)] += w * (p[2] * grad[0] + p[3] * grad[1]);
-        }
+        add_force(&mut state.force, grads, &p, w);
     }
     if let Some(k) = stiffness {
         mirror_upper_triangle(k);
     }
     state.potential = state.energy;
     Ok(state)
+}
+
+/// `f_ai += w P_iJ G_aJ` at one Gauss point.
+pub(super) fn add_force(force: &mut ElementVector, grads: &[[f64; 2]; NODES], p: &Tensor2, w: f64) {
+    for (a, grad) in grads.iter().enumerate() {
+        force[ELEMENT_DOFS.dof(a, 0)] += w * (p[0] * grad[0] + p[1] * grad[1]);
+        force[ELEMENT_DOFS.dof(a, 1)] += w * (p[2] * grad[0] + p[3] * grad[1]);
+    }
 }
 
 /// Row-major numbering of a plane tensor's components `iJ` (`2 i + J`, as [`crate::material::Tensor2`]).

@@ -55,7 +55,7 @@
 //! [`crate::fem::System::assemble_for_stability`]); the coarse-mesh bifurcation no longer
 //! moves beyond 10^5 times.
 
-use super::displacement::{self, add_tangent, mirror_upper_triangle};
+use super::displacement::{self, add_force, add_tangent, mirror_upper_triangle};
 use super::{
     ElementGeometry, ElementMatrix, ElementState, ElementVector, FiniteElement, DOFS, ELEMENT_DOFS, GAUSS_POINTS,
 };
@@ -242,10 +242,7 @@ impl MixedElement {
                     stress
                 }
             };
-            for (a, grad) in grads.iter().enumerate() {
-                state.force[ELEMENT_DOFS.dof(a, 0)] += w * (stress[0] * grad[0] + stress[1] * grad[1]);
-                state.force[ELEMENT_DOFS.dof(a, 1)] += w * (stress[2] * grad[0] + stress[3] * grad[1]);
-            }
+            add_force(&mut state.force, grads, &stress, w);
         }
         if let Some(k) = stiffness {
             mirror_upper_triangle(k);
