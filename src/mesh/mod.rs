@@ -4,9 +4,9 @@
 //! `0 <= Y <= 1`; in the substrate they grow geometrically from `h0` at the interface,
 //! `h_k = h0 r^k`, with `r` chosen so that `sum_k h_k = D` exactly.
 //!
-//! A [`Mesh`] is nodes, cells, a region per cell and named node sets ([`LEFT`], [`RIGHT`],
-//! [`BOTTOM`], [`TOP`], [`INTERFACE`]): what boundary conditions, contact surfaces and probes
-//! address. The bilayer strip is generated here, and only its generator knows the grid: nodes
+//! A [`Mesh`] is nodes, cells, a region per cell, named node sets ([`LEFT`], [`RIGHT`],
+//! [`BOTTOM`], [`TOP`], [`INTERFACE`]) and named face sets ([`TOP`]): what boundary conditions,
+//! contact surfaces and probes address. The bilayer strip is generated here, and only its generator knows the grid: nodes
 //! form a `(2 nx + 1) x (2 ny + 1)` grid numbered column by column (Y fastest, the shorter
 //! direction), grid node `(i, j)` being `i (2 ny + 1) + j`, with `i = 0` at `X = 0` and `j = 0`
 //! at `Y = -D`. Element nodes are in tensor-product order: local node `a + 3 b` sits at
@@ -345,7 +345,7 @@ impl MeshSpec {
 }
 
 /// A mesh of Q2 elements: reference node coordinates, element connectivity, regions and named
-/// node sets.
+/// node and face sets.
 #[derive(Clone, Debug)]
 pub struct Mesh {
     spec: MeshSpec,
@@ -353,6 +353,15 @@ pub struct Mesh {
     elements: Vec<[usize; 9]>,
     regions: Vec<Region>,
     node_sets: BTreeMap<&'static str, Vec<usize>>,
+    face_sets: BTreeMap<&'static str, Vec<Face>>,
+}
+
+/// One face of an element on a boundary (an edge in two dimensions): the element and the
+/// face's nodes, in the order of the boundary's node set.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Face {
+    pub element: usize,
+    pub nodes: Vec<usize>,
 }
 
 impl Mesh {
@@ -401,12 +410,22 @@ impl Mesh {
                 (0..columns).map(|i| grid(i, 2 * spec.substrate_elements)).collect(),
             ),
         ]);
+        // The top edge of each top element: its local nodes 6, 7, 8 (eta = 1), by increasing X.
+        let top_faces = (0..spec.nx)
+            .map(|ex| {
+                let element = ex * spec.ny() + spec.ny() - 1;
+                let nodes = [6, 7, 8].iter().map(|&local| elements[element][local]).collect();
+                Face { element, nodes }
+            })
+            .collect();
+        let face_sets = BTreeMap::from([(TOP, top_faces)]);
         Ok(Mesh {
             spec,
             coordinates,
             elements,
             regions,
             node_sets,
+            face_sets,
         })
     }
 
@@ -461,6 +480,14 @@ impl Mesh {
         self.node_sets
             .get(name)
             .unwrap_or_else(|| panic!("the mesh has no node set `{name}`"))
+    }
+
+    /// The faces of the set called `name` ([`TOP`]), in the set's order. A name the mesh has no
+    /// face set of is a bug (panic).
+    pub fn face_set(&self, name: &str) -> &[Face] {
+        self.face_sets
+            .get(name)
+            .unwrap_or_else(|| panic!("the mesh has no face set `{name}`"))
     }
 
     /// The names of the node sets.
@@ -524,6 +551,11 @@ mod tests {
             [BOTTOM, INTERFACE, LEFT, RIGHT, TOP]
         );
         assert_eq!(mesh.left(), (0..7).collect::<Vec<_>>());
+        // The top faces: two edges whose nodes run along the top node set.
+        let faces = mesh.face_set(TOP);
+        assert_eq!(faces.iter().map(|f| f.element).collect::<Vec<_>>(), [2, 5]);
+        assert_eq!(faces.iter().flat_map(|f| f.nodes.clone()).collect::<Vec<_>>(), [6, 13, 20, 20, 27, 34]);
+        assert_eq!(mesh.top(), [6, 13, 20, 27, 34]);
         assert_eq!(mesh.right(), (28..35).collect::<Vec<_>>());
         assert_eq!(mesh.regions()[2], Region::Layer);
         assert_eq!(mesh.coordinates()[mesh.top()[4]], [4.0, 1.0]);

@@ -12,6 +12,7 @@
 
 use super::gap::{plane_gap, projection, segment_gap};
 use crate::mesh::{DofMap, Mesh, TOP, X, Y};
+use std::collections::HashMap;
 
 /// A rigid plane `{x : n . x = c}`; `n` is the unit normal towards the open side.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -100,13 +101,15 @@ impl Surface {
     pub fn top(mesh: &Mesh) -> Self {
         let nodes = mesh.node_set(TOP).to_vec();
         let reference: Vec<[f64; 2]> = nodes.iter().map(|&n| mesh.coordinates()[n]).collect();
+        let index: HashMap<usize, usize> = nodes.iter().enumerate().map(|(i, &n)| (n, i)).collect();
         let mut weights = vec![0.0; nodes.len()];
-        for e in 0..(nodes.len() - 1) / 2 {
-            let (a, b) = (reference[2 * e], reference[2 * e + 2]);
+        for face in mesh.face_set(TOP) {
+            let [first, middle, last] = [0, 1, 2].map(|k| index[&face.nodes[k]]);
+            let (a, b) = (reference[first], reference[last]);
             let h = (b[0] - a[0]).hypot(b[1] - a[1]);
-            weights[2 * e] += h / 6.0;
-            weights[2 * e + 1] += 2.0 * h / 3.0;
-            weights[2 * e + 2] += h / 6.0;
+            weights[first] += h / 6.0;
+            weights[middle] += 2.0 * h / 3.0;
+            weights[last] += h / 6.0;
         }
         Surface {
             nodes,
