@@ -40,7 +40,7 @@ pub struct MeshArgs {
     pub grading: Option<f64>,
     /// Finite element on the mesh. mixed, the default, is the more accurate at every K/mu
     /// (Table 1's 3 too: Fig. 7's first contact 0.239 vs 0.256 on the fine mesh, refined meshes
-    /// 0.239-0.241) for about 5 % more time per Newton iteration, and the only one for
+    /// 0.233-0.241) for about 5 % more time per Newton iteration, and the only one for
     /// incompressible = true. displacement, the paper's element, locks above K/mu ~ 100.
     #[arg(long, value_enum, default_value_t = defaults().mesh.element)]
     pub element: ElementKind,

@@ -279,6 +279,12 @@ pub trait Hyperelastic: StrainEnergy {
         Ok(self.plane_response(f))
     }
 
+    /// Energy, `P` and `A` at a full 3x3 `F` ([`full_response`]): the same energy in three
+    /// dimensions, of which the plane methods above are the restriction `F33 = 1`.
+    fn full(&self, f: &[f64; 9]) -> Result<FullResponse> {
+        full_response(self, f)
+    }
+
     /// Cauchy stress `sigma = P F^T / J`, with `sigma_33 = P_33 / J` from `dW/dF33`.
     fn cauchy(&self, f: &Tensor2) -> Result<CauchyStress> {
         let j = check_state(self, f)?;

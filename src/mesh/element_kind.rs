@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 ///
 /// The mixed element is the more accurate at every `K / mu`, Table 1's 3 included (the
 /// fine-mesh bifurcation at `beta = pi/4` within 1.2e-5 of the linear theory against 2.5e-5,
-/// the Fig. 7 run's first contact 0.239 against 0.256, where refined meshes give 0.239-0.241),
+/// the Fig. 7 run's first contact 0.239 against 0.256, where refined meshes give 0.233-0.241),
 /// at about 1.05 times the cost of a Newton iteration, so it is the default. The displacement
 /// element, the paper's, stays available for comparison with it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
