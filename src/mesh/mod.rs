@@ -17,9 +17,8 @@ use crate::numerics::density::equidistribute;
 use crate::numerics::grading::geometric_ratio;
 use serde::{Deserialize, Serialize};
 
-mod dofs;
 mod element_kind;
-pub use dofs::{DofMap, X, Y, Z};
+pub use crate::numerics::dofs::{DofMap, X, Y, Z};
 pub use element_kind::ElementKind;
 use std::collections::BTreeMap;
 
@@ -554,7 +553,10 @@ mod tests {
         // The top faces: two edges whose nodes run along the top node set.
         let faces = mesh.face_set(TOP);
         assert_eq!(faces.iter().map(|f| f.element).collect::<Vec<_>>(), [2, 5]);
-        assert_eq!(faces.iter().flat_map(|f| f.nodes.clone()).collect::<Vec<_>>(), [6, 13, 20, 20, 27, 34]);
+        assert_eq!(
+            faces.iter().flat_map(|f| f.nodes.clone()).collect::<Vec<_>>(),
+            [6, 13, 20, 20, 27, 34]
+        );
         assert_eq!(mesh.top(), [6, 13, 20, 27, 34]);
         assert_eq!(mesh.right(), (28..35).collect::<Vec<_>>());
         assert_eq!(mesh.regions()[2], Region::Layer);

@@ -2,6 +2,7 @@
 
 pub mod banded;
 pub mod density;
+pub mod dofs;
 pub mod grading;
 pub mod minimize;
 pub mod roots;

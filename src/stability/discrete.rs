@@ -8,7 +8,14 @@
 
 use super::IncrementalModuli;
 use crate::numerics::banded::SymmetricBanded;
+use crate::numerics::dofs::DofMap;
 use crate::numerics::grading::geometric_ratio;
+
+/// The unknowns of a node of the quadratic elements: the amplitudes `a` (component 0) and `b`
+/// (component 1).
+const AMPLITUDES: DofMap = DofMap::PLANE;
+/// The unknowns of a node of the Hermite elements: `b` and `b'`.
+const HERMITE: DofMap = DofMap::PLANE;
 
 /// Discretisation of the `Y` axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -77,7 +84,7 @@ pub fn negative_eigenvalues(
     }
     let y = options.nodes_of_elements(k, slowest_decay(substrate)?);
     let elements = y.len() - 1;
-    let unknowns = 2 * (2 * elements + 1);
+    let unknowns = AMPLITUDES.count(2 * elements + 1);
     let mut stiffness = SymmetricBanded::zeros(unknowns, 5);
     let gauss = [
         (-(0.6f64).sqrt(), 5.0 / 9.0),
@@ -95,10 +102,10 @@ pub fn negative_eigenvalues(
             // Rows of B: g = (a, a', b, b') from element unknowns (a_0, b_0, a_1, b_1, a_2, b_2).
             let mut b = [[0.0; 6]; 4];
             for node in 0..3 {
-                b[0][2 * node] = n[node];
-                b[1][2 * node] = dn[node];
-                b[2][2 * node + 1] = n[node];
-                b[3][2 * node + 1] = dn[node];
+                b[0][AMPLITUDES.dof(node, 0)] = n[node];
+                b[1][AMPLITUDES.dof(node, 0)] = dn[node];
+                b[2][AMPLITUDES.dof(node, 1)] = n[node];
+                b[3][AMPLITUDES.dof(node, 1)] = dn[node];
             }
             for p in 0..6 {
                 for q in 0..=p {
@@ -108,7 +115,9 @@ pub fn negative_eigenvalues(
                             value += b[r][p] * form[r][s] * b[s][q];
                         }
                     }
-                    stiffness.add(4 * e + p, 4 * e + q, value * weight * jac);
+                    // Element e's first node is node 2 e.
+                    let first = AMPLITUDES.dof(2 * e, 0);
+                    stiffness.add(first + p, first + q, value * weight * jac);
                 }
             }
         }
@@ -135,7 +144,7 @@ fn incompressible_negative_eigenvalues(
     }
     let y = options.nodes_of_elements(k, slowest_decay(substrate)?);
     let elements = y.len() - 1;
-    let mut stiffness = SymmetricBanded::zeros(2 * (elements + 1), 3);
+    let mut stiffness = SymmetricBanded::zeros(HERMITE.count(elements + 1), 3);
     let gauss = gauss_legendre_4();
     for e in 0..elements {
         let (y0, y1) = (y[e], y[e + 1]);
@@ -154,7 +163,8 @@ fn incompressible_negative_eigenvalues(
                             value += row[p] * c * column[q];
                         }
                     }
-                    stiffness.add(2 * e + p, 2 * e + q, value * weight * h);
+                    let first = HERMITE.dof(e, 0);
+                    stiffness.add(first + p, first + q, value * weight * h);
                 }
             }
         }

@@ -13,6 +13,7 @@
 
 use super::moduli::SurfaceModuli;
 use crate::numerics::banded::SymmetricBanded;
+use crate::numerics::dofs::DofMap;
 use crate::stability::discrete::{gauss_legendre_4, hermite_cubics, DiscreteOptions};
 use nalgebra::Complex;
 
@@ -153,6 +154,7 @@ fn quadratic(t: f64, h: f64) -> Vec<Basis> {
     let xi = 2.0 * t - 1.0;
     let shape = [0.5 * xi * (xi - 1.0), 1.0 - xi * xi, 0.5 * xi * (xi + 1.0)];
     let slope = [(xi - 0.5) * 2.0 / h, -2.0 * xi * 2.0 / h, (xi + 0.5) * 2.0 / h];
+    // Numbered node by node, the three fields of each in a row (`DofMap::SPACE`).
     let mut basis = Vec::with_capacity(9);
     for node in 0..3 {
         for field in 0..3 {
@@ -181,7 +183,7 @@ fn hermite_and_quadratic(t: f64, h: f64) -> Vec<Basis> {
     let lagrange = quadratic(t, h);
     let v = |node: usize| Basis {
         field: 1,
-        ..lagrange[3 * node]
+        ..lagrange[DofMap::SPACE.dof(node, 0)]
     };
     vec![cubic(0), cubic(1), v(0), v(1), cubic(2), cubic(3), v(2)]
 }

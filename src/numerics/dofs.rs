@@ -1,6 +1,7 @@
-//! How the displacement unknowns are numbered: node by node, each node's components in a row.
-//! Every conversion between a node's component and its index in a vector of unknowns (the
-//! global one, or an element's own) goes through a [`DofMap`].
+//! How the unknowns of a discretisation are numbered: node by node, each node's components in
+//! a row. Every conversion between a node's component and its index in a vector of unknowns
+//! (a mesh's, an element's own, or the linear theory's discrete solvers') goes through a
+//! [`DofMap`].
 
 /// Component index of `u_x`.
 pub const X: usize = 0;
