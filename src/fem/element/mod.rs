@@ -14,11 +14,13 @@ use crate::material::Tensor2;
 use crate::mesh::DofMap;
 
 pub mod displacement;
+mod hex27;
 mod kind;
 pub mod mixed;
 mod quad9;
 
 pub use displacement::DisplacementElement;
+pub use hex27::Hex27;
 pub use kind::{ElementKind, LOCKING_RATIO};
 pub use mixed::{MixedElement, PressureUpdate, Volumetric, PRESSURES};
 pub use quad9::Quad9;
