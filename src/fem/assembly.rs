@@ -50,9 +50,7 @@ impl Tangent {
             .map_err(|e| Error::invalid("tangent entry", format!("{e:?}"), &format!("indices in [0, {n})")))?;
         let mut values = vec![0.0; symbolic.compute_nnz()];
         for &(row, col, value) in entries {
-            let column = symbolic.col_range(col);
-            let rows = &symbolic.row_idx()[column.clone()];
-            values[column.start + rows.binary_search(&row).expect("an entry of the pattern")] = value;
+            values[pattern::position(&symbolic, row, col)] = value;
         }
         Ok(Tangent {
             structure: Arc::new(symbolic),

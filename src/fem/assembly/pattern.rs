@@ -232,7 +232,7 @@ fn try_position(symbolic: &SymbolicSparseColMat<usize>, q: &Pair<usize, usize>) 
 }
 
 /// Position of entry `(row, col)` in the CSC arrays of `symbolic` (it must be stored).
-fn position(symbolic: &SymbolicSparseColMat<usize>, row: usize, col: usize) -> usize {
+pub(super) fn position(symbolic: &SymbolicSparseColMat<usize>, row: usize, col: usize) -> usize {
     try_position(symbolic, &Pair::new(row, col)).expect("every pair is in the pattern")
 }
 

@@ -139,11 +139,6 @@ impl MixedElement {
         &self.rest
     }
 
-    /// How the element resists volume change.
-    pub fn volumetric(&self) -> Volumetric {
-        self.volumetric
-    }
-
     /// Force, energy and pressure at nodal displacements `u` (and multipliers `lambda` under the
     /// constraint; unused otherwise), and the condensed tangent into `stiffness` when given
     /// (overwritten, symmetric); the constraint's penalty is multiplied by `penalty_scale`.
@@ -286,12 +281,10 @@ impl FiniteElement for MixedElement {
     /// Under multipliers, of the energy without its volumetric part: that part's penalty would
     /// make the displacements it scales stiff against the multipliers' updates.
     fn reference_stiffness(&self, geometry: &ElementGeometry, stiffness: &mut ElementMatrix) -> Result<()> {
+        let lambda = [0.0; PRESSURES];
         match self.volumetric {
             Volumetric::Augmented { .. } => displacement::evaluate(geometry, &self.rest, &[0.0; DOFS], Some(stiffness)),
-            Volumetric::Bulk(_) => {
-                MixedElement::evaluate(self, geometry, &[0.0; DOFS], &[0.0; PRESSURES], 1.0, Some(stiffness))
-                    .map(|m| m.state)
-            }
+            Volumetric::Bulk(_) => FiniteElement::evaluate(self, geometry, &[0.0; DOFS], &lambda, 1.0, Some(stiffness)),
         }
         .map(|_| ())
     }

@@ -25,7 +25,7 @@ pub use fig7::{fig7, CreaseSnapshots, Fig7Facts, Fig7State, FIG7_D};
 pub use options::{Crossing, MeshChoice, SimulateOptions};
 pub use secondary::{write_secondary, ModeState, SecondaryReport, SecondaryTracker, MODES};
 pub use solve::{solve, solve_observed, solve_to_secondary, Solution, Solved, StateFields, ToSecondary};
-pub use state_vtu::{cell_arrays, displacement_array, nodal_array, write_state, CELL_TYPE};
+pub use state_vtu::{nodal_array, write_state, CELL_TYPE};
 
 use crate::error::{Error, Result};
 pub use crate::fem::ellipticity::EllipticityReport;

@@ -80,12 +80,12 @@ impl StateFields {
 }
 
 /// The nodal displacement as the snapshots' point data.
-pub fn displacement_array(displacement: impl Iterator<Item = [f64; 2]>) -> DataArray {
+fn displacement_array(displacement: impl Iterator<Item = [f64; 2]>) -> DataArray {
     DataArray::plane_vectors("displacement", displacement)
 }
 
 /// The element-centre fields as the snapshots' cell data.
-pub fn cell_arrays(fields: CellFields) -> Vec<DataArray> {
+fn cell_arrays(fields: CellFields) -> Vec<DataArray> {
     let [stretch_1, stretch_2] = fields.fibre_stretch;
     vec![
         DataArray::scalars("J", fields.jacobian),
