@@ -41,7 +41,8 @@ pub fn cell_fields(system: &System, materials: &Bilayer, u: &[f64]) -> Result<Ce
     for (e, (geometry, material)) in system.geometry().iter().zip(system.materials()).enumerate() {
         let u_e = system.element_displacements(e, u);
         let f: Tensor2 = geometry.deformation_gradient(CENTRE, &u_e);
-        let sigma = system.elements()[e].cauchy(geometry, CENTRE, &u_e, &system.element_multipliers(e, u))?;
+        let s = system.elements()[e].cauchy(geometry, CENTRE, &u_e, &system.element_multipliers(e, u))?;
+        let sigma = [s[0][0], s[0][1], s[1][1], s[2][2]];
         fields.jacobian.push(jacobian(&f));
         fields.cauchy.push(sigma);
         fields.von_mises.push(von_mises(&sigma));

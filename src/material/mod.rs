@@ -21,6 +21,7 @@ mod laws;
 mod mooney_rivlin;
 mod neo_hookean;
 mod ogden;
+mod point;
 mod tissue;
 
 pub use fibre::FibreFamily;
@@ -31,6 +32,7 @@ pub use laws::{Fibre, Matrix};
 pub use mooney_rivlin::MooneyRivlin;
 pub use neo_hookean::NeoHookean;
 pub use ogden::{Ogden, MAX_TERMS as OGDEN_MAX_TERMS};
+pub use point::{flat, nested, point_cauchy, point_response, point_stress, PointResponse};
 pub use tissue::{Bilayer, FibreReinforced, Tissue, VolumetricSplit};
 
 use crate::error::{Error, Result};

@@ -24,6 +24,11 @@ impl DofMap {
     /// Three components per node.
     pub const SPACE: DofMap = DofMap { components: 3 };
 
+    /// Components per node in `dimension` dimensions.
+    pub const fn of_dimension(dimension: usize) -> DofMap {
+        DofMap { components: dimension }
+    }
+
     /// Displacement components per node.
     pub const fn components(self) -> usize {
         self.components

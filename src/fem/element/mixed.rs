@@ -60,7 +60,7 @@ use super::{
     ElementGeometry, ElementMatrix, ElementState, ElementVector, FiniteElement, DOFS, ELEMENT_DOFS, GAUSS_POINTS,
 };
 use crate::error::{Error, Result};
-use crate::material::{add_pressure, cofactor, jacobian, Hyperelastic, StrainEnergy, Tissue};
+use crate::material::{add_pressure, cofactor, jacobian, nested, point_cauchy, PointResponse, StrainEnergy, Tissue};
 
 /// Pressure unknowns per element: a linear polynomial in `X`.
 pub const PRESSURES: usize = 3;
@@ -224,6 +224,7 @@ impl MixedElement {
                 Some(k) => {
                     let mut response = self.rest.plane_response(f);
                     add_pressure(&mut response.stress, Some(&mut response.tangent), f, p);
+                    let response = PointResponse::<2>::from_flat(&response);
                     add_tangent(k, grads, &response.tangent, w);
                     state.energy += w * response.energy;
                     state.potential += w * response.energy;
@@ -234,7 +235,7 @@ impl MixedElement {
                     add_pressure(&mut stress, None, f, p);
                     state.energy += w * energy;
                     state.potential += w * energy;
-                    stress
+                    nested(&stress)
                 }
             };
             add_force(&mut state.force, grads, &stress, w);
@@ -296,13 +297,13 @@ impl FiniteElement for MixedElement {
         g: usize,
         u: &ElementVector,
         lambda: &[f64; PRESSURES],
-    ) -> Result<[f64; 4]> {
+    ) -> Result<[[f64; 3]; 3]> {
         let f = geometry.deformation_gradient(g, u);
         let pressure = MixedElement::evaluate(self, geometry, u, lambda, 1.0, None)?.pressure;
         let p: f64 = self.basis[g].iter().zip(&pressure).map(|(a, b)| a * b).sum();
-        let mut sigma = self.rest.cauchy(&f)?;
-        for i in [0, 2, 3] {
-            sigma[i] += p / jacobian(&f);
+        let mut sigma = point_cauchy(&self.rest, &geometry.gradient_at(g, u))?;
+        for (i, row) in sigma.iter_mut().enumerate() {
+            row[i] += p / jacobian(&f);
         }
         Ok(sigma)
     }

@@ -57,10 +57,11 @@ pub const GAUSS_POINTS: usize = 9;
 /// The numbering of an element's own unknowns by its local nodes.
 pub const ELEMENT_DOFS: DofMap = DofMap::PLANE;
 
-/// An element vector (forces or displacements), numbered by [`ELEMENT_DOFS`].
-pub type ElementVector = [f64; DOFS];
+/// An element vector (forces or displacements) of `U` unknowns, numbered by the element's
+/// [`DofMap`] (node `a`, component `i` at `D a + i`).
+pub type ElementVector<const U: usize = DOFS> = [f64; U];
 /// An element matrix, ordered like [`ElementVector`].
-pub type ElementMatrix = [[f64; DOFS]; DOFS];
+pub type ElementMatrix<const U: usize = DOFS> = [[f64; U]; U];
 
 /// Reference geometry of one element at its quadrature points, computed once per mesh.
 #[derive(Clone, Debug)]
@@ -137,23 +138,33 @@ impl<const D: usize, const N: usize, const Q: usize> ElementGeometry<D, N, Q> {
     }
 }
 
-impl ElementGeometry {
-    /// `F = I + Grad u` at quadrature point `g`, row-major `[F11, F12, F21, F22]`.
-    pub fn deformation_gradient(&self, g: usize, u: &ElementVector) -> Tensor2 {
-        let mut f = [1.0, 0.0, 0.0, 1.0];
+impl<const D: usize, const N: usize, const Q: usize> ElementGeometry<D, N, Q> {
+    /// `F = I + Grad u` at quadrature point `g` (`F[i][J]`), of the element's nodal
+    /// displacements `u` (`U = D N` unknowns).
+    pub fn gradient_at<const U: usize>(&self, g: usize, u: &ElementVector<U>) -> [[f64; D]; D] {
+        let dofs = DofMap::of_dimension(D);
+        let mut f: [[f64; D]; D] = std::array::from_fn(|i| std::array::from_fn(|j| if i == j { 1.0 } else { 0.0 }));
         for (a, grad) in self.gradients[g].iter().enumerate() {
-            let (ux, uy) = (u[ELEMENT_DOFS.dof(a, 0)], u[ELEMENT_DOFS.dof(a, 1)]);
-            f[0] += ux * grad[0];
-            f[1] += ux * grad[1];
-            f[2] += uy * grad[0];
-            f[3] += uy * grad[1];
+            for (i, row) in f.iter_mut().enumerate() {
+                let u_ai = u[dofs.dof(a, i)];
+                for (entry, g_j) in row.iter_mut().zip(grad) {
+                    *entry += u_ai * g_j;
+                }
+            }
         }
         f
     }
 }
 
-/// `det j` of a 2x2 or 3x3 matrix.
-fn determinant<const D: usize>(j: &[[f64; D]; D]) -> f64 {
+impl ElementGeometry {
+    /// `F = I + Grad u` at quadrature point `g`, row-major `[F11, F12, F21, F22]`.
+    pub fn deformation_gradient(&self, g: usize, u: &ElementVector) -> Tensor2 {
+        crate::material::flat(&self.gradient_at(g, u))
+    }
+}
+
+/// `det F` of a 2x2 or 3x3 matrix.
+pub fn determinant<const D: usize>(j: &[[f64; D]; D]) -> f64 {
     match D {
         2 => j[0][0] * j[1][1] - j[0][1] * j[1][0],
         3 => {
@@ -183,11 +194,11 @@ fn physical_gradient<const D: usize>(d: &[f64; D], j: &[[f64; D]; D], det: f64) 
     }
 }
 
-/// What an element contributes besides its tangent.
+/// What an element of `U` unknowns contributes besides its tangent.
 #[derive(Clone, Copy, Debug)]
-pub struct ElementState {
+pub struct ElementState<const U: usize = DOFS> {
     /// Internal force `f_ai = int P_iJ dN_a/dX_J dV`.
-    pub force: ElementVector,
+    pub force: ElementVector<U>,
     /// Strain energy `int W(F) dV`.
     pub energy: f64,
     /// The potential whose gradient `force` is: `energy`, except for the mixed element's
@@ -198,35 +209,44 @@ pub struct ElementState {
 }
 
 /// What one element of a mesh computes from its nodal displacements `u` (and, where it has
-/// them, its pressure multipliers `lambda`, [`PRESSURES`] per element).
-pub trait FiniteElement: Send + Sync + std::fmt::Debug {
+/// them, its pressure multipliers `lambda`, [`PRESSURES`] per element): an element on the
+/// geometry of a reference element in `D` dimensions with `N` nodes, `Q` quadrature points and
+/// `U = D N` unknowns (by default the plane meshes' [`PlaneElement`]).
+pub trait FiniteElement<
+    const D: usize = 2,
+    const N: usize = NODES,
+    const Q: usize = GAUSS_POINTS,
+    const U: usize = DOFS,
+>: Send + Sync + std::fmt::Debug
+{
     /// Force, energy and smallest `J`, and the tangent into `stiffness` when given
     /// (overwritten, symmetric); a constraint's penalty is multiplied by `penalty_scale`.
     /// `J <= 0` at a quadrature point is an error.
     fn evaluate(
         &self,
-        geometry: &ElementGeometry,
-        u: &ElementVector,
+        geometry: &ElementGeometry<D, N, Q>,
+        u: &ElementVector<U>,
         lambda: &[f64; PRESSURES],
         penalty_scale: f64,
-        stiffness: Option<&mut ElementMatrix>,
-    ) -> Result<ElementState>;
+        stiffness: Option<&mut ElementMatrix<U>>,
+    ) -> Result<ElementState<U>>;
 
     /// The tangent at `u = 0` of the energy whose stiffness scales each unknown (the viscous
     /// damper's, the minimiser's shift) into `stiffness`.
-    fn reference_stiffness(&self, geometry: &ElementGeometry, stiffness: &mut ElementMatrix) -> Result<()> {
-        self.evaluate(geometry, &[0.0; DOFS], &[0.0; PRESSURES], 1.0, Some(stiffness))
+    fn reference_stiffness(&self, geometry: &ElementGeometry<D, N, Q>, stiffness: &mut ElementMatrix<U>) -> Result<()> {
+        self.evaluate(geometry, &[0.0; U], &[0.0; PRESSURES], 1.0, Some(stiffness))
             .map(|_| ())
     }
 
-    /// The Cauchy stress `[s11, s12, s22, s33]` at quadrature point `g`.
+    /// The Cauchy stress at quadrature point `g` (a full symmetric 3x3 tensor; in plane strain
+    /// with `sigma_33` and no out-of-plane shear).
     fn cauchy(
         &self,
-        geometry: &ElementGeometry,
+        geometry: &ElementGeometry<D, N, Q>,
         g: usize,
-        u: &ElementVector,
+        u: &ElementVector<U>,
         lambda: &[f64; PRESSURES],
-    ) -> Result<[f64; 4]>;
+    ) -> Result<[[f64; 3]; 3]>;
 
     /// Whether the element carries pressure multipliers in the unknowns' vector.
     fn has_multipliers(&self) -> bool {
@@ -237,8 +257,8 @@ pub trait FiniteElement: Send + Sync + std::fmt::Debug {
     /// and the change of each multiplier (zero for elements without multipliers).
     fn multiplier_step(
         &self,
-        _geometry: &ElementGeometry,
-        _u: &ElementVector,
+        _geometry: &ElementGeometry<D, N, Q>,
+        _u: &ElementVector<U>,
         _lambda: &[f64; PRESSURES],
         _penalty_scale: f64,
     ) -> Result<(f64, [f64; PRESSURES])> {
