@@ -15,11 +15,12 @@
 use super::added::{AddedEnergy, Block, NoAddedEnergy};
 use super::boundary::Dirichlet;
 use super::element::{
-    ElementGeometry, ElementMatrix, ElementState, ElementVector, FiniteElement, PlaneElement, DOFS, PRESSURES,
+    ElementGeometry, ElementMatrix, ElementState, ElementVector, FiniteElement, Registry, DOFS, GAUSS_POINTS, NODES,
+    PRESSURES,
 };
 use crate::error::{Error, Result};
 use crate::material::{Bilayer, Tissue};
-use crate::mesh::{Mesh, Region};
+use crate::mesh::{ElementKind, Mesh, Region};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use rayon::prelude::*;
 use std::sync::Arc;
@@ -125,17 +126,22 @@ pub fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
-/// A mesh with its materials and element geometry, ready to assemble.
-pub struct System {
-    mesh: Mesh,
+/// A mesh with its materials and element geometry, ready to assemble: in `D` dimensions, of
+/// elements with `N` nodes, `Q` quadrature points and `U = D N` unknowns (by default the plane
+/// strip's; [`PatchSystem`] is the three-dimensional patch's).
+pub struct System<const D: usize = 2, const N: usize = NODES, const Q: usize = GAUSS_POINTS, const U: usize = DOFS> {
+    mesh: Mesh<D, N>,
     /// The tissues at no load, which a growth load grows.
     unloaded: Bilayer,
     /// The load's strain `d` the tissues are at.
     load: f64,
     materials: Vec<Tissue>,
-    geometry: Vec<ElementGeometry>,
-    /// The finite element of every element, of the kind the mesh's spec names.
-    elements: Vec<Box<dyn FiniteElement>>,
+    geometry: Vec<ElementGeometry<D, N, Q>>,
+    /// The finite element of every element, of the kind the mesh names.
+    elements: Vec<Box<dyn FiniteElement<D, N, Q, U>>>,
+    /// The average displacement gradient carried across a periodic mesh's sides: an element
+    /// of it sees the nodal displacements `u_a + H X_a` (zero, and unused, on other meshes).
+    average_gradient: [[f64; D]; D],
     /// Whether some element resists volume change through multipliers (incompressible tissue,
     /// or a bulk modulus far above the shear modulus): the unknowns' vector then ends with
     /// [`PRESSURES`] multipliers per element ([`crate::fem::element::mixed`]).
@@ -145,16 +151,35 @@ pub struct System {
     entries: Vec<f64>,
 }
 
+/// The system of a three-dimensional patch of 27-node hexahedra.
+pub type PatchSystem = System<3, 27, 27, 81>;
+
 impl System {
     /// The layer's material in layer elements, the substrate's in substrate elements, with the
-    /// element the mesh's spec names. Incompressible tissue needs the mixed element.
+    /// element the mesh names. Incompressible tissue needs the mixed element.
     pub fn new(mesh: Mesh, materials: &Bilayer) -> Result<Self> {
-        mesh.spec().element.check_for(materials.incompressible)?;
-        let coordinates = mesh.coordinates();
-        let geometry = mesh
-            .elements()
-            .iter()
-            .map(|nodes| ElementGeometry::new::<PlaneElement>(&nodes.map(|n| coordinates[n])))
+        Self::build(mesh, materials)
+    }
+}
+
+impl PatchSystem {
+    /// [`System::new`] on a patch.
+    pub fn on_patch(mesh: Mesh<3, 27>, materials: &Bilayer) -> Result<Self> {
+        Self::build(mesh, materials)
+    }
+}
+
+impl<const D: usize, const N: usize, const Q: usize, const U: usize> System<D, N, Q, U>
+where
+    ElementKind: Registry<D, N, Q, U>,
+{
+    fn build(mesh: Mesh<D, N>, materials: &Bilayer) -> Result<Self> {
+        mesh.element().check_for(materials.incompressible)?;
+        <ElementKind as Registry<D, N, Q, U>>::check_available(mesh.element())?;
+        let geometry = (0..mesh.elements().len())
+            .map(|e| {
+                ElementGeometry::new::<<ElementKind as Registry<D, N, Q, U>>::Reference>(&mesh.element_coordinates(e))
+            })
             .collect::<Result<Vec<_>>>()?;
         let mut system = System {
             mesh,
@@ -163,6 +188,7 @@ impl System {
             materials: Vec::new(),
             geometry,
             elements: Vec::new(),
+            average_gradient: [[0.0; D]; D],
             multipliers: false,
             pattern: None,
             entries: Vec::new(),
@@ -182,7 +208,7 @@ impl System {
                 Region::Substrate => materials.substrate_tissue(),
             })
             .collect();
-        let kind = self.mesh.spec().element;
+        let kind = self.mesh.element();
         self.elements = self
             .geometry
             .iter()
@@ -215,9 +241,10 @@ impl System {
     /// The system of the same elements on `mesh`, whose nodes have moved (an imperfect
     /// geometry): like [`System::new`], but keeping the sparsity pattern and its identity, so
     /// that a factorisation's analysis carries over. `mesh` must have the same elements.
-    pub fn with_moved_nodes(self, mesh: Mesh, materials: &Bilayer) -> Result<Self> {
+    pub fn with_moved_nodes(self, mesh: Mesh<D, N>, materials: &Bilayer) -> Result<Self> {
         assert_eq!(mesh.elements(), self.mesh.elements(), "the same elements");
-        let mut moved = System::new(mesh, materials)?;
+        let mut moved = Self::build(mesh, materials)?;
+        moved.average_gradient = self.average_gradient;
         moved.set_load(self.load);
         moved.pattern = self.pattern;
         Ok(moved)
@@ -230,7 +257,7 @@ impl System {
     }
 
     /// The mesh.
-    pub fn mesh(&self) -> &Mesh {
+    pub fn mesh(&self) -> &Mesh<D, N> {
         &self.mesh
     }
 
@@ -240,12 +267,12 @@ impl System {
     }
 
     /// The reference geometry of every element.
-    pub fn geometry(&self) -> &[ElementGeometry] {
+    pub fn geometry(&self) -> &[ElementGeometry<D, N, Q>] {
         &self.geometry
     }
 
     /// The finite element of every element.
-    pub fn elements(&self) -> &[Box<dyn FiniteElement>] {
+    pub fn elements(&self) -> &[Box<dyn FiniteElement<D, N, Q, U>>] {
         &self.elements
     }
 
@@ -256,11 +283,11 @@ impl System {
     pub fn element_state(
         &self,
         e: usize,
-        u: &ElementVector,
+        u: &ElementVector<U>,
         lambda: &[f64; PRESSURES],
         penalty_scale: f64,
-        stiffness: Option<&mut ElementMatrix>,
-    ) -> Result<ElementState> {
+        stiffness: Option<&mut ElementMatrix<U>>,
+    ) -> Result<ElementState<U>> {
         self.elements[e].evaluate(&self.geometry[e], u, lambda, penalty_scale, stiffness)
     }
 
@@ -275,10 +302,31 @@ impl System {
             }
     }
 
-    /// Nodal displacements of element `e` from the global vector `u`.
-    pub fn element_displacements(&self, e: usize, u: &[f64]) -> ElementVector {
+    /// Nodal displacements of element `e` from the global vector `u`: on a periodic mesh the
+    /// periodic part `u` plus the average part `H X` at the element's own nodes.
+    pub fn element_displacements(&self, e: usize, u: &[f64]) -> ElementVector<U> {
         let (dofs, nodes) = (self.mesh.dofs(), &self.mesh.elements()[e]);
-        std::array::from_fn(|i| u[dofs.global(nodes, i)])
+        let periodic: ElementVector<U> = std::array::from_fn(|i| u[dofs.global(nodes, i)]);
+        if !self.mesh.is_periodic() {
+            return periodic;
+        }
+        let x = self.mesh.element_coordinates(e);
+        let h = &self.average_gradient;
+        std::array::from_fn(|i| {
+            let (a, c) = (dofs.node(i), dofs.component(i));
+            periodic[i] + (0..D).map(|j| h[c][j] * x[a][j]).sum::<f64>()
+        })
+    }
+
+    /// Sets the average displacement gradient `H` carried across a periodic mesh's sides
+    /// (`H = diag(lambda_1 - 1, 0, lambda_3 - 1)` under biaxial compression).
+    pub fn set_average_gradient(&mut self, h: [[f64; D]; D]) {
+        self.average_gradient = h;
+    }
+
+    /// The average displacement gradient carried across a periodic mesh's sides.
+    pub fn average_gradient(&self) -> &[[f64; D]; D] {
+        &self.average_gradient
     }
 
     /// The free unknowns when `bc` is prescribed, increasing; position = index in the reduced system.
@@ -451,11 +499,11 @@ impl System {
         (u, penalty_scale): (&[f64], f64),
         lift: Option<&[f64]>,
         chunk: &mut [f64],
-    ) -> Result<(ElementState, ElementVector)> {
+    ) -> Result<(ElementState<U>, ElementVector<U>)> {
         let (dofs, nodes) = (self.mesh.dofs(), &self.mesh.elements()[e]);
-        let slots: [Slot; DOFS] = std::array::from_fn(|i| pattern.slots[dofs.global(nodes, i)]);
+        let slots: [Slot; U] = std::array::from_fn(|i| pattern.slots[dofs.global(nodes, i)]);
         let needs_tangent = !chunk.is_empty() || lift.is_some();
-        let mut k = [[0.0; DOFS]; DOFS];
+        let mut k = [[0.0; U]; U];
         let state = self.element_state(
             e,
             &self.element_displacements(e, u),
@@ -463,7 +511,7 @@ impl System {
             penalty_scale,
             needs_tangent.then_some(&mut k),
         )?;
-        let mut lifted = [0.0; DOFS];
+        let mut lifted = [0.0; U];
         if let Some(lift) = lift {
             for (b, slot) in slots.iter().enumerate() {
                 if let Slot::Fixed(c) = *slot {

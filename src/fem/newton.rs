@@ -38,8 +38,10 @@
 use super::added::AddedEnergy;
 use super::assembly::{norm, Assembled, System};
 use super::boundary::Dirichlet;
+use super::element::Registry;
 use super::linear_solver::{multiply, Factorisation, SparseLdlt};
 use crate::error::Error;
+use crate::mesh::ElementKind;
 
 mod equations;
 mod policy;
@@ -105,14 +107,17 @@ impl Newton {
     /// Negative eigenvalues of the tangent of the strain energy plus `added` at `u` (with `bc`
     /// prescribed) whose inertia is the state's stability ([`System::assemble_for_stability`]),
     /// factorised with the cached analysis when the pattern is the same.
-    pub fn inertia(
+    pub fn inertia<const D: usize, const N: usize, const Q: usize, const U: usize>(
         &mut self,
-        system: &mut System,
+        system: &mut System<D, N, Q, U>,
         u: &[f64],
         bc: &Dirichlet,
         added: &dyn AddedEnergy,
         timings: &mut Timings,
-    ) -> Result<Option<usize>, NewtonError> {
+    ) -> Result<Option<usize>, NewtonError>
+    where
+        ElementKind: Registry<D, N, Q, U>,
+    {
         let start = std::time::Instant::now();
         let assembled = system.assemble_for_stability(u, bc, added)?;
         timings.assembly += start.elapsed();

@@ -122,31 +122,7 @@ pub fn find_bifurcation(materials: &Bilayer, spec: MeshSpec, settings: &Bifurcat
         solver: None,
         path: Vec::new(),
     };
-    let mut stable = 0.0;
-    let mut first_unstable = None;
-    let mut d = settings.scan_step;
-    while d <= settings.d_end + 1e-12 {
-        match path.negative_pivots(d)? {
-            0 => stable = d,
-            negative => {
-                first_unstable = Some((d, negative));
-                break;
-            }
-        }
-        d += settings.scan_step;
-    }
-    let (mut unstable, mut negative_pivots) = first_unstable.ok_or_else(|| Error::NoRoot {
-        what: "a negative pivot of the tangent on the homogeneous path".into(),
-        lower: 0.0,
-        upper: settings.d_end,
-    })?;
-    while unstable - stable > settings.tolerance {
-        let middle = 0.5 * (stable + unstable);
-        match path.negative_pivots(middle)? {
-            0 => stable = middle,
-            negative => (unstable, negative_pivots) = (middle, negative),
-        }
-    }
+    let (stable, unstable, negative_pivots) = first_instability(|d| path.negative_pivots(d), settings)?;
     let (_, k) = path.factorise(stable)?;
     let (free_mode, eigenvalue) = path.smallest_mode(settings.mode_solves, &k)?;
     let bc = path.system.load_to(stable)?;
@@ -168,6 +144,41 @@ pub fn find_bifurcation(materials: &Bilayer, spec: MeshSpec, settings: &Bifurcat
         eigenvalue,
         path: path.path,
     })
+}
+
+/// The first `d` at which `negative_pivots(d)` is not zero, bracketed to `settings.tolerance`:
+/// a scan from `scan_step` in steps of `scan_step` up to `d_end`, then bisection. Returns
+/// `(d_stable, d_unstable, negative pivots at d_unstable)`.
+pub(crate) fn first_instability(
+    mut negative_pivots: impl FnMut(f64) -> Result<usize>,
+    settings: &BifurcationSettings,
+) -> Result<(f64, f64, usize)> {
+    let mut stable = 0.0;
+    let mut first_unstable = None;
+    let mut d = settings.scan_step;
+    while d <= settings.d_end + 1e-12 {
+        match negative_pivots(d)? {
+            0 => stable = d,
+            negative => {
+                first_unstable = Some((d, negative));
+                break;
+            }
+        }
+        d += settings.scan_step;
+    }
+    let (mut unstable, mut unstable_pivots) = first_unstable.ok_or_else(|| Error::NoRoot {
+        what: "a negative pivot of the tangent on the homogeneous path".into(),
+        lower: 0.0,
+        upper: settings.d_end,
+    })?;
+    while unstable - stable > settings.tolerance {
+        let middle = 0.5 * (stable + unstable);
+        match negative_pivots(middle)? {
+            0 => stable = middle,
+            negative => (unstable, unstable_pivots) = (middle, negative),
+        }
+    }
+    Ok((stable, unstable, unstable_pivots))
 }
 
 /// `u_y` of the top-surface nodes, sorted by `X`.

@@ -17,6 +17,7 @@ pub mod imperfection;
 pub mod load_path;
 pub mod measures;
 pub mod onset;
+pub mod patch;
 mod predictor;
 pub mod record;
 pub mod secondary;

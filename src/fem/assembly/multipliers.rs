@@ -6,9 +6,9 @@ use super::{Assembled, System};
 use crate::error::Result;
 use crate::fem::added::AddedEnergy;
 use crate::fem::boundary::Dirichlet;
-use crate::fem::element::{Volumetric, DOFS, PRESSURES};
+use crate::fem::element::{Registry, Volumetric, PRESSURES};
 use crate::material::{Bilayer, Tissue};
-use crate::mesh::Region;
+use crate::mesh::{ElementKind, Region};
 use rayon::prelude::*;
 
 /// Bulk moduli above this many times the largest shear modulus go through multipliers.
@@ -40,7 +40,10 @@ pub(super) fn augmentation(materials: &Bilayer, tissue: &Tissue) -> Option<Volum
     })
 }
 
-impl System {
+impl<const D: usize, const N: usize, const Q: usize, const U: usize> System<D, N, Q, U>
+where
+    ElementKind: Registry<D, N, Q, U>,
+{
     /// Element `e`'s multipliers in the full vector `u` (zero without multipliers).
     pub fn element_multipliers(&self, e: usize, u: &[f64]) -> [f64; PRESSURES] {
         if !self.multipliers {
@@ -97,7 +100,7 @@ impl System {
     pub fn reference_stiffness_diagonal(&self) -> Result<Vec<f64>> {
         let mesh = self.mesh();
         let mut stiffness = vec![0.0; mesh.num_dofs()];
-        let mut k = [[0.0; DOFS]; DOFS];
+        let mut k = [[0.0; U]; U];
         for (e, (element, nodes)) in self.elements.iter().zip(mesh.elements()).enumerate() {
             element.reference_stiffness(&self.geometry[e], &mut k)?;
             for (i, row) in k.iter().enumerate() {

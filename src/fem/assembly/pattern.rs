@@ -4,7 +4,6 @@
 //! are stored already; a group coupling unknowns not coupled before rebuilds them, and entries
 //! once added stay (as zeros after their group has gone).
 
-use super::DOFS;
 use crate::mesh::Mesh;
 use faer::sparse::{Pair, SymbolicSparseColMat};
 use rayon::prelude::*;
@@ -58,9 +57,9 @@ impl Pattern {
     /// keeping its stored entries where they suffice.
     /// When the stored entries grow, the sets of unknowns `likely` (see
     /// [`crate::fem::added::AddedEnergy::likely_groups`]) are coupled too.
-    pub(super) fn refresh(
+    pub(super) fn refresh<const D: usize, const N: usize>(
         pattern: &mut Option<Pattern>,
-        mesh: &Mesh,
+        mesh: &Mesh<D, N>,
         constrained: &[usize],
         groups: &[Vec<usize>],
         likely: &dyn Fn() -> Vec<Vec<usize>>,
@@ -161,8 +160,8 @@ fn group_pairs(slots: &[Slot], groups: &[Vec<usize>]) -> GroupPairs {
 
 /// Slots, free list, per-block offsets and the CSC pattern of the lower triangle of `K_ff`
 /// (elements, then groups), storing the `coupled` pairs and those of the `likely` groups too.
-fn build_pattern(
-    mesh: &Mesh,
+fn build_pattern<const D: usize, const N: usize>(
+    mesh: &Mesh<D, N>,
     constrained: &[usize],
     groups: &[Vec<usize>],
     coupled: Vec<Pair<usize, usize>>,
@@ -180,10 +179,10 @@ fn build_pattern(
         }
     }
     let dofs = mesh.dofs();
-    let element_dofs: Vec<[usize; DOFS]> = mesh
+    let element_dofs: Vec<Vec<usize>> = mesh
         .elements()
         .iter()
-        .map(|nodes| std::array::from_fn(|i| dofs.global(nodes, i)))
+        .map(|nodes| (0..dofs.count(N)).map(|i| dofs.global(nodes, i)).collect())
         .collect();
     let GroupPairs {
         pairs: mut all,

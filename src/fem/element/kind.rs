@@ -1,7 +1,9 @@
 //! The registration of the finite elements: the one place that chooses the element of an
 //! [`ElementKind`], and when the displacement element locks.
 
-use super::{DisplacementElement, ElementGeometry, FiniteElement, MixedElement, Volumetric};
+use super::{
+    DisplacementElement, ElementGeometry, FiniteElement, Hex27, MixedElement, Quad9, ReferenceElement, Volumetric,
+};
 use crate::error::{Error, Result};
 use crate::material::Tissue;
 pub use crate::mesh::ElementKind;
@@ -10,10 +12,33 @@ pub use crate::mesh::ElementKind;
 /// bifurcation is 1.0e-3 off the linear theory at 100, 3.7e-3 at 1000, and fails from 1e5).
 pub const LOCKING_RATIO: f64 = 100.0;
 
-impl ElementKind {
-    /// The element of this kind on `geometry` of `tissue`; `constraint` resists the mixed
+/// The finite elements on one reference element (in `D` dimensions, `N` nodes, `Q` quadrature
+/// points, `U` unknowns): which kinds exist there and what each computes.
+pub trait Registry<const D: usize, const N: usize, const Q: usize, const U: usize> {
+    /// The reference element.
+    type Reference: ReferenceElement<D, N, Q>;
+
+    /// An error naming the element when this kind has no element on [`Registry::Reference`].
+    fn check_available(kind: ElementKind) -> Result<()>;
+
+    /// The element of `kind` on `geometry` of `tissue`; `constraint` resists the mixed
     /// element's volume change through multipliers (the displacement element has none).
-    pub fn element(
+    fn element(
+        self,
+        geometry: &ElementGeometry<D, N, Q>,
+        tissue: &Tissue,
+        constraint: Option<Volumetric>,
+    ) -> Box<dyn FiniteElement<D, N, Q, U>>;
+}
+
+impl Registry<2, 9, 9, 18> for ElementKind {
+    type Reference = Quad9;
+
+    fn check_available(_kind: ElementKind) -> Result<()> {
+        Ok(())
+    }
+
+    fn element(
         self,
         geometry: &ElementGeometry,
         tissue: &Tissue,
@@ -24,7 +49,34 @@ impl ElementKind {
             ElementKind::Mixed => Box::new(MixedElement::new(geometry, tissue, constraint)),
         }
     }
+}
 
+/// On the hexahedron only the displacement element exists so far.
+impl Registry<3, 27, 27, 81> for ElementKind {
+    type Reference = Hex27;
+
+    fn check_available(kind: ElementKind) -> Result<()> {
+        match kind {
+            ElementKind::Displacement => Ok(()),
+            ElementKind::Mixed => Err(Error::invalid(
+                "element",
+                kind.name(),
+                "displacement on the 27-node hexahedron (the mixed hexahedron is not available)",
+            )),
+        }
+    }
+
+    fn element(
+        self,
+        _geometry: &ElementGeometry<3, 27, 27>,
+        tissue: &Tissue,
+        _constraint: Option<Volumetric>,
+    ) -> Box<dyn FiniteElement<3, 27, 27, 81>> {
+        Box::new(DisplacementElement::new(tissue))
+    }
+}
+
+impl ElementKind {
     /// Whether this element can model the tissue: exactly incompressible tissue needs the
     /// mixed element (the displacement element cannot keep `J = 1`).
     pub fn check_for(self, incompressible: bool) -> Result<()> {

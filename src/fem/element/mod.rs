@@ -21,7 +21,7 @@ mod quad9;
 
 pub use displacement::DisplacementElement;
 pub use hex27::Hex27;
-pub use kind::{ElementKind, LOCKING_RATIO};
+pub use kind::{ElementKind, Registry, LOCKING_RATIO};
 pub use mixed::{MixedElement, PressureUpdate, Volumetric, PRESSURES};
 pub use quad9::Quad9;
 

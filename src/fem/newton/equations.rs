@@ -4,8 +4,10 @@
 use crate::fem::added::AddedEnergy;
 use crate::fem::assembly::{Assembled, System};
 use crate::fem::boundary::Dirichlet;
+use crate::fem::element::{Registry, DOFS, GAUSS_POINTS, NODES};
 #[cfg(doc)]
 use crate::fem::Newton;
+use crate::mesh::ElementKind;
 
 /// What Newton's method solves: `r(u) = 0` on the free unknowns of `u`, whose prescribed unknowns
 /// move to their given values. The equations give the residual and its tangent at a state; the
@@ -45,14 +47,23 @@ pub trait EnergyEquations: Equations {
 
 /// The equations of a finite-element system: its strain energy plus `added`, with `bc`
 /// prescribed and the multipliers' penalty multiplied by `penalty_scale`.
-pub struct SystemEquations<'a> {
-    pub system: &'a mut System,
+pub struct SystemEquations<
+    'a,
+    const D: usize = 2,
+    const N: usize = NODES,
+    const Q: usize = GAUSS_POINTS,
+    const U: usize = DOFS,
+> {
+    pub system: &'a mut System<D, N, Q, U>,
     pub bc: &'a Dirichlet,
     pub added: &'a dyn AddedEnergy,
     pub penalty_scale: f64,
 }
 
-impl Equations for SystemEquations<'_> {
+impl<const D: usize, const N: usize, const Q: usize, const U: usize> Equations for SystemEquations<'_, D, N, Q, U>
+where
+    ElementKind: Registry<D, N, Q, U>,
+{
     fn prescribed(&self) -> &Dirichlet {
         self.bc
     }
@@ -79,7 +90,10 @@ impl Equations for SystemEquations<'_> {
     }
 }
 
-impl EnergyEquations for SystemEquations<'_> {
+impl<const D: usize, const N: usize, const Q: usize, const U: usize> EnergyEquations for SystemEquations<'_, D, N, Q, U>
+where
+    ElementKind: Registry<D, N, Q, U>,
+{
     fn stiffness_scale(&self) -> crate::Result<Vec<f64>> {
         self.system.reference_stiffness_diagonal()
     }

@@ -1,0 +1,190 @@
+//! A patch of tissue under biaxial compression: its boundary conditions at `(d, d_3 = R d)`, its
+//! homogeneous state, and the first bifurcation of the perfect patch.
+//!
+//! Periodic sides carry the average stretch across: the unknowns are the periodic part `w` of
+//! `u = H X + w`, with `H = diag(-d, 0, -d_3)` ([`crate::fem::System::set_average_gradient`]);
+//! the bottom holds `u_Y = 0` and one bottom node `w_X = w_Z = 0` (the rigid translations of a
+//! periodic patch). Symmetry sides prescribe `u_X = 0` at `X = 0`, `u_X = -d Lx` at `X = Lx`,
+//! `u_Z = 0` at `Z = 0`, `u_Z = -d_3 Lz` at `Z = Lz`, and the bottom `u_Y = 0`, as the strip's
+//! model conditions do.
+//!
+//! The homogeneous state (each layer at `diag(lambda_1, lambda_2, lambda_3)`,
+//! [`biaxial_state`]) is represented exactly by the hexahedra, so it is set analytically and
+//! checked to be in equilibrium; the first bifurcation is found on it as on the strip
+//! ([`super::bifurcation`]): the first `d` at which the tangent has a negative pivot.
+
+use super::bifurcation::{first_instability, BifurcationSettings};
+use crate::error::{Error, Result};
+use crate::fem::added::NoAddedEnergy;
+use crate::fem::assembly::norm;
+use crate::fem::{Assembled, Dirichlet, PatchSystem, SparseLdlt};
+use crate::homogeneous::{biaxial_state, BiaxialState};
+use crate::material::Bilayer;
+use crate::mesh::{Mesh, PatchSpec, BACK, BOTTOM, FRONT, LEFT, RIGHT, X, Y, Z};
+use serde::Serialize;
+
+/// The boundary conditions of a patch at compressions `d` along X and `d3` along Z, and the
+/// average displacement gradient its periodic sides carry (zero for symmetry sides).
+pub fn patch_conditions(mesh: &Mesh<3, 27>, d: f64, d3: f64) -> Result<(Dirichlet, [[f64; 3]; 3])> {
+    let dofs = mesh.dofs();
+    let mut pairs: Vec<(usize, f64)> = mesh.node_set(BOTTOM).iter().map(|&n| (dofs.dof(n, Y), 0.0)).collect();
+    if mesh.is_periodic() {
+        let anchor = mesh.node_set(BOTTOM)[0];
+        pairs.extend([(dofs.dof(anchor, X), 0.0), (dofs.dof(anchor, Z), 0.0)]);
+        return Ok((
+            Dirichlet::new(pairs)?,
+            [[-d, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, -d3]],
+        ));
+    }
+    let [length_x, _, length_z] = side_lengths(mesh);
+    for (set, component, value) in [
+        (LEFT, X, 0.0),
+        (RIGHT, X, -d * length_x),
+        (BACK, Z, 0.0),
+        (FRONT, Z, -d3 * length_z),
+    ] {
+        pairs.extend(mesh.node_set(set).iter().map(|&n| (dofs.dof(n, component), value)));
+    }
+    Ok((Dirichlet::new(pairs)?, [[0.0; 3]; 3]))
+}
+
+/// `(Lx, -, Lz)` of a patch.
+fn side_lengths(mesh: &Mesh<3, 27>) -> [f64; 3] {
+    let spec = mesh.patch_spec();
+    [spec.length_x, 0.0, spec.length_z]
+}
+
+/// The unknowns of the homogeneous `state` on a patch: `u_Y = (lambda_2s - 1)(Y + D)` in the
+/// substrate and `(lambda_2s - 1) D + (lambda_2l - 1) Y` in the layer, and on symmetry sides
+/// `u_X = -d X`, `u_Z = -d_3 Z` (on periodic sides the average gradient carries those).
+pub fn homogeneous_patch_displacement(mesh: &Mesh<3, 27>, state: &BiaxialState) -> Vec<f64> {
+    let depth = mesh.patch_spec().depth;
+    let (mut u, dofs) = (vec![0.0; mesh.num_dofs()], mesh.dofs());
+    let in_plane = if mesh.is_periodic() { 0.0 } else { 1.0 };
+    for (n, &[x, y, z]) in mesh.coordinates().iter().enumerate() {
+        u[dofs.dof(n, X)] = -in_plane * state.d * x;
+        u[dofs.dof(n, Y)] =
+            (state.lambda2_substrate - 1.0) * (y.min(0.0) + depth) + (state.lambda2_layer - 1.0) * y.max(0.0);
+        u[dofs.dof(n, Z)] = -in_plane * state.d3 * z;
+    }
+    u
+}
+
+/// The residual of an assembly (with its tangent) at `u` relative to the forces the state's
+/// displacements carry, `|r| / (max |K_ij| |u|)`: on a periodic patch under an average
+/// gradient the internal forces cancel at equilibrium and no reaction sets a scale.
+pub fn relative_residual(assembled: &Assembled, u: &[f64]) -> f64 {
+    let k = assembled.tangent.as_ref().expect("assembled with the tangent");
+    let largest = k.as_ref().val().iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    assembled.residual_norm() / (largest * norm(u)).max(f64::MIN_POSITIVE)
+}
+
+/// The first bifurcation of a perfect patch.
+#[derive(Clone, Debug, Serialize)]
+pub struct PatchBifurcation {
+    /// Midpoint of the final bracket.
+    pub d: f64,
+    /// `(d_stable, d_unstable)`: no negative pivot at the first, some at the second.
+    pub bracket: (f64, f64),
+    /// Negative pivots at `d_unstable` (two for a mirror pair of modes, more where several
+    /// admissible wave vectors are critical together).
+    pub negative_pivots: usize,
+    /// Every `(d, negative pivots)` evaluated, in order.
+    pub path: Vec<(f64, usize)>,
+    /// Free unknowns of the tangent.
+    pub unknowns: usize,
+}
+
+/// The homogeneous path of a patch under `d_3 = biaxiality d`, with its reused factorisation.
+pub struct PatchPath<'a> {
+    materials: &'a Bilayer,
+    biaxiality: f64,
+    system: PatchSystem,
+    /// Extra prescribed unknowns (a plane-strain slab's `u_Z = 0`).
+    held: Vec<usize>,
+    solver: Option<SparseLdlt>,
+    path: Vec<(f64, usize)>,
+    unknowns: usize,
+}
+
+impl<'a> PatchPath<'a> {
+    /// The path of the perfect patch of `spec` under `d_3 = biaxiality d`.
+    pub fn new(materials: &'a Bilayer, spec: PatchSpec, biaxiality: f64) -> Result<Self> {
+        if !(biaxiality.is_finite() && (0.0..=1.0).contains(&biaxiality)) {
+            return Err(Error::invalid("biaxial", biaxiality, "[0, 1]"));
+        }
+        Ok(PatchPath {
+            materials,
+            biaxiality,
+            system: PatchSystem::on_patch(Mesh::patch(spec)?, materials)?,
+            held: Vec::new(),
+            solver: None,
+            path: Vec::new(),
+            unknowns: 0,
+        })
+    }
+
+    /// The same path with `u_Z = 0` everywhere: a slab in plane strain.
+    pub fn in_plane_strain(mut self) -> Self {
+        let mesh = self.system.mesh();
+        self.held = (0..mesh.num_nodes()).map(|n| mesh.dofs().dof(n, Z)).collect();
+        self
+    }
+
+    /// The system.
+    pub fn system(&self) -> &PatchSystem {
+        &self.system
+    }
+
+    /// The homogeneous state at `d`, the conditions there, and its unknowns.
+    pub fn homogeneous(&mut self, d: f64) -> Result<(BiaxialState, Dirichlet, Vec<f64>)> {
+        let state = biaxial_state(self.materials, d, self.biaxiality * d)?;
+        let (bc, h) = patch_conditions(self.system.mesh(), d, state.d3)?;
+        let bc = match self.held.is_empty() {
+            true => bc,
+            false => {
+                let mut pairs: Vec<(usize, f64)> = bc.dofs().iter().copied().zip(bc.values().iter().copied()).collect();
+                pairs.extend(self.held.iter().map(|&dof| (dof, 0.0)));
+                Dirichlet::new(pairs)?
+            }
+        };
+        self.system.set_average_gradient(h);
+        let u = homogeneous_patch_displacement(self.system.mesh(), &state);
+        Ok((state, bc, u))
+    }
+
+    /// Negative pivots of the tangent at the homogeneous state `d`, which must be a discrete
+    /// equilibrium ([`relative_residual`] at most 1e-10).
+    pub fn negative_pivots(&mut self, d: f64) -> Result<usize> {
+        let (_, bc, u) = self.homogeneous(d)?;
+        let assembled = self.system.assemble_for_stability(&u, &bc, &NoAddedEnergy)?;
+        let relative = relative_residual(&assembled, &u);
+        if relative > 1e-10 {
+            return Err(Error::Solver(format!(
+                "the homogeneous state at d = {d} is not a discrete equilibrium of the patch (relative residual {relative:.2e})"
+            )));
+        }
+        let k = assembled.tangent.expect("assembled with the tangent");
+        self.unknowns = k.nrows();
+        let solver = self.solver.get_or_insert_with(|| SparseLdlt::new(k.symbolic()));
+        solver.factorize(k.as_ref());
+        let negative = solver.negative_pivots().expect("just factorised");
+        self.path.push((d, negative));
+        Ok(negative)
+    }
+
+    /// The first bifurcation along the path (the scan and bisection of `settings`).
+    pub fn bifurcation(mut self, settings: &BifurcationSettings) -> Result<PatchBifurcation> {
+        let (stable, unstable, negative_pivots) = first_instability(|d| self.negative_pivots(d), settings)?;
+        Ok(PatchBifurcation {
+            d: 0.5 * (stable + unstable),
+            bracket: (stable, unstable),
+            negative_pivots,
+            path: self.path,
+            unknowns: self.unknowns,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests;
