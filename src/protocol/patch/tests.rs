@@ -71,3 +71,132 @@ fn a_slab_in_plane_strain_bifurcates_where_the_strip_does() {
     assert!((slab.d - plane.d).abs() <= 2e-7, "slab {} strip {}", slab.d, plane.d);
     assert_eq!(slab.negative_pivots, plane.negative_pivots);
 }
+
+/// A periodic patch one wavelength square of Table 1 with vertical fibres (isotropic in the
+/// surface) under equibiaxial compression, through the thickness like the strip (`h0` halved
+/// with the element size).
+fn square_patch(length: f64, n: usize) -> PatchSpec {
+    PatchSpec {
+        nx: n,
+        nz: n,
+        length_x: length,
+        length_z: length,
+        layer_elements: n / 3,
+        substrate_elements: 2 * n,
+        top_substrate_thickness: 2.0 / n as f64,
+        depth: 20.0,
+        sides: Sides::Periodic,
+        element: ElementKind::Displacement,
+    }
+}
+
+/// The first bifurcation of a periodic patch converges to the exact 3D theory's smallest
+/// `d_c(|k|, theta)` over the wave vectors the patch admits, and it is the pair `(1, 0)`,
+/// `(0, 1)` the theory says: two wave vectors, each a cosine and a sine mode, so four
+/// negative pivots at once.
+#[test]
+fn a_periodic_patch_bifurcates_at_the_exact_theorys_onset_over_its_wave_vectors() {
+    use crate::stability::oblique::box_modes;
+    use crate::stability::{Method, StabilityAnalysis};
+    let p = Parameters {
+        beta: std::f64::consts::FRAC_PI_2,
+        ..Parameters::default()
+    };
+    let onset = StabilityAnalysis::with_surface(
+        &p,
+        Method::Exact,
+        Some(crate::stability::Surface {
+            biaxial: 1.0,
+            theta: 0.0,
+        }),
+    )
+    .unwrap()
+    .onset()
+    .unwrap();
+    let length = 2.0 * std::f64::consts::PI / onset.k0;
+    let modes = box_modes(&p, Method::Exact, 1.0, (length, length), 2.0).unwrap();
+    // The two shortest wave vectors are critical together, the next (1, +-1) well after.
+    assert_eq!([(modes[0].m, modes[0].n), (modes[1].m, modes[1].n)], [(1, 0), (0, 1)]);
+    assert!((modes[0].d_c - onset.d_c).abs() < 1e-9 && (modes[1].d_c - onset.d_c).abs() < 1e-9);
+    assert!(modes[2].d_c > onset.d_c + 1e-2);
+    let materials = Bilayer::new(&p);
+    let settings = BifurcationSettings {
+        scan_step: 0.02,
+        tolerance: 1e-6,
+        ..BifurcationSettings::default()
+    };
+    let errors: Vec<f64> = [3, 6]
+        .into_iter()
+        .map(|n| {
+            let b = PatchPath::new(&materials, square_patch(length, n), 1.0)
+                .unwrap()
+                .bifurcation(&settings)
+                .unwrap();
+            assert_eq!(b.negative_pivots, 4, "n = {n}: {b:?}");
+            b.d - modes[0].d_c
+        })
+        .collect();
+    // Q2 elements converge at least quadratically in the eigenvalue: halving the elements
+    // divides the error by more than 4 (from above: the discretisation is stiffer).
+    assert!(errors.iter().all(|&e| e > 0.0), "{errors:?}");
+    assert!(errors[1] < errors[0] / 4.0 && errors[1] < 1e-3, "{errors:?}");
+}
+
+/// Measurement (`--ignored --nocapture`): the onset of periodic patches against the exact
+/// theory, for vertical fibres on a square patch and for fibres in the surface on the patch
+/// that holds the theory's mirror pair of oblique wave vectors.
+#[test]
+#[ignore]
+fn measure_patch_onset_against_the_linear_theory() {
+    use crate::stability::oblique::box_modes;
+    use crate::stability::{Method, StabilityAnalysis, Surface};
+    for beta in [std::f64::consts::FRAC_PI_2, 0.0] {
+        let p = Parameters {
+            beta,
+            ..Parameters::default()
+        };
+        let surface = Some(Surface {
+            biaxial: 1.0,
+            theta: 0.0,
+        });
+        let onset = StabilityAnalysis::with_surface(&p, Method::Exact, surface)
+            .unwrap()
+            .surface_onset()
+            .unwrap();
+        let theta = if onset.theta0.is_nan() { 0.0 } else { onset.theta0 };
+        let wave = 2.0 * std::f64::consts::PI / onset.onset.k0;
+        let lengths = match theta == 0.0 {
+            true => (wave, wave),
+            false => (wave / theta.cos(), wave / theta.sin()),
+        };
+        let modes = box_modes(&p, Method::Exact, 1.0, lengths, 2.0).unwrap();
+        eprintln!("beta {beta}: patch {lengths:?}, theory {:?}", &modes[..3]);
+        let materials = Bilayer::new(&p);
+        for n in [3, 6, 9] {
+            let spec = PatchSpec {
+                length_x: lengths.0,
+                length_z: lengths.1,
+                ..square_patch(wave, n)
+            };
+            let start = std::time::Instant::now();
+            let settings = BifurcationSettings {
+                scan_step: 0.02,
+                tolerance: 1e-7,
+                ..BifurcationSettings::default()
+            };
+            let b = PatchPath::new(&materials, spec, 1.0)
+                .unwrap()
+                .bifurcation(&settings)
+                .unwrap();
+            eprintln!(
+                "  n {n}: d {:.7} - theory {:.7} = {:.2e}, negative pivots {}, unknowns {}, {:.1} s",
+                b.d,
+                modes[0].d_c,
+                b.d - modes[0].d_c,
+                b.negative_pivots,
+                b.unknowns,
+                start.elapsed().as_secs_f64()
+            );
+        }
+    }
+}

@@ -11,6 +11,7 @@
 //! over both. With `theta = 0`, `R = 0` and `psi = 0` the Z displacement decouples and `d_c(k)`
 //! is the plane-strain one.
 
+mod box_modes;
 pub mod discrete;
 pub mod exact;
 pub mod moduli;
@@ -21,6 +22,7 @@ pub use super::surface::Surface;
 use super::Method;
 use crate::error::{Error, Result};
 use crate::homogeneous::{biaxial_state, normal_stress};
+pub use box_modes::{box_modes, BoxMode};
 use moduli::SurfaceModuli;
 use serde::Serialize;
 use std::f64::consts::PI;
