@@ -123,6 +123,32 @@ impl<const D: usize, const N: usize> Mesh<D, N> {
         })
     }
 
+    /// The mesh cut open along its periodic sides, for drawing: the nodes, then one copy of
+    /// each node an element sees one period on (at its shifted coordinates); the elements on
+    /// those points; and for every point the mesh node it copies.
+    pub fn unwrapped(&self) -> (Vec<[f64; D]>, Vec<[usize; N]>, Vec<usize>) {
+        let mut points = self.coordinates.clone();
+        let mut source: Vec<usize> = (0..self.num_nodes()).collect();
+        let mut copies: BTreeMap<(usize, u8), usize> = BTreeMap::new();
+        let cells = (0..self.elements.len())
+            .map(|e| {
+                let shifted = self.element_coordinates(e);
+                std::array::from_fn(|a| {
+                    let node = self.elements[e][a];
+                    match self.wraps.get(e).map_or(0, |w| w[a]) {
+                        0 => node,
+                        wrap => *copies.entry((node, wrap)).or_insert_with(|| {
+                            points.push(shifted[a]);
+                            source.push(node);
+                            points.len() - 1
+                        }),
+                    }
+                })
+            })
+            .collect();
+        (points, cells, source)
+    }
+
     /// Whether the mesh is periodic along some direction.
     pub fn is_periodic(&self) -> bool {
         !self.wraps.is_empty()

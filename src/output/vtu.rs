@@ -4,8 +4,8 @@
 //! Arrays are written inline in VTK's `binary` format: base64 of a `UInt64` byte count followed
 //! by the little-endian values: exact, no float formatting, and a fifth smaller than ASCII.
 //!
-//! The cell type and VTK's order of its nodes come from the element ([`CellType`]). Plane
-//! points are written in 3D with `z = 0`.
+//! The cell type and VTK's order of its nodes come from the element ([`CellType`]). Points are
+//! written in 3D (plane ones with `z = 0`).
 
 use crate::error::{Error, Result};
 use std::fs::File;
@@ -55,6 +55,15 @@ impl DataArray {
         }
     }
 
+    /// Vectors of three components.
+    pub fn vectors(name: &str, vectors: impl Iterator<Item = [f64; 3]>) -> Self {
+        DataArray {
+            name: name.into(),
+            components: 3,
+            values: vectors.flatten().collect(),
+        }
+    }
+
     /// Symmetric tensors `[s11, s12, s22, s33]` in VTK's 6-component order XX, YY, ZZ, XY, YZ, XZ.
     pub fn symmetric_tensors(name: &str, tensors: &[[f64; 4]]) -> Self {
         DataArray {
@@ -70,9 +79,9 @@ impl DataArray {
 
 /// Writes `path` with the given points, cells of `cell_type` (in the element's local node
 /// order) and data. Arrays of the wrong length are a bug (panic); non-finite values are refused.
-pub fn write_vtu<const N: usize>(
+pub fn write_vtu<const D: usize, const N: usize>(
     path: &Path,
-    points: &[[f64; 2]],
+    points: &[[f64; D]],
     cell_type: &CellType<N>,
     cells: &[[usize; N]],
     point_data: &[DataArray],
@@ -103,9 +112,9 @@ pub fn write_vtu<const N: usize>(
     })
 }
 
-fn write_grid<const N: usize>(
+fn write_grid<const D: usize, const N: usize>(
     out: &mut impl Write,
-    points: &[[f64; 2]],
+    points: &[[f64; D]],
     cell_type: &CellType<N>,
     cells: &[[usize; N]],
     point_data: &[DataArray],
@@ -124,7 +133,10 @@ fn write_grid<const N: usize>(
         cells.len()
     )?;
     writeln!(out, "<Points>")?;
-    let coordinates: Vec<f64> = points.iter().flat_map(|&[x, y]| [x, y, 0.0]).collect();
+    let coordinates: Vec<f64> = points
+        .iter()
+        .flat_map(|p| (0..3).map(move |c| if c < D { p[c] } else { 0.0 }))
+        .collect();
     write_floats(out, "Points", 3, &coordinates)?;
     writeln!(out, "</Points>\n<Cells>")?;
     let connectivity: Vec<i64> = cells

@@ -17,10 +17,11 @@ use super::bifurcation::{first_instability, BifurcationSettings};
 use crate::error::{Error, Result};
 use crate::fem::added::NoAddedEnergy;
 use crate::fem::assembly::norm;
-use crate::fem::{Assembled, Dirichlet, PatchSystem, SparseLdlt};
+use crate::fem::lanczos::inverse_lanczos;
+use crate::fem::{Assembled, Dirichlet, PatchSystem, SparseLdlt, Tangent};
 use crate::homogeneous::{biaxial_state, BiaxialState};
 use crate::material::Bilayer;
-use crate::mesh::{Mesh, PatchSpec, BACK, BOTTOM, FRONT, LEFT, RIGHT, X, Y, Z};
+use crate::mesh::{Mesh, PatchSpec, BACK, BOTTOM, FRONT, LEFT, RIGHT, TOP, X, Y, Z};
 use serde::Serialize;
 
 /// The boundary conditions of a patch at compressions `d` along X and `d3` along Z, and the
@@ -93,6 +94,13 @@ pub struct PatchBifurcation {
     pub path: Vec<(f64, usize)>,
     /// Free unknowns of the tangent.
     pub unknowns: usize,
+    /// The eigenvector of the tangent's smallest eigenvalue at `d_stable` (all unknowns, zero
+    /// where prescribed), scaled so that the largest top-surface `|u_Y|` is 1: one member of
+    /// the critical modes (any combination of them where several are critical together).
+    #[serde(skip)]
+    pub mode: Vec<f64>,
+    /// That smallest eigenvalue.
+    pub eigenvalue: f64,
 }
 
 /// The homogeneous path of a patch under `d_3 = biaxiality d`, with its reused factorisation.
@@ -156,6 +164,12 @@ impl<'a> PatchPath<'a> {
     /// Negative pivots of the tangent at the homogeneous state `d`, which must be a discrete
     /// equilibrium ([`relative_residual`] at most 1e-10).
     pub fn negative_pivots(&mut self, d: f64) -> Result<usize> {
+        Ok(self.factorise(d)?.0)
+    }
+
+    /// Assembles and factorises the tangent at the homogeneous state `d`: its negative pivots
+    /// and the tangent.
+    fn factorise(&mut self, d: f64) -> Result<(usize, Tangent)> {
         let (_, bc, u) = self.homogeneous(d)?;
         let assembled = self.system.assemble_for_stability(&u, &bc, &NoAddedEnergy)?;
         let relative = relative_residual(&assembled, &u);
@@ -170,21 +184,55 @@ impl<'a> PatchPath<'a> {
         solver.factorize(k.as_ref());
         let negative = solver.negative_pivots().expect("just factorised");
         self.path.push((d, negative));
-        Ok(negative)
+        Ok((negative, k))
     }
 
-    /// The first bifurcation along the path (the scan and bisection of `settings`).
-    pub fn bifurcation(mut self, settings: &BifurcationSettings) -> Result<PatchBifurcation> {
-        let (stable, unstable, negative_pivots) = first_instability(|d| self.negative_pivots(d), settings)?;
+    /// The first bifurcation along the path (the scan and bisection of `settings`), telling
+    /// `progress` every `(d, negative pivots)` evaluated.
+    pub fn bifurcation(
+        mut self,
+        settings: &BifurcationSettings,
+        progress: &mut dyn FnMut(f64, usize),
+    ) -> Result<PatchBifurcation> {
+        let (stable, unstable, negative_pivots) = first_instability(
+            |d| {
+                let negative = self.negative_pivots(d)?;
+                progress(d, negative);
+                Ok(negative)
+            },
+            settings,
+        )?;
+        let (_, k) = self.factorise(stable)?;
+        let solver = self.solver.as_mut().expect("factorised above");
+        let (free_mode, eigenvalue) = inverse_lanczos(solver, k.as_ref(), settings.mode_solves, 1e-12)?;
+        let (_, bc, _) = self.homogeneous(stable)?;
+        let free = self.system.free_dofs(&bc)?.to_vec();
+        let mut mode = vec![0.0; self.system.num_dofs()];
+        for (&dof, &v) in free.iter().zip(&free_mode) {
+            mode[dof] = v;
+        }
+        let mesh = self.system.mesh();
+        let largest = mesh
+            .node_set(TOP)
+            .iter()
+            .fold(0.0f64, |m, &n| m.max(mode[mesh.dofs().dof(n, Y)].abs()));
+        if largest > 0.0 {
+            mode.iter_mut().for_each(|v| *v /= largest);
+        }
         Ok(PatchBifurcation {
             d: 0.5 * (stable + unstable),
             bracket: (stable, unstable),
             negative_pivots,
             path: self.path,
             unknowns: self.unknowns,
+            mode,
+            eigenvalue,
         })
     }
 }
+
+mod spectrum;
+pub use spectrum::{surface_spectrum, WaveVector};
 
 #[cfg(test)]
 mod tests;
