@@ -6,7 +6,7 @@ substrate shear modulus mu_s, ``d = 1 - lambda_1`` the end-shortening, ``k`` the
 wavenumber, ``beta`` the fibre angle in radians. ``phi_f`` weights *each* of the two fibre
 families (eq. 3 of the paper).
 
-Long calls (``simulate``, ``sweep``, ``bifurcation``) release the GIL, accept a progress
+Long calls (``simulate``, ``sweep``, ``bifurcation``, ``pattern``) release the GIL, accept a progress
 callback, and stop on Ctrl-C with ``KeyboardInterrupt``. A solver failure raises
 :class:`SolverError`; bad input raises ``ValueError`` (wrong value, naming the parameter and its
 allowed range) or ``TypeError`` (wrong type).
@@ -37,6 +37,7 @@ __all__ = [
     "simulate",
     "simulate_defaults",
     "bifurcation",
+    "pattern",
     "crease",
     "crease_defaults",
 ]
@@ -240,6 +241,25 @@ def bifurcation(
         return json.loads(_fiberfold.bifurcation_run(params, str(out), mesh, element))
     with tempfile.TemporaryDirectory() as folder:
         return json.loads(_fiberfold.bifurcation_run(params, folder, mesh, element))
+
+
+def pattern(
+    params: Parameters,
+    biaxial: float = 1.0,
+    periods: int = 1,
+    elements_per_wavelength: int = 6,
+    out: Optional[str] = None,
+) -> Dict[str, Any]:
+    """A patch of tissue in three dimensions under ``d_3 = biaxial * d`` (``fiberfold
+    pattern``): the content of ``pattern.json`` (``d_bifurcation``, ``negative_pivots``, the
+    theory's ``d_c_admissible`` over the patch's wave vectors, ``mode_wave_vectors``, the
+    ``patch``, ...). Its files (mode VTU, spectrum, top view) go to ``out``, or to a temporary
+    folder that is removed."""
+    params = _check_parameters(params)
+    if out is not None:
+        return json.loads(_fiberfold.pattern_run(params, str(out), biaxial, periods, elements_per_wavelength))
+    with tempfile.TemporaryDirectory() as folder:
+        return json.loads(_fiberfold.pattern_run(params, folder, biaxial, periods, elements_per_wavelength))
 
 
 def crease(

@@ -335,6 +335,30 @@ fn bifurcation_run(
     serde_json::to_string(&report).map_err(|e| PyRuntimeError::new_err(e.to_string()))
 }
 
+/// A patch of tissue in three dimensions (`fiberfold pattern`), written into `out`; returns
+/// `pattern.json` as JSON text.
+#[pyfunction]
+#[pyo3(signature = (params, out, biaxial=1.0, periods=1, elements_per_wavelength=6))]
+fn pattern_run(
+    py: Python<'_>,
+    params: &PyParameters,
+    out: PathBuf,
+    biaxial: f64,
+    periods: usize,
+    elements_per_wavelength: usize,
+) -> PyResult<String> {
+    use fiberfold::studies::pattern::{run, PatternStudy};
+    let study = PatternStudy {
+        biaxial,
+        periods,
+        elements_per_wavelength,
+        ..PatternStudy::default()
+    };
+    let p = params.inner.clone();
+    let report = py.detach(|| run(&p, &study, &out, &mut |_| {})).map_err(to_py)?;
+    serde_json::to_string(&report).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+}
+
 /// The crease onset (`fiberfold crease`), in memory, with `options`, a JSON object of its
 /// options by the library's names (the missing ones at its defaults, [`crease_defaults`]):
 /// `crease.json` as JSON text.
@@ -368,6 +392,7 @@ fn _fiberfold(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate_run, m)?)?;
     m.add_function(wrap_pyfunction!(simulate_defaults, m)?)?;
     m.add_function(wrap_pyfunction!(bifurcation_run, m)?)?;
+    m.add_function(wrap_pyfunction!(pattern_run, m)?)?;
     m.add_function(wrap_pyfunction!(crease_run, m)?)?;
     m.add_function(wrap_pyfunction!(crease_defaults, m)?)?;
     Ok(())

@@ -384,3 +384,14 @@ def test_the_fenicsx_comparison_reads_the_imperfect_mesh_of_a_run(tmp_path):
     top = points[np.isclose(points[:, 1], 1.0 + 0.05 * np.cos(k * points[:, 0]), atol=1e-12)]
     assert len(top) == 41
     assert np.isclose(points[:, 0].max(), 50.0) and np.isclose(points[:, 1].min(), -50.0)
+
+
+def test_a_patch_in_three_dimensions_bifurcates_at_the_exact_theorys_onset():
+    # Vertical fibres (isotropic in the surface), a coarse patch one wavelength square: the two
+    # shortest wave vectors are critical together (four negative pivots), within 1e-2 of the theory.
+    r = fiberfold.pattern(fiberfold.Parameters(beta=1.5707963), elements_per_wavelength=3)
+    assert r["negative_pivots"] == 4
+    assert 0.0 < r["relative_difference"] < 1e-1
+    assert {(w["m"], w["n"]) for w in r["mode_wave_vectors"][:2]} == {(1, 0), (0, 1)}
+    with pytest.raises(ValueError, match="periods"):
+        fiberfold.pattern(fiberfold.Parameters(), periods=0)

@@ -7,6 +7,7 @@ mod crease;
 mod homogeneous;
 mod map;
 mod params;
+mod pattern;
 mod reproduce;
 mod simulate;
 mod stability;
@@ -48,6 +49,9 @@ enum Command {
     Map(map::MapArgs),
     /// Exact bifurcation of the discretised perfect system from the inertia of its tangent.
     Bifurcation(bifurcation::BifurcationArgs),
+    /// A patch of tissue in three dimensions under biaxial compression (27-node hexahedra):
+    /// its first bifurcation against the exact 3D theory, and the wave vectors of its mode.
+    Pattern(pattern::PatternArgs),
     /// Timings of the stability analysis or the finite-element solver.
     Bench(bench::BenchArgs),
     /// Regenerate every figure of the paper (Figs. 2-7) into one folder, with a report.
@@ -67,6 +71,7 @@ pub fn run() -> ExitCode {
         Command::Crease(args) => crease::run(&args),
         Command::Map(args) => map::run(&args),
         Command::Bifurcation(args) => bifurcation::run(&args),
+        Command::Pattern(args) => pattern::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Reproduce(args) => reproduce::run(&args),
     };

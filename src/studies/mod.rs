@@ -10,6 +10,7 @@ pub mod homogeneous;
 pub mod keywords;
 pub mod map;
 pub mod orientation;
+pub mod pattern;
 pub mod reproduce;
 pub mod simulate;
 pub mod stability;

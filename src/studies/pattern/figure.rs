@@ -1,0 +1,142 @@
+//! `mode_top.png/svg`: a periodic patch's surface seen from above, each cell of its top node
+//! grid coloured by the mean `u_Y` of its corners (blue down, red up), with the fibres'
+//! projection on the surface drawn as lines.
+
+use crate::error::Result;
+use crate::mesh::{Mesh, TOP, X, Y, Z};
+use crate::output::plot::{save_canvas, Canvas, FONT};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::{Path, PathBuf};
+
+/// A periodic patch's top-surface field and the fibres' direction in the surface.
+pub struct TopView<'a> {
+    pub title: String,
+    pub mesh: &'a Mesh<3, 27>,
+    /// One value per unknown of the mesh; `u_Y` is drawn, scaled by its largest magnitude.
+    pub field: &'a [f64],
+    /// The fibres' projection on the surface `(cos psi, sin psi)`; `None` for fibres normal
+    /// to it.
+    pub fibres: Option<[f64; 2]>,
+}
+
+/// Writes `dir/stem.png` and `dir/stem.svg`.
+pub fn top_view(view: &TopView, dir: &Path, stem: &str) -> Result<Vec<PathBuf>> {
+    let [length_x, _, length_z] = *view.mesh.periods();
+    let width = 640u32;
+    let height = ((width as f64 - 90.0) * length_z / length_x + 110.0).clamp(320.0, 1000.0) as u32;
+    save_canvas(view, (width, height), dir, stem)
+}
+
+impl Canvas for TopView<'_> {
+    fn render<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> std::result::Result<(), String> {
+        draw(root, self)
+    }
+}
+
+/// Blue (-1), white (0), red (+1).
+fn diverging(v: f64) -> RGBColor {
+    let t = v.clamp(-1.0, 1.0);
+    let (end, s) = if t < 0.0 {
+        ((33.0, 102.0, 172.0), -t)
+    } else {
+        ((178.0, 24.0, 43.0), t)
+    };
+    let mix = |c: f64| (255.0 + (c - 255.0) * s).round() as u8;
+    RGBColor(mix(end.0), mix(end.1), mix(end.2))
+}
+
+/// The part of the line through `point` along `direction` inside `[0, a] x [0, b]`, if any.
+fn clipped(point: [f64; 2], direction: [f64; 2], (a, b): (f64, f64)) -> Option<[(f64, f64); 2]> {
+    let (mut low, mut high) = (f64::NEG_INFINITY, f64::INFINITY);
+    for (p, d, end) in [(point[0], direction[0], a), (point[1], direction[1], b)] {
+        if d.abs() < 1e-12 {
+            if !(0.0..=end).contains(&p) {
+                return None;
+            }
+            continue;
+        }
+        let (t0, t1) = ((0.0 - p) / d, (end - p) / d);
+        low = low.max(t0.min(t1));
+        high = high.min(t0.max(t1));
+    }
+    (high > low).then(|| {
+        let at = |t: f64| (point[0] + t * direction[0], point[1] + t * direction[1]);
+        [at(low), at(high)]
+    })
+}
+
+fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, view: &TopView) -> std::result::Result<(), String> {
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    root.fill(&WHITE).map_err(err)?;
+    let mesh = view.mesh;
+    let [length_x, _, length_z] = *mesh.periods();
+    let spec = mesh.patch_spec();
+    let (cx, cz) = (2 * spec.nx, 2 * spec.nz);
+    let (dx, dz) = (length_x / cx as f64, length_z / cz as f64);
+    let mut grid = vec![vec![0.0; cz]; cx];
+    for &node in mesh.node_set(TOP) {
+        let x = mesh.coordinates()[node];
+        let (i, k) = ((x[X] / dx).round() as usize % cx, (x[Z] / dz).round() as usize % cz);
+        grid[i][k] = view.field[mesh.dofs().dof(node, Y)];
+    }
+    let largest = grid
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, v| m.max(v.abs()))
+        .max(f64::MIN_POSITIVE);
+    let mut chart = ChartBuilder::on(&root)
+        .caption(&view.title, (FONT, 16))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(50)
+        .build_cartesian_2d(0.0..length_x, 0.0..length_z)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("X / H")
+        .y_desc("Z / H")
+        .label_style((FONT, 13))
+        .axis_desc_style((FONT, 14))
+        .draw()
+        .map_err(err)?;
+    let cells = (0..cx).flat_map(|i| (0..cz).map(move |k| (i, k))).map(|(i, k)| {
+        let corner = |a: usize, b: usize| grid[(i + a) % cx][(k + b) % cz];
+        let mean = 0.25 * (corner(0, 0) + corner(1, 0) + corner(0, 1) + corner(1, 1)) / largest;
+        let (x, z) = (i as f64 * dx, k as f64 * dz);
+        Rectangle::new([(x, z), (x + dx, z + dz)], diverging(mean).filled())
+    });
+    chart.draw_series(cells).map_err(err)?;
+    if let Some(direction) = view.fibres {
+        // Lines along the fibres' projection, a fifth of the patch's diagonal apart.
+        let normal = [-direction[1], direction[0]];
+        let spacing = length_x.hypot(length_z) / 5.0;
+        let centre = [0.5 * length_x, 0.5 * length_z];
+        let lines = (-5..=5).filter_map(|j| {
+            let offset = j as f64 * spacing;
+            let point = [centre[0] + offset * normal[0], centre[1] + offset * normal[1]];
+            clipped(point, direction, (length_x, length_z))
+                .map(|[a, b]| PathElement::new(vec![a, b], BLACK.stroke_width(1)))
+        });
+        chart.draw_series(lines).map_err(err)?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lines_are_clipped_to_the_patch_and_colours_diverge_from_white() {
+        let [a, b] = clipped([1.0, 1.0], [1.0, 0.0], (4.0, 3.0)).unwrap();
+        assert_eq!((a, b), ((0.0, 1.0), (4.0, 1.0)));
+        let [a, b] = clipped([2.0, 1.5], [1.0, 1.0], (4.0, 3.0)).unwrap();
+        assert_eq!((a, b), ((0.5, 0.0), (3.5, 3.0)));
+        assert!(clipped([5.0, 1.0], [0.0, 1.0], (4.0, 3.0)).is_none());
+        assert_eq!(diverging(0.0), RGBColor(255, 255, 255));
+        assert_eq!(diverging(1.0), RGBColor(178, 24, 43));
+        assert_eq!(diverging(-2.0), RGBColor(33, 102, 172));
+    }
+}

@@ -1,0 +1,348 @@
+//! `pattern`: a patch of tissue in three dimensions under biaxial compression. The patch is
+//! sized by the exact 3D linear theory (an integer number of the onset mode's periods along X
+//! and Z, so that its critical wave vectors, both members of a mirror pair, are admissible),
+//! meshed with 27-node hexahedra, and its first bifurcation found from the tangent's inertia
+//! along the homogeneous path ([`crate::protocol::patch`]), against the theory's smallest
+//! `d_c(|k|, theta)` over the wave vectors the patch admits. The bifurcation mode's surface
+//! spectrum says which wave vectors it holds.
+//!
+//! Writes `pattern.json`, `wave_vectors.csv` (the admissible wave vectors and their `d_c`),
+//! `inertia.csv` (negative pivots along the homogeneous path), `mode_spectrum.csv` and
+//! `mode.vtu` (the patch, cut open along its periodic sides, with the mode), and on periodic
+//! sides `mode_top.png/svg` (the mode's surface seen from above, with the fibres' projection).
+
+mod figure;
+
+use crate::error::{Error, Result};
+use crate::fem::element::{Hex27, ReferenceElement};
+use crate::mesh::{ElementKind, Mesh, PatchSpec, Sides, Y};
+use crate::output::lock::OutputLock;
+use crate::output::vtu::{write_vtu, CellType, DataArray};
+use crate::output::{ensure_dir, write_json, CsvWriter};
+use crate::parameters::Parameters;
+use crate::protocol::patch::{surface_spectrum, PatchBifurcation, PatchPath, WaveVector};
+use crate::protocol::BifurcationSettings;
+use crate::stability::oblique::{box_modes, BoxMode};
+use crate::stability::{Method, StabilityAnalysis, Surface, SurfaceOnset};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Wave vectors listed from the theory (the nearest the onset first).
+const LISTED_WAVE_VECTORS: usize = 8;
+
+/// How the patch is sized and meshed, and the search's settings.
+#[derive(Clone, Copy, Debug)]
+pub struct PatternStudy {
+    /// `R = d_3 / d` in `[0, 1]`.
+    pub biaxial: f64,
+    /// Periods of the onset mode along each side.
+    pub periods: usize,
+    /// Elements per onset wavelength along X and Z.
+    pub elements_per_wavelength: usize,
+    pub layer_elements: usize,
+    pub substrate_elements: usize,
+    /// Thickness `h0` of the top substrate element.
+    pub top_substrate_thickness: f64,
+    /// Depth of the substrate, in onset wavelengths.
+    pub depth_wavelengths: f64,
+    pub sides: Sides,
+    pub settings: BifurcationSettings,
+}
+
+impl Default for PatternStudy {
+    /// Equibiaxial compression, one period, 6 elements per wavelength, 2 + 12 elements through
+    /// the thickness (`h0 = 0.35`) down to two wavelengths, periodic sides.
+    fn default() -> Self {
+        PatternStudy {
+            biaxial: 1.0,
+            periods: 1,
+            elements_per_wavelength: 6,
+            layer_elements: 2,
+            substrate_elements: 12,
+            top_substrate_thickness: 0.35,
+            depth_wavelengths: 2.0,
+            sides: Sides::Periodic,
+            settings: BifurcationSettings {
+                scan_step: 0.02,
+                ..BifurcationSettings::default()
+            },
+        }
+    }
+}
+
+/// The patch of `study` for `params`: the theory's onset and the patch that holds it.
+pub fn size_patch(params: &Parameters, study: &PatternStudy) -> Result<(SurfaceOnset, PatchSpec)> {
+    for (name, count, least) in [
+        ("periods", study.periods, 1),
+        ("elements-per-wavelength", study.elements_per_wavelength, 2),
+    ] {
+        if count < least {
+            return Err(Error::invalid(name, count, &format!("an integer >= {least}")));
+        }
+    }
+    for (name, count) in [
+        ("layer-elements", study.layer_elements),
+        ("substrate-elements", study.substrate_elements),
+    ] {
+        if count < 1 {
+            return Err(Error::invalid(name, count, "an integer >= 1"));
+        }
+    }
+    if !(study.depth_wavelengths.is_finite() && study.depth_wavelengths > 0.0) {
+        return Err(Error::invalid("depth", study.depth_wavelengths, "(0, inf) wavelengths"));
+    }
+    if study.sides == Sides::Symmetry && params.psi != 0.0 {
+        return Err(Error::invalid(
+            "sides",
+            "symmetry",
+            "periodic when psi != 0 (the sides are planes of the fibres' symmetry only for psi = 0)",
+        ));
+    }
+    let surface = Surface {
+        biaxial: study.biaxial,
+        theta: 0.0,
+    };
+    let onset = StabilityAnalysis::with_surface(params, Method::Exact, Some(surface))?.surface_onset()?;
+    let wavelength = onset.onset.wavelength().ok_or_else(|| {
+        Error::invalid(
+            "parameters",
+            format!("an onset with minimum {:?}", onset.onset.minimum),
+            "parameters whose onset has a finite wavelength (an interior minimum of d_c(k))",
+        )
+    })?;
+    // The onset mode's period along each side: lambda / |cos theta0| along X, lambda / |sin
+    // theta0| along Z (one wavelength along a side the mode runs along).
+    let theta = if onset.theta0.is_nan() { 0.0 } else { onset.theta0 };
+    let along = |c: f64| match c.abs() < 1e-6 {
+        true => wavelength,
+        false => wavelength / c.abs(),
+    };
+    let periods = study.periods as f64;
+    let (length_x, length_z) = (periods * along(theta.cos()), periods * along(theta.sin()));
+    let elements = |length: f64| {
+        let n = (length / wavelength * study.elements_per_wavelength as f64 - 1e-9).ceil() as usize;
+        n.max(2)
+    };
+    let depth = study.depth_wavelengths * wavelength;
+    let h0 = study.top_substrate_thickness;
+    let feasible = match study.substrate_elements {
+        1 => (h0 - depth).abs() <= 1e-12 * depth,
+        _ => h0.is_finite() && h0 > 0.0 && h0 < depth,
+    };
+    if !feasible {
+        return Err(Error::invalid(
+            "h0",
+            h0,
+            &format!("(0, {depth:.4}), the substrate's depth (= it for one substrate element)"),
+        ));
+    }
+    let spec = PatchSpec {
+        nx: elements(length_x),
+        nz: elements(length_z),
+        length_x,
+        length_z,
+        layer_elements: study.layer_elements,
+        substrate_elements: study.substrate_elements,
+        top_substrate_thickness: study.top_substrate_thickness,
+        depth,
+        sides: study.sides,
+        element: ElementKind::Displacement,
+    };
+    spec.validate()?;
+    Ok((onset, spec))
+}
+
+/// The theory's onset in the surface.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct TheoryOnset {
+    pub k0: f64,
+    /// The wave vector's direction from X towards Z; null where every direction is critical.
+    pub theta0_degrees: Option<f64>,
+    pub d_c: f64,
+}
+
+/// `pattern.json`.
+#[derive(Debug, Serialize)]
+pub struct PatternReport {
+    pub command: &'static str,
+    pub parameters: Parameters,
+    /// `R = d_3 / d`.
+    pub biaxial: f64,
+    pub patch: PatchSpec,
+    /// Free unknowns of the tangent.
+    pub unknowns: usize,
+    pub onset_theory: TheoryOnset,
+    /// The first change of the tangent's inertia along the homogeneous path.
+    pub d_bifurcation: f64,
+    pub bracket: (f64, f64),
+    /// Negative pivots just past it: two per critical wave vector (a cosine and a sine mode).
+    pub negative_pivots: usize,
+    pub smallest_eigenvalue_before: f64,
+    /// The theory's smallest `d_c` over the patch's admissible wave vectors.
+    pub d_c_admissible: f64,
+    /// `d_bifurcation / d_c_admissible - 1`.
+    pub relative_difference: f64,
+    /// The admissible wave vectors nearest the onset, by increasing `d_c` (`(m, n)` of
+    /// `k = 2 pi (m / Lx, n / Lz)` on periodic sides, `k = pi (m / Lx, n / Lz)` on symmetry sides).
+    pub admissible_wave_vectors: Vec<BoxMode>,
+    /// The wave vectors of the bifurcation mode's top-surface `u_Y` (largest amplitude 1 over
+    /// the surface), by decreasing amplitude (periodic sides only).
+    pub mode_wave_vectors: Vec<WaveVector>,
+    pub inertia_evaluations: usize,
+    pub wall_seconds: f64,
+    pub files: Vec<String>,
+}
+
+/// Sizes the patch, finds its first bifurcation against the theory and writes the files (module
+/// docs); `progress` is told the patch with its admissible wave vectors once, then every
+/// `(d, negative pivots)` evaluated.
+pub fn run(
+    params: &Parameters,
+    study: &PatternStudy,
+    out: &Path,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<PatternReport> {
+    params.validate()?;
+    let start = Instant::now();
+    let (onset, spec) = size_patch(params, study)?;
+    let k_max = 3.0 * onset.onset.k0;
+    // Symmetry sides admit the waves `cos(m pi X / Lx) cos(n pi Z / Lz)`: the wave vectors of
+    // a periodic patch twice as long each way.
+    let periods = match spec.sides {
+        Sides::Periodic => (spec.length_x, spec.length_z),
+        Sides::Symmetry => (2.0 * spec.length_x, 2.0 * spec.length_z),
+    };
+    let mut modes = box_modes(params, Method::Exact, study.biaxial, periods, k_max)?;
+    let first = *modes.first().ok_or_else(|| Error::NoRoot {
+        what: "a bifurcation of the linear theory at the patch's wave vectors".into(),
+        lower: 0.0,
+        upper: 1.0,
+    })?;
+    modes.truncate(LISTED_WAVE_VECTORS);
+    let materials = crate::material::Bilayer::new(params);
+    let path = PatchPath::new(&materials, spec, study.biaxial)?;
+    let mesh = path.system().mesh().clone();
+    progress(Progress::Patch {
+        spec: &spec,
+        unknowns: mesh.num_dofs(),
+        modes: &modes,
+    });
+    ensure_dir(out)?;
+    let _lock = OutputLock::acquire(out)?;
+    let found = path.bifurcation(&study.settings, &mut |d, negative| {
+        progress(Progress::Inertia { d, negative })
+    })?;
+    let mode_wave_vectors = match mesh.is_periodic() {
+        true => surface_spectrum(&mesh, &found.mode).into_iter().take(4).collect(),
+        false => Vec::new(),
+    };
+    let mut files = write_wave_vectors(out, &modes)?;
+    files.extend(write_inertia(out, &found)?);
+    if mesh.is_periodic() {
+        files.extend(write_spectrum(out, &surface_spectrum(&mesh, &found.mode))?);
+        let view = figure::TopView {
+            title: format!(
+                "Bifurcation mode at d = {:.5}: surface u_Y from above; lines: the fibres",
+                found.d
+            ),
+            mesh: &mesh,
+            field: &found.mode,
+            fibres: (params.beta.cos() > 1e-6).then(|| [params.psi.cos(), params.psi.sin()]),
+        };
+        files.extend(figure::top_view(&view, out, "mode_top")?);
+    }
+    files.push(write_mode(out, &mesh, &found)?);
+    let json = out.join("pattern.json");
+    files.push(json.clone());
+    let report = PatternReport {
+        command: "pattern",
+        parameters: params.clone(),
+        biaxial: study.biaxial,
+        patch: spec,
+        unknowns: found.unknowns,
+        onset_theory: TheoryOnset {
+            k0: onset.onset.k0,
+            theta0_degrees: (!onset.theta0.is_nan()).then(|| onset.theta0.to_degrees()),
+            d_c: onset.onset.d_c,
+        },
+        d_bifurcation: found.d,
+        bracket: found.bracket,
+        negative_pivots: found.negative_pivots,
+        smallest_eigenvalue_before: found.eigenvalue,
+        d_c_admissible: first.d_c,
+        relative_difference: found.d / first.d_c - 1.0,
+        admissible_wave_vectors: modes,
+        mode_wave_vectors,
+        inertia_evaluations: found.path.len(),
+        wall_seconds: start.elapsed().as_secs_f64(),
+        files: files.iter().map(|f| f.display().to_string()).collect(),
+    };
+    write_json(&json, &report)?;
+    Ok(report)
+}
+
+/// What [`run`] reports while it works.
+pub enum Progress<'a> {
+    /// The patch it built, its unknowns and the admissible wave vectors nearest the onset.
+    Patch {
+        spec: &'a PatchSpec,
+        unknowns: usize,
+        modes: &'a [BoxMode],
+    },
+    /// The tangent's negative pivots at the homogeneous state `d`.
+    Inertia { d: f64, negative: usize },
+}
+
+/// `wave_vectors.csv`: the admissible wave vectors nearest the onset and their `d_c`.
+fn write_wave_vectors(out: &Path, modes: &[BoxMode]) -> Result<Vec<PathBuf>> {
+    let path = out.join("wave_vectors.csv");
+    let mut table = CsvWriter::create(&path, &["m", "n", "k", "theta_degrees", "d_c"])?;
+    for mode in modes {
+        table.append(&[mode.m as f64, mode.n as f64, mode.k, mode.theta.to_degrees(), mode.d_c])?;
+    }
+    Ok(vec![path])
+}
+
+/// `inertia.csv`: every `(d, negative pivots)` evaluated, sorted by `d`.
+fn write_inertia(out: &Path, found: &PatchBifurcation) -> Result<Vec<PathBuf>> {
+    let path = out.join("inertia.csv");
+    let mut table = CsvWriter::create(&path, &["d", "negative_pivots"])?;
+    let mut points = found.path.clone();
+    points.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for (d, negative) in points {
+        table.append(&[d, negative as f64])?;
+    }
+    Ok(vec![path])
+}
+
+/// `mode_spectrum.csv`: the mode's surface spectrum, by decreasing amplitude.
+fn write_spectrum(out: &Path, waves: &[WaveVector]) -> Result<Vec<PathBuf>> {
+    let path = out.join("mode_spectrum.csv");
+    let mut table = CsvWriter::create(&path, &["m", "n", "k", "theta_degrees", "amplitude"])?;
+    for w in waves {
+        table.append(&[w.m as f64, w.n as f64, w.k, w.theta_degrees, w.amplitude])?;
+    }
+    Ok(vec![path])
+}
+
+/// `mode.vtu`: the patch cut open along its periodic sides, with the mode as point vectors and
+/// its top-surface `u_Y` as a scalar.
+fn write_mode(out: &Path, mesh: &Mesh<3, 27>, found: &PatchBifurcation) -> Result<PathBuf> {
+    let (points, cells, source) = mesh.unwrapped();
+    let dofs = mesh.dofs();
+    let mode = DataArray::vectors(
+        "mode",
+        source
+            .iter()
+            .map(|&n| std::array::from_fn(|c| found.mode[dofs.dof(n, c)])),
+    );
+    let height = DataArray::scalars("mode_uy", source.iter().map(|&n| found.mode[dofs.dof(n, Y)]).collect());
+    let cell_type = CellType {
+        vtk: <Hex27 as ReferenceElement<3, 27, 27>>::VTK_CELL_TYPE,
+        order: <Hex27 as ReferenceElement<3, 27, 27>>::VTK_ORDER,
+    };
+    let path = out.join("mode.vtu");
+    write_vtu(&path, &points, &cell_type, &cells, &[mode, height], &[])?;
+    Ok(path)
+}
