@@ -15,8 +15,8 @@
 use super::added::{AddedEnergy, Block, NoAddedEnergy};
 use super::boundary::Dirichlet;
 use super::element::{
-    ElementGeometry, ElementMatrix, ElementState, ElementVector, FiniteElement, Registry, DOFS, GAUSS_POINTS, NODES,
-    PRESSURES,
+    pressures, ElementGeometry, ElementMatrix, ElementState, ElementVector, FiniteElement, Pressures, Registry, DOFS,
+    GAUSS_POINTS, NODES,
 };
 use crate::error::{Error, Result};
 use crate::material::{Bilayer, Tissue};
@@ -144,7 +144,7 @@ pub struct System<const D: usize = 2, const N: usize = NODES, const Q: usize = G
     average_gradient: [[f64; D]; D],
     /// Whether some element resists volume change through multipliers (incompressible tissue,
     /// or a bulk modulus far above the shear modulus): the unknowns' vector then ends with
-    /// [`PRESSURES`] multipliers per element ([`crate::fem::element::mixed`]).
+    /// [`pressures`]`(D)` multipliers per element ([`crate::fem::element::mixed`]).
     multipliers: bool,
     pattern: Option<Pattern>,
     /// Element-matrix entries of the last assembly (reused to avoid reallocating).
@@ -284,7 +284,7 @@ where
         &self,
         e: usize,
         u: &ElementVector<U>,
-        lambda: &[f64; PRESSURES],
+        lambda: &Pressures,
         penalty_scale: f64,
         stiffness: Option<&mut ElementMatrix<U>>,
     ) -> Result<ElementState<U>> {
@@ -296,7 +296,7 @@ where
     pub fn num_dofs(&self) -> usize {
         self.mesh.num_dofs()
             + if self.multipliers {
-                PRESSURES * self.elements.len()
+                pressures(D) * self.elements.len()
             } else {
                 0
             }

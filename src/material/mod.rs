@@ -32,7 +32,10 @@ pub use laws::{Fibre, Matrix};
 pub use mooney_rivlin::MooneyRivlin;
 pub use neo_hookean::NeoHookean;
 pub use ogden::{Ogden, MAX_TERMS as OGDEN_MAX_TERMS};
-pub use point::{flat, nested, point_cauchy, point_response, point_stress, PointResponse};
+pub use point::{
+    flat, full_gradient, inverse_transpose_of, nested, point_cauchy, point_response, point_stress, pressured_response,
+    pressured_stress, PointResponse,
+};
 pub use tissue::{Bilayer, FibreReinforced, Tissue, VolumetricSplit};
 
 use crate::error::{Error, Result};
@@ -176,6 +179,7 @@ pub(crate) fn inverse_transpose(f: &[f64; 9]) -> [f64; 9] {
 /// Adds the terms of a pressure `p` conjugate to `ln J` (an energy `p ln J`, the multiplier of
 /// incompressibility or the mixed element's pressure): `P += p F^-T` and, when given,
 /// `A += p d(F^-T)/dF = p ((d cof/dF) / J - F^-T (x) F^-T)`.
+#[inline(always)]
 pub fn add_pressure(stress: &mut Tensor2, tangent: Option<&mut Tensor4>, f: &Tensor2, p: f64) {
     let j = jacobian(f);
     let inverse_transpose = cofactor(f).map(|c| c / j);
@@ -193,6 +197,35 @@ pub fn add_pressure(stress: &mut Tensor2, tangent: Option<&mut Tensor4>, f: &Ten
         tangent[3][0] += p / j;
         tangent[1][2] -= p / j;
         tangent[2][1] -= p / j;
+    }
+}
+
+/// [`add_pressure`] on a full 3x3 gradient: `P += p F^-T` and, when given,
+/// `A_iJkL += p (e_ikm e_JLN F_mN / J - F^-T_iJ F^-T_kL)`, with `d cof(F)_iJ / dF_kL =
+/// e_ikm e_JLN F_mN` (`e` the permutation symbol).
+pub fn add_pressure_full(stress: &mut [f64; 9], tangent: Option<&mut [[f64; 9]; 9]>, f: &[f64; 9], p: f64) {
+    let j = determinant(f);
+    let it = inverse_transpose(f);
+    for (s, a) in stress.iter_mut().zip(&it) {
+        *s += p * a;
+    }
+    if let Some(tangent) = tangent {
+        let epsilon = |a: usize, b: usize, c: usize| -> f64 {
+            match (a, b, c) {
+                (0, 1, 2) | (1, 2, 0) | (2, 0, 1) => 1.0,
+                (0, 2, 1) | (2, 1, 0) | (1, 0, 2) => -1.0,
+                _ => 0.0,
+            }
+        };
+        for (i, cap_j, k, cap_l) in (0..81).map(|n| (n / 27, (n / 9) % 3, (n / 3) % 3, n % 3)) {
+            let mut cofactor_derivative = 0.0;
+            for (m, cap_n) in (0..9).map(|n| (n / 3, n % 3)) {
+                cofactor_derivative += epsilon(i, k, m) * epsilon(cap_j, cap_l, cap_n) * f[3 * m + cap_n];
+            }
+            // d(cof_iJ / J) / dF_kL = (d cof_iJ / dF_kL) / J - F^-T_iJ F^-T_kL.
+            tangent[3 * i + cap_j][3 * k + cap_l] +=
+                p * (cofactor_derivative / j - it[3 * i + cap_j] * it[3 * k + cap_l]);
+        }
     }
 }
 

@@ -6,7 +6,7 @@ use super::{Assembled, System};
 use crate::error::Result;
 use crate::fem::added::AddedEnergy;
 use crate::fem::boundary::Dirichlet;
-use crate::fem::element::{Registry, Volumetric, PRESSURES};
+use crate::fem::element::{pressures, Pressures, Registry, Volumetric, MAX_PRESSURES};
 use crate::material::{Bilayer, Tissue};
 use crate::mesh::{ElementKind, Region};
 use rayon::prelude::*;
@@ -45,12 +45,13 @@ where
     ElementKind: Registry<D, N, Q, U>,
 {
     /// Element `e`'s multipliers in the full vector `u` (zero without multipliers).
-    pub fn element_multipliers(&self, e: usize, u: &[f64]) -> [f64; PRESSURES] {
+    pub fn element_multipliers(&self, e: usize, u: &[f64]) -> Pressures {
+        let count = pressures(D);
         if !self.multipliers {
-            return [0.0; PRESSURES];
+            return [0.0; MAX_PRESSURES];
         }
-        let start = self.mesh.num_dofs() + PRESSURES * e;
-        std::array::from_fn(|i| u[start + i])
+        let start = self.mesh.num_dofs() + count * e;
+        std::array::from_fn(|i| if i < count { u[start + i] } else { 0.0 })
     }
 
     /// The method of multipliers' step at `u` with the penalty multiplied by `penalty_scale`:
@@ -74,7 +75,13 @@ where
             })
             .collect::<Result<Vec<_>>>()?;
         let violation = steps.iter().fold(0.0f64, |v, (e, _)| v.max(*e));
-        Ok(Some((violation, steps.into_iter().flat_map(|(_, c)| c).collect())))
+        Ok(Some((
+            violation,
+            steps
+                .into_iter()
+                .flat_map(|(_, c)| c.into_iter().take(pressures(D)))
+                .collect(),
+        )))
     }
 
     /// The full vector of the displacement `u` (one entry per mesh unknown) at a homogeneous
@@ -87,7 +94,7 @@ where
                     Region::Layer => p_layer,
                     Region::Substrate => p_substrate,
                 };
-                u.extend([p, 0.0, 0.0]);
+                u.extend((0..pressures(D)).map(|i| if i == 0 { p } else { 0.0 }));
             }
         }
         u

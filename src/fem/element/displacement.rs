@@ -3,7 +3,7 @@
 //! as `K / mu` grows). One code for both dimensions: the law is called at each point through
 //! [`point_response`] (plane strain in two dimensions, the full response in three).
 
-use super::{ElementGeometry, ElementMatrix, ElementState, ElementVector, FiniteElement, PRESSURES};
+use super::{ElementGeometry, ElementMatrix, ElementState, ElementVector, FiniteElement, Pressures};
 use crate::error::Result;
 use crate::material::{point_cauchy, point_response, point_stress, Hyperelastic, Tissue};
 use crate::mesh::DofMap;
@@ -25,7 +25,7 @@ impl<const D: usize, const N: usize, const Q: usize, const U: usize> FiniteEleme
         &self,
         geometry: &ElementGeometry<D, N, Q>,
         u: &ElementVector<U>,
-        _lambda: &[f64; PRESSURES],
+        _lambda: &Pressures,
         _penalty_scale: f64,
         stiffness: Option<&mut ElementMatrix<U>>,
     ) -> Result<ElementState<U>> {
@@ -37,7 +37,7 @@ impl<const D: usize, const N: usize, const Q: usize, const U: usize> FiniteEleme
         geometry: &ElementGeometry<D, N, Q>,
         g: usize,
         u: &ElementVector<U>,
-        _lambda: &[f64; PRESSURES],
+        _lambda: &Pressures,
     ) -> Result<[[f64; 3]; 3]> {
         point_cauchy(&self.tissue, &geometry.gradient_at(g, u))
     }

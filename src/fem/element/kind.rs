@@ -46,33 +46,28 @@ impl Registry<2, 9, 9, 18> for ElementKind {
     ) -> Box<dyn FiniteElement> {
         match self {
             ElementKind::Displacement => Box::new(DisplacementElement::new(tissue)),
-            ElementKind::Mixed => Box::new(MixedElement::new(geometry, tissue, constraint)),
+            ElementKind::Mixed => Box::new(<MixedElement>::new(geometry, tissue, constraint)),
         }
     }
 }
 
-/// On the hexahedron only the displacement element exists so far.
 impl Registry<3, 27, 27, 81> for ElementKind {
     type Reference = Hex27;
 
-    fn check_available(kind: ElementKind) -> Result<()> {
-        match kind {
-            ElementKind::Displacement => Ok(()),
-            ElementKind::Mixed => Err(Error::invalid(
-                "element",
-                kind.name(),
-                "displacement on the 27-node hexahedron (the mixed hexahedron is not available)",
-            )),
-        }
+    fn check_available(_kind: ElementKind) -> Result<()> {
+        Ok(())
     }
 
     fn element(
         self,
-        _geometry: &ElementGeometry<3, 27, 27>,
+        geometry: &ElementGeometry<3, 27, 27>,
         tissue: &Tissue,
-        _constraint: Option<Volumetric>,
+        constraint: Option<Volumetric>,
     ) -> Box<dyn FiniteElement<3, 27, 27, 81>> {
-        Box::new(DisplacementElement::new(tissue))
+        match self {
+            ElementKind::Displacement => Box::new(DisplacementElement::new(tissue)),
+            ElementKind::Mixed => Box::new(MixedElement::<3, 27, 4>::new(geometry, tissue, constraint)),
+        }
     }
 }
 

@@ -56,14 +56,26 @@
 //! moves beyond 10^5 times.
 
 use super::displacement::{self, add_force, add_tangent, mirror_upper_triangle};
-use super::{
-    ElementGeometry, ElementMatrix, ElementState, ElementVector, FiniteElement, DOFS, ELEMENT_DOFS, GAUSS_POINTS,
-};
+use super::{determinant, ElementGeometry, ElementMatrix, ElementState, ElementVector, FiniteElement, GAUSS_POINTS};
 use crate::error::{Error, Result};
-use crate::material::{add_pressure, cofactor, jacobian, nested, point_cauchy, PointResponse, StrainEnergy, Tissue};
+use crate::material::{
+    full_gradient, inverse_transpose_of, point_cauchy, pressured_response, pressured_stress, StrainEnergy, Tissue,
+};
+use crate::mesh::DofMap;
 
-/// Pressure unknowns per element: a linear polynomial in `X`.
-pub const PRESSURES: usize = 3;
+/// Pressure unknowns per element in `dimension` dimensions: a linear polynomial in `X`.
+pub const fn pressures(dimension: usize) -> usize {
+    dimension + 1
+}
+
+/// Pressure unknowns per element of the plane meshes.
+pub const PRESSURES: usize = pressures(2);
+
+/// The most pressure unknowns per element (three dimensions).
+pub const MAX_PRESSURES: usize = pressures(3);
+
+/// One element's pressures or multipliers, the first [`pressures`]`(D)` used.
+pub type Pressures = [f64; MAX_PRESSURES];
 
 /// How an element's volume change is resisted.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -77,13 +89,14 @@ pub enum Volumetric {
     Augmented { penalty: f64, bulk: f64 },
 }
 
-/// One mixed element's pressure space and the split of its tissue.
+/// One mixed element's pressure space and the split of its tissue, in `D` dimensions with `Q`
+/// quadrature points and `P = D + 1` pressures (the plane one by default).
 #[derive(Clone, Debug)]
-pub struct MixedElement {
+pub struct MixedElement<const D: usize = 2, const Q: usize = GAUSS_POINTS, const P: usize = PRESSURES> {
     /// `phi_i` at each Gauss point.
-    basis: [[f64; PRESSURES]; GAUSS_POINTS],
+    basis: [[f64; P]; Q],
     /// Inverse of the pressure mass matrix `M_ij = int phi_i phi_j dV`.
-    mass_inverse: [[f64; PRESSURES]; PRESSURES],
+    mass_inverse: [[f64; P]; P],
     /// The tissue without its bulk term.
     rest: Tissue,
     /// `ln Jg`: the volume measure is `ln J - ln Jg` (zero without growth).
@@ -93,36 +106,46 @@ pub struct MixedElement {
 
 /// What a mixed element returns besides [`ElementState`].
 #[derive(Clone, Copy, Debug)]
-pub struct MixedState {
-    pub state: ElementState,
+pub struct MixedState<const U: usize = { super::DOFS }, const P: usize = PRESSURES> {
+    pub state: ElementState<U>,
     /// The pressure `p` in the element's basis: `kappa M^-1 g` (bulk), or
     /// `(1 - kappa/K) lambda + kappa M^-1 g` (augmented; the multipliers' next iterate).
-    pub pressure: [f64; PRESSURES],
+    pub pressure: [f64; P],
     /// How far the multipliers are from their fixed point, `(p - lambda) / kappa =
     /// M^-1 g - lambda / K` (zero at the solution; `M^-1 g`, the L2 projection of `ln J`,
     /// under the constraint `K = inf`). Zero for the bulk mode.
-    pub violation: [f64; PRESSURES],
+    pub violation: [f64; P],
 }
 
-impl MixedElement {
+impl<const D: usize, const Q: usize, const P: usize> MixedElement<D, Q, P> {
     /// The element of `tissue` on `geometry`, with the pressure basis centred at the element's
-    /// centroid and scaled by `sqrt(area)` (a well-conditioned `M`); `constraint` makes it
-    /// exactly incompressible with those penalties (the tissue's bulk modulus is then unused).
-    pub fn new(geometry: &ElementGeometry, tissue: &Tissue, constraint: Option<Volumetric>) -> Self {
+    /// centroid and scaled by the element's size `V^(1/D)` (a well-conditioned `M`);
+    /// `constraint` makes it exactly incompressible with those penalties (the tissue's bulk
+    /// modulus is then unused).
+    pub fn new<const N: usize>(
+        geometry: &ElementGeometry<D, N, Q>,
+        tissue: &Tissue,
+        constraint: Option<Volumetric>,
+    ) -> Self {
         let (points, weights) = (geometry.points(), geometry.weights());
-        let area = geometry.volume();
-        let centroid: [f64; 2] =
-            std::array::from_fn(|c| points.iter().zip(weights).map(|(x, w)| w * x[c]).sum::<f64>() / area);
-        let h = area.sqrt();
-        let basis: [[f64; PRESSURES]; GAUSS_POINTS] =
-            std::array::from_fn(|g| [1.0, (points[g][0] - centroid[0]) / h, (points[g][1] - centroid[1]) / h]);
-        let mass: [[f64; PRESSURES]; PRESSURES] = std::array::from_fn(|i| {
-            std::array::from_fn(|j| (0..GAUSS_POINTS).map(|g| weights[g] * basis[g][i] * basis[g][j]).sum())
+        let volume = geometry.volume();
+        let centroid: [f64; D] =
+            std::array::from_fn(|c| points.iter().zip(weights).map(|(x, w)| w * x[c]).sum::<f64>() / volume);
+        let h = if D == 2 { volume.sqrt() } else { volume.cbrt() };
+        assert_eq!(P, pressures(D), "a linear pressure: D + 1 unknowns");
+        let basis: [[f64; P]; Q] = std::array::from_fn(|g| {
+            std::array::from_fn(|i| match i {
+                0 => 1.0,
+                _ => (points[g][i - 1] - centroid[i - 1]) / h,
+            })
+        });
+        let mass: [[f64; P]; P] = std::array::from_fn(|i| {
+            std::array::from_fn(|j| (0..Q).map(|g| weights[g] * basis[g][i] * basis[g][j]).sum())
         });
         let split = tissue.volumetric_split();
         MixedElement {
             basis,
-            mass_inverse: inverse3(&mass),
+            mass_inverse: inverse(&mass),
             rest: split.rest,
             log_volume: split.log_volume,
             volumetric: constraint.unwrap_or(Volumetric::Bulk(split.bulk)),
@@ -130,7 +153,7 @@ impl MixedElement {
     }
 
     /// `phi_i` at Gauss point `g`.
-    pub fn basis(&self, g: usize) -> &[f64; PRESSURES] {
+    pub fn basis(&self, g: usize) -> &[f64; P] {
         &self.basis[g]
     }
 
@@ -143,49 +166,52 @@ impl MixedElement {
     /// constraint; unused otherwise), and the condensed tangent into `stiffness` when given
     /// (overwritten, symmetric); the constraint's penalty is multiplied by `penalty_scale`.
     /// `J <= 0` at a Gauss point is an error.
-    pub fn evaluate(
+    pub fn evaluate<const N: usize, const U: usize>(
         &self,
-        geometry: &ElementGeometry,
-        u: &ElementVector,
-        lambda: &[f64; PRESSURES],
+        geometry: &ElementGeometry<D, N, Q>,
+        u: &ElementVector<U>,
+        lambda: &Pressures,
         penalty_scale: f64,
-        mut stiffness: Option<&mut ElementMatrix>,
-    ) -> Result<MixedState> {
-        let mut gradients = [[0.0; 4]; GAUSS_POINTS];
-        let mut jacobians = [0.0; GAUSS_POINTS];
+        mut stiffness: Option<&mut ElementMatrix<U>>,
+    ) -> Result<MixedState<U, P>> {
+        let dofs = DofMap::of_dimension(D);
+        let lambda: [f64; P] = std::array::from_fn(|i| lambda[i]);
+        let mut gradients = [[[0.0; D]; D]; Q];
+        let mut jacobians = [0.0; Q];
         // g_i = int phi_i ln J and B_i = dg_i/du.
-        let mut moments = [0.0; PRESSURES];
-        let mut moment_derivatives = [[0.0; DOFS]; PRESSURES];
-        for g in 0..GAUSS_POINTS {
-            let f = geometry.deformation_gradient(g, u);
-            let j = jacobian(&f);
+        let mut moments = [0.0; P];
+        let mut moment_derivatives = [[0.0; U]; P];
+        for g in 0..Q {
+            let f = geometry.gradient_at(g, u);
+            let j = determinant(&f);
             if !(j > 0.0 && j.is_finite()) {
                 return Err(Error::NonPositiveJacobian { jacobian: j });
             }
-            self.rest.admissible(&crate::material::plane_gradient(&f, 1.0))?;
-            let inverse_transpose = cofactor(&f).map(|c| c / j);
+            self.rest.admissible(&full_gradient(&f))?;
+            let inverse_transpose = inverse_transpose_of(&f, j);
             let (w, phi) = (geometry.weights()[g], &self.basis[g]);
             for (a, grad) in geometry.gradients(g).iter().enumerate() {
                 // d ln J / d u_ai = F^-T_iJ dN_a/dX_J.
-                let dx = inverse_transpose[0] * grad[0] + inverse_transpose[1] * grad[1];
-                let dy = inverse_transpose[2] * grad[0] + inverse_transpose[3] * grad[1];
+                let d: [f64; D] = std::array::from_fn(|i| contract(&inverse_transpose[i], grad));
                 for (row, &phi_i) in moment_derivatives.iter_mut().zip(phi) {
-                    row[ELEMENT_DOFS.dof(a, 0)] += w * phi_i * dx;
-                    row[ELEMENT_DOFS.dof(a, 1)] += w * phi_i * dy;
+                    for (i, d_i) in d.iter().enumerate() {
+                        row[dofs.dof(a, i)] += w * phi_i * d_i;
+                    }
                 }
             }
+            let log_volume_change = j.ln() - self.log_volume;
             for (moment, &phi_i) in moments.iter_mut().zip(phi) {
-                *moment += w * phi_i * (j.ln() - self.log_volume);
+                *moment += w * phi_i * log_volume_change;
             }
             (gradients[g], jacobians[g]) = (f, j);
         }
-        let projected_log_j = multiply3(&self.mass_inverse, &moments);
+        let projected_log_j = multiply(&self.mass_inverse, &moments);
         let (modulus, pressure, (volumetric_energy, volumetric_potential), violation) = match self.volumetric {
             // p = kappa M^-1 g; the condensed energy kappa/2 g^T M^-1 g = g . p / 2.
             Volumetric::Bulk(kappa) => {
                 let p = projected_log_j.map(|x| kappa * x);
-                let energy = 0.5 * dot3(&moments, &p);
-                (kappa, p, (energy, energy), [0.0; PRESSURES])
+                let energy = 0.5 * dot(&moments, &p);
+                (kappa, p, (energy, energy), [0.0; P])
             }
             // For fixed lambda, the energy `int W_rest + (1 - kappa/K) lambda . g + kappa/2
             // g^T M^-1 g` has the force of p = (1 - kappa/K) lambda + kappa M^-1 g; its fixed
@@ -198,10 +224,10 @@ impl MixedElement {
             Volumetric::Augmented { penalty, bulk } => {
                 let kappa = (penalty * penalty_scale).min(bulk);
                 let relaxation = 1.0 - kappa / bulk;
-                let p: [f64; PRESSURES] = std::array::from_fn(|i| relaxation * lambda[i] + kappa * projected_log_j[i]);
-                let potential = relaxation * dot3(lambda, &moments) + 0.5 * kappa * dot3(&moments, &projected_log_j);
+                let p: [f64; P] = std::array::from_fn(|i| relaxation * lambda[i] + kappa * projected_log_j[i]);
+                let potential = relaxation * dot(&lambda, &moments) + 0.5 * kappa * dot(&moments, &projected_log_j);
                 let energy = match bulk.is_finite() {
-                    true => 0.5 * bulk * dot3(&moments, &projected_log_j),
+                    true => 0.5 * bulk * dot(&moments, &projected_log_j),
                     false => potential,
                 };
                 let violation = std::array::from_fn(|i| (p[i] - lambda[i]) / kappa);
@@ -209,33 +235,30 @@ impl MixedElement {
             }
         };
         let mut state = ElementState {
-            force: [0.0; DOFS],
+            force: [0.0; U],
             energy: volumetric_energy,
             potential: volumetric_potential,
             min_jacobian: jacobians.iter().copied().fold(f64::INFINITY, f64::min),
         };
         if let Some(k) = stiffness.as_deref_mut() {
-            *k = [[0.0; DOFS]; DOFS];
+            *k = [[0.0; U]; U];
         }
         for (g, f) in gradients.iter().enumerate() {
             let (w, grads) = (geometry.weights()[g], geometry.gradients(g));
-            let p = dot3(&self.basis[g], &pressure);
+            let p = dot(&self.basis[g], &pressure);
             let stress = match stiffness.as_deref_mut() {
                 Some(k) => {
-                    let mut response = self.rest.plane_response(f);
-                    add_pressure(&mut response.stress, Some(&mut response.tangent), f, p);
-                    let response = PointResponse::<2>::from_flat(&response);
+                    let response = pressured_response(&self.rest, f, p);
                     add_tangent(k, grads, &response.tangent, w);
                     state.energy += w * response.energy;
                     state.potential += w * response.energy;
                     response.stress
                 }
                 None => {
-                    let (energy, mut stress) = self.rest.plane_stress(f);
-                    add_pressure(&mut stress, None, f, p);
+                    let (energy, stress) = pressured_stress(&self.rest, f, p);
                     state.energy += w * energy;
                     state.potential += w * energy;
-                    nested(&stress)
+                    stress
                 }
             };
             add_force(&mut state.force, grads, &stress, w);
@@ -243,19 +266,17 @@ impl MixedElement {
         if let Some(k) = stiffness {
             mirror_upper_triangle(k);
             // + kappa B^T M^-1 B.
-            let scaled: [[f64; DOFS]; PRESSURES] = std::array::from_fn(|i| {
+            let scaled: [[f64; U]; P] = std::array::from_fn(|i| {
                 std::array::from_fn(|c| {
                     modulus
-                        * (0..PRESSURES)
+                        * (0..P)
                             .map(|l| self.mass_inverse[i][l] * moment_derivatives[l][c])
                             .sum::<f64>()
                 })
             });
             for (r, row) in k.iter_mut().enumerate() {
                 for (c, entry) in row.iter_mut().enumerate() {
-                    *entry += (0..PRESSURES)
-                        .map(|i| moment_derivatives[i][r] * scaled[i][c])
-                        .sum::<f64>();
+                    *entry += (0..P).map(|i| moment_derivatives[i][r] * scaled[i][c]).sum::<f64>();
                 }
             }
         }
@@ -267,25 +288,27 @@ impl MixedElement {
     }
 }
 
-impl FiniteElement for MixedElement {
+impl<const D: usize, const N: usize, const Q: usize, const U: usize, const P: usize> FiniteElement<D, N, Q, U>
+    for MixedElement<D, Q, P>
+{
     fn evaluate(
         &self,
-        geometry: &ElementGeometry,
-        u: &ElementVector,
-        lambda: &[f64; PRESSURES],
+        geometry: &ElementGeometry<D, N, Q>,
+        u: &ElementVector<U>,
+        lambda: &Pressures,
         penalty_scale: f64,
-        stiffness: Option<&mut ElementMatrix>,
-    ) -> Result<ElementState> {
+        stiffness: Option<&mut ElementMatrix<U>>,
+    ) -> Result<ElementState<U>> {
         Ok(MixedElement::evaluate(self, geometry, u, lambda, penalty_scale, stiffness)?.state)
     }
 
     /// Under multipliers, of the energy without its volumetric part: that part's penalty would
     /// make the displacements it scales stiff against the multipliers' updates.
-    fn reference_stiffness(&self, geometry: &ElementGeometry, stiffness: &mut ElementMatrix) -> Result<()> {
-        let lambda = [0.0; PRESSURES];
+    fn reference_stiffness(&self, geometry: &ElementGeometry<D, N, Q>, stiffness: &mut ElementMatrix<U>) -> Result<()> {
+        let lambda = [0.0; MAX_PRESSURES];
         match self.volumetric {
-            Volumetric::Augmented { .. } => displacement::evaluate(geometry, &self.rest, &[0.0; DOFS], Some(stiffness)),
-            Volumetric::Bulk(_) => FiniteElement::evaluate(self, geometry, &[0.0; DOFS], &lambda, 1.0, Some(stiffness)),
+            Volumetric::Augmented { .. } => displacement::evaluate(geometry, &self.rest, &[0.0; U], Some(stiffness)),
+            Volumetric::Bulk(_) => FiniteElement::evaluate(self, geometry, &[0.0; U], &lambda, 1.0, Some(stiffness)),
         }
         .map(|_| ())
     }
@@ -293,17 +316,17 @@ impl FiniteElement for MixedElement {
     /// `sigma = sigma_rest + p / J I`, `p` the element's pressure at the point.
     fn cauchy(
         &self,
-        geometry: &ElementGeometry,
+        geometry: &ElementGeometry<D, N, Q>,
         g: usize,
-        u: &ElementVector,
-        lambda: &[f64; PRESSURES],
+        u: &ElementVector<U>,
+        lambda: &Pressures,
     ) -> Result<[[f64; 3]; 3]> {
-        let f = geometry.deformation_gradient(g, u);
+        let f = geometry.gradient_at(g, u);
         let pressure = MixedElement::evaluate(self, geometry, u, lambda, 1.0, None)?.pressure;
         let p: f64 = self.basis[g].iter().zip(&pressure).map(|(a, b)| a * b).sum();
-        let mut sigma = point_cauchy(&self.rest, &geometry.gradient_at(g, u))?;
+        let mut sigma = point_cauchy(&self.rest, &f)?;
         for (i, row) in sigma.iter_mut().enumerate() {
-            row[i] += p / jacobian(&f);
+            row[i] += p / determinant(&f);
         }
         Ok(sigma)
     }
@@ -314,38 +337,59 @@ impl FiniteElement for MixedElement {
 
     fn multiplier_step(
         &self,
-        geometry: &ElementGeometry,
-        u: &ElementVector,
-        lambda: &[f64; PRESSURES],
+        geometry: &ElementGeometry<D, N, Q>,
+        u: &ElementVector<U>,
+        lambda: &Pressures,
         penalty_scale: f64,
-    ) -> Result<(f64, [f64; PRESSURES])> {
+    ) -> Result<(f64, Pressures)> {
         let state = MixedElement::evaluate(self, geometry, u, lambda, penalty_scale, None)?;
         let violation = state.violation.iter().fold(0.0f64, |v, x| v.max(x.abs()));
-        let change: [f64; PRESSURES] = match self.volumetric {
-            Volumetric::Augmented { .. } => std::array::from_fn(|i| state.pressure[i] - lambda[i]),
-            Volumetric::Bulk(_) => [0.0; PRESSURES],
+        let change: Pressures = match self.volumetric {
+            Volumetric::Augmented { .. } => std::array::from_fn(|i| match i < P {
+                true => state.pressure[i] - lambda[i],
+                false => 0.0,
+            }),
+            Volumetric::Bulk(_) => [0.0; MAX_PRESSURES],
         };
         Ok((violation, change))
     }
 }
 
-fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+/// `sum_J a_J b_J`, summed from the first term on.
+fn contract<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
+    (1..D).fold(a[0] * b[0], |s, l| s + a[l] * b[l])
 }
 
-fn multiply3(m: &[[f64; 3]; 3], v: &[f64; 3]) -> [f64; 3] {
-    std::array::from_fn(|i| dot3(&m[i], v))
+/// `sum_i a_i b_i`, summed from the first term on.
+fn dot<const P: usize>(a: &[f64; P], b: &[f64; P]) -> f64 {
+    (1..P).fold(a[0] * b[0], |s, i| s + a[i] * b[i])
 }
 
-/// Inverse of a 3x3 matrix by cofactors (the pressure mass matrix, positive definite).
-fn inverse3(m: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
-    let cof = |i: usize, j: usize| {
-        let (r0, r1) = ((i + 1) % 3, (i + 2) % 3);
-        let (c0, c1) = ((j + 1) % 3, (j + 2) % 3);
-        m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0]
-    };
-    let det = (0..3).map(|j| m[0][j] * cof(0, j)).sum::<f64>();
-    std::array::from_fn(|i| std::array::from_fn(|j| cof(j, i) / det))
+/// `m v`.
+fn multiply<const P: usize>(m: &[[f64; P]; P], v: &[f64; P]) -> [f64; P] {
+    std::array::from_fn(|i| dot(&m[i], v))
+}
+
+/// Inverse of the pressure mass matrix (positive definite): by cofactors for three pressures,
+/// by nalgebra's LU for four.
+fn inverse<const P: usize>(m: &[[f64; P]; P]) -> [[f64; P]; P] {
+    match P {
+        3 => {
+            let cof = |i: usize, j: usize| {
+                let (r0, r1) = ((i + 1) % 3, (i + 2) % 3);
+                let (c0, c1) = ((j + 1) % 3, (j + 2) % 3);
+                m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0]
+            };
+            let det = (0..3).map(|j| m[0][j] * cof(0, j)).sum::<f64>();
+            std::array::from_fn(|i| std::array::from_fn(|j| cof(j, i) / det))
+        }
+        _ => {
+            let inverse = nalgebra::DMatrix::from_fn(P, P, |i, j| m[i][j])
+                .try_inverse()
+                .expect("the pressure mass matrix is positive definite");
+            std::array::from_fn(|i| std::array::from_fn(|j| inverse[(i, j)]))
+        }
+    }
 }
 
 mod multipliers;

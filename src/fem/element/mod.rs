@@ -22,7 +22,7 @@ mod quad9;
 pub use displacement::DisplacementElement;
 pub use hex27::Hex27;
 pub use kind::{ElementKind, Registry, LOCKING_RATIO};
-pub use mixed::{MixedElement, PressureUpdate, Volumetric, PRESSURES};
+pub use mixed::{pressures, MixedElement, PressureUpdate, Pressures, Volumetric, MAX_PRESSURES, PRESSURES};
 pub use quad9::Quad9;
 
 /// A shape on its reference domain, in `D` dimensions with `N` nodes and a quadrature rule of
@@ -209,7 +209,7 @@ pub struct ElementState<const U: usize = DOFS> {
 }
 
 /// What one element of a mesh computes from its nodal displacements `u` (and, where it has
-/// them, its pressure multipliers `lambda`, [`PRESSURES`] per element): an element on the
+/// them, its pressure multipliers `lambda`, [`pressures`]`(D)` per element): an element on the
 /// geometry of a reference element in `D` dimensions with `N` nodes, `Q` quadrature points and
 /// `U = D N` unknowns (by default the plane meshes' [`PlaneElement`]).
 pub trait FiniteElement<
@@ -226,7 +226,7 @@ pub trait FiniteElement<
         &self,
         geometry: &ElementGeometry<D, N, Q>,
         u: &ElementVector<U>,
-        lambda: &[f64; PRESSURES],
+        lambda: &Pressures,
         penalty_scale: f64,
         stiffness: Option<&mut ElementMatrix<U>>,
     ) -> Result<ElementState<U>>;
@@ -234,7 +234,7 @@ pub trait FiniteElement<
     /// The tangent at `u = 0` of the energy whose stiffness scales each unknown (the viscous
     /// damper's, the minimiser's shift) into `stiffness`.
     fn reference_stiffness(&self, geometry: &ElementGeometry<D, N, Q>, stiffness: &mut ElementMatrix<U>) -> Result<()> {
-        self.evaluate(geometry, &[0.0; U], &[0.0; PRESSURES], 1.0, Some(stiffness))
+        self.evaluate(geometry, &[0.0; U], &[0.0; MAX_PRESSURES], 1.0, Some(stiffness))
             .map(|_| ())
     }
 
@@ -245,7 +245,7 @@ pub trait FiniteElement<
         geometry: &ElementGeometry<D, N, Q>,
         g: usize,
         u: &ElementVector<U>,
-        lambda: &[f64; PRESSURES],
+        lambda: &Pressures,
     ) -> Result<[[f64; 3]; 3]>;
 
     /// Whether the element carries pressure multipliers in the unknowns' vector.
@@ -259,9 +259,9 @@ pub trait FiniteElement<
         &self,
         _geometry: &ElementGeometry<D, N, Q>,
         _u: &ElementVector<U>,
-        _lambda: &[f64; PRESSURES],
+        _lambda: &Pressures,
         _penalty_scale: f64,
-    ) -> Result<(f64, [f64; PRESSURES])> {
-        Ok((0.0, [0.0; PRESSURES]))
+    ) -> Result<(f64, Pressures)> {
+        Ok((0.0, [0.0; MAX_PRESSURES]))
     }
 }

@@ -1,7 +1,7 @@
 use super::*;
 use crate::fem::element::displacement::{self, tests::assert_consistent_derivatives, tests::distorted};
-use crate::fem::element::{Quad9, NODES};
-use crate::material::Bilayer;
+use crate::fem::element::{Hex27, Quad9, ReferenceElement, DOFS, ELEMENT_DOFS, NODES};
+use crate::material::{add_pressure, cofactor, jacobian, Bilayer};
 use crate::mesh::DofMap;
 use crate::parameters::Parameters;
 use nalgebra::{DMatrix, SymmetricEigen};
@@ -26,7 +26,7 @@ fn mixed_on_distorted(
 ) -> (ElementGeometry, MixedElement, ElementVector) {
     let (nodes, u) = distorted();
     let geometry = ElementGeometry::new::<Quad9>(&nodes).unwrap();
-    let mixed = MixedElement::new(&geometry, tissue, constraint);
+    let mixed = <MixedElement>::new(&geometry, tissue, constraint);
     (geometry, mixed, u)
 }
 
@@ -34,7 +34,10 @@ fn mixed_on_distorted(
 fn condensed_force_and_tangent_are_the_derivatives_of_the_energy() {
     let (geometry, mixed, u) = mixed_on_distorted(&substrate(), None);
     assert_consistent_derivatives(&u, |v, k| {
-        mixed.evaluate(&geometry, v, &[0.0; PRESSURES], 1.0, k).unwrap().state
+        mixed
+            .evaluate(&geometry, v, &[0.0; MAX_PRESSURES], 1.0, k)
+            .unwrap()
+            .state
     });
 }
 
@@ -45,7 +48,7 @@ fn homogeneous_deformation_gives_the_displacement_element_s_energy_and_pressure(
     let tissue = substrate();
     let (nodes, _) = distorted();
     let geometry = ElementGeometry::new::<Quad9>(&nodes).unwrap();
-    let mixed = MixedElement::new(&geometry, &tissue, None);
+    let mixed = <MixedElement>::new(&geometry, &tissue, None);
     let f = [0.83, 0.11, -0.07, 1.12];
     let u: ElementVector = std::array::from_fn(|i| {
         let (x, c) = (nodes[ELEMENT_DOFS.node(i)], ELEMENT_DOFS.component(i));
@@ -53,7 +56,7 @@ fn homogeneous_deformation_gives_the_displacement_element_s_energy_and_pressure(
             + (f[PLANE_TENSOR.dof(c, 1)] - if c == 1 { 1.0 } else { 0.0 }) * x[1]
     });
     let displacement = displacement::evaluate(&geometry, &tissue, &u, None).unwrap();
-    let condensed = mixed.evaluate(&geometry, &u, &[0.0; PRESSURES], 1.0, None).unwrap();
+    let condensed = mixed.evaluate(&geometry, &u, &[0.0; MAX_PRESSURES], 1.0, None).unwrap();
     assert!((displacement.energy - condensed.state.energy).abs() < 1e-12 * displacement.energy.abs());
     for (a, b) in displacement.force.iter().zip(&condensed.state.force) {
         assert!((a - b).abs() < 1e-11, "{a} vs {b}");
@@ -72,7 +75,7 @@ fn saddle_point_inertia_is_the_condensed_plus_pressures() {
     let tissue = Bilayer::new(&Parameters::default()).layer_tissue();
     let (nodes, _) = distorted();
     let geometry = ElementGeometry::new::<Quad9>(&nodes).unwrap();
-    let mixed = MixedElement::new(&geometry, &tissue, None);
+    let mixed = <MixedElement>::new(&geometry, &tissue, None);
     // A strong lateral compression with a wrinkle-like shear, nodes 0 and 1 held (no rigid modes).
     let u: ElementVector = std::array::from_fn(|i| {
         let x = nodes[ELEMENT_DOFS.node(i)];
@@ -84,14 +87,14 @@ fn saddle_point_inertia_is_the_condensed_plus_pressures() {
     });
     let mut condensed = [[0.0; DOFS]; DOFS];
     let evaluated = mixed
-        .evaluate(&geometry, &u, &[0.0; PRESSURES], 1.0, Some(&mut condensed))
+        .evaluate(&geometry, &u, &[0.0; MAX_PRESSURES], 1.0, Some(&mut condensed))
         .unwrap();
     // The uncondensed blocks at the same state, built here from their definitions.
     let (mut k_uu, mut b) = (DMatrix::zeros(DOFS, DOFS), DMatrix::zeros(PRESSURES, DOFS));
     for g in 0..GAUSS_POINTS {
         let f = geometry.deformation_gradient(g, &u);
         let inverse_transpose = cofactor(&f).map(|c| c / jacobian(&f));
-        let p = dot3(mixed.basis(g), &evaluated.pressure);
+        let p = dot(mixed.basis(g), &evaluated.pressure);
         let mut response = mixed.rest().plane_response(&f);
         add_pressure(&mut response.stress, Some(&mut response.tangent), &f, p);
         let a = response.tangent;
@@ -157,7 +160,7 @@ fn constraint_mode_derivatives_match_central_differences() {
         bulk: f64::INFINITY,
     };
     let (geometry, mixed, u) = mixed_on_distorted(&substrate(), Some(constraint));
-    let lambda = [0.7, -0.3, 0.2];
+    let lambda = [0.7, -0.3, 0.2, 0.0];
     let state = mixed.evaluate(&geometry, &u, &lambda, 2.5, None).unwrap();
     let expected: [f64; PRESSURES] = std::array::from_fn(|i| lambda[i] + 2.5 * 40.0 * state.violation[i]);
     assert!(state.pressure.iter().zip(&expected).all(|(a, b)| (a - b).abs() < 1e-12));
@@ -176,7 +179,7 @@ fn augmented_mode_with_a_finite_bulk_has_the_force_of_its_potential() {
         bulk: 1e4,
     };
     let (geometry, mixed, u) = mixed_on_distorted(&substrate(), Some(constraint));
-    let lambda = [0.7, -0.3, 0.2];
+    let lambda = [0.7, -0.3, 0.2, 0.0];
     assert_consistent_derivatives(&u, |v, k| mixed.evaluate(&geometry, v, &lambda, 1.0, k).unwrap().state);
     // The reported energy's own derivative is not the force there.
     let state = mixed.evaluate(&geometry, &u, &lambda, 1.0, None).unwrap().state;
@@ -192,4 +195,68 @@ fn augmented_mode_with_a_finite_bulk_has_the_force_of_its_potential() {
         })
         .fold(0.0, f64::max);
     assert!(worst > 1e-3, "the energy's gradient differs from the force: {worst:e}");
+}
+
+/// A curved, distorted hexahedron and a displacement with some volume change.
+fn distorted_hexahedron() -> ([[f64; 3]; 27], ElementVector<81>) {
+    let nodes = std::array::from_fn(|a| {
+        let [x, y, z] = <Hex27 as ReferenceElement<3, 27, 27>>::node_coordinates(a);
+        [
+            1.2 * x + 0.15 * y + 0.05 * y * y,
+            0.9 * y + 0.1 * x * z - 0.06 * x * x,
+            1.1 * z + 0.07 * x * y,
+        ]
+    });
+    let u = std::array::from_fn(|i| 0.05 * ((i as f64) * 1.3).sin());
+    (nodes, u)
+}
+
+/// The hexahedron's mixed element, condensed and under multipliers (four pressures: a linear
+/// polynomial in X, Y, Z): force and tangent are the derivatives of its potential.
+#[test]
+fn the_mixed_hexahedron_s_force_and_tangent_are_the_derivatives_of_its_potential() {
+    let (nodes, u) = distorted_hexahedron();
+    let geometry = ElementGeometry::new::<Hex27>(&nodes).unwrap();
+    let tissue = substrate();
+    for constraint in [
+        None,
+        Some(Volumetric::Augmented {
+            penalty: 40.0,
+            bulk: f64::INFINITY,
+        }),
+    ] {
+        let mixed = MixedElement::<3, 27, 4>::new(&geometry, &tissue, constraint);
+        let lambda = [0.7, -0.3, 0.2, 0.4];
+        assert_consistent_derivatives(&u, |v, k| mixed.evaluate(&geometry, v, &lambda, 2.5, k).unwrap().state);
+    }
+}
+
+/// Under a uniform 3D `F` the projection of `ln J` is exact: the mixed hexahedron's energy and
+/// force are the displacement element's, and its pressure `K ln J`, constant.
+#[test]
+fn a_homogeneous_3d_deformation_gives_the_displacement_hexahedron_s_energy_and_pressure() {
+    let tissue = substrate();
+    let (nodes, _) = distorted_hexahedron();
+    let geometry = ElementGeometry::new::<Hex27>(&nodes).unwrap();
+    let mixed = MixedElement::<3, 27, 4>::new(&geometry, &tissue, None);
+    let f = [[0.83, 0.11, 0.05], [-0.07, 1.12, 0.02], [0.04, -0.03, 0.95]];
+    let dofs = DofMap::SPACE;
+    let u: ElementVector<81> = std::array::from_fn(|i| {
+        let (x, c) = (nodes[dofs.node(i)], dofs.component(i));
+        (0..3).map(|l| (f[c][l] - if c == l { 1.0 } else { 0.0 }) * x[l]).sum()
+    });
+    let displacement = displacement::evaluate(&geometry, &tissue, &u, None).unwrap();
+    let condensed = mixed.evaluate(&geometry, &u, &[0.0; MAX_PRESSURES], 1.0, None).unwrap();
+    assert!((displacement.energy - condensed.state.energy).abs() < 1e-12 * displacement.energy.abs());
+    for (a, b) in displacement.force.iter().zip(&condensed.state.force) {
+        assert!((a - b).abs() < 1e-11, "{a} vs {b}");
+    }
+    let j = crate::fem::element::determinant(&f);
+    let expected = tissue.volumetric_split().bulk * j.ln();
+    assert!((condensed.pressure[0] - expected).abs() < 1e-12 * expected.abs());
+    assert!(
+        condensed.pressure[1..].iter().all(|p| p.abs() < 1e-10),
+        "{:?}",
+        condensed.pressure
+    );
 }
