@@ -178,6 +178,18 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                 );
                 assert!((fe / theory - 1.0).abs() < 1e-3, "FE {fe} vs theory {theory}");
             }
+            "pattern" => {
+                // A coarse patch: the theory's wave vector (crests along the fibres' projection,
+                // the wave vector at 90 + 30 deg) is the mode's, near the theory's onset.
+                let (dir, _) = run(command, &[("--elements-per-wavelength", "3")]);
+                let report = json(dir.join("pattern.json"));
+                let theta = report["onset_theory"]["theta0_degrees"].as_f64().unwrap();
+                assert!((theta - 120.0).abs() < 0.1, "{theta}");
+                let mode = report["mode_wave_vectors"][0]["theta_degrees"].as_f64().unwrap();
+                assert!((mode - theta).abs() < 0.5, "{mode} vs {theta}");
+                let difference = report["relative_difference"].as_f64().unwrap();
+                assert!(difference > 0.0 && difference < 0.05, "{difference}");
+            }
             "reproduce" => {
                 // The report carries the paper's fibre-free check k0 = 0.5515 beside ours.
                 let (dir, _) = run(command, &[("--only", "fig4b")]);

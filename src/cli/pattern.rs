@@ -3,7 +3,7 @@
 
 use super::common::{report_files, ParamArgs};
 use clap::Args;
-use fiberfold::mesh::Sides;
+use fiberfold::mesh::{ElementKind, Sides};
 use fiberfold::protocol::BifurcationSettings;
 use fiberfold::studies::pattern::{self, PatternStudy, Progress};
 use fiberfold::{Error, Result};
@@ -23,8 +23,8 @@ pub struct PatternArgs {
     #[arg(long, default_value_t = 1)]
     pub periods: usize,
 
-    /// Hexahedra per onset wavelength along X and Z (an integer >= 2; 3 gives the onset to
-    /// about 6e-3, 6 to 4e-4, 9 to 1e-4 at Table 1).
+    /// Hexahedra per onset wavelength along X and Z (an integer >= 2; more give an onset closer
+    /// to the continuum's, at a cost growing as their cube; docs/pattern.md shows the convergence).
     #[arg(long, default_value_t = 6)]
     pub elements_per_wavelength: usize,
 
@@ -47,6 +47,12 @@ pub struct PatternArgs {
     /// How the sides hold the patch.
     #[arg(long, value_enum, default_value_t = Sides::Periodic)]
     pub sides: Sides,
+
+    /// The hexahedra's element (27 nodes; mixed: with a linear pressure per element). The
+    /// mixed one is the more accurate on a layer stiffer than the substrate, but finds a
+    /// spurious mode at the element scale on a nearly incompressible half-space.
+    #[arg(long, value_enum, default_value_t = ElementKind::Displacement)]
+    pub element: ElementKind,
 
     /// Largest d scanned for the bifurcation, in (0, 0.95].
     #[arg(long, default_value_t = 0.9)]
@@ -78,6 +84,7 @@ pub fn run(args: &PatternArgs) -> Result<()> {
         top_substrate_thickness: args.h0,
         depth_wavelengths: args.depth,
         sides: args.sides,
+        element: args.element,
         settings: BifurcationSettings {
             d_end: args.d_max,
             tolerance: args.tolerance,
@@ -92,14 +99,15 @@ pub fn run(args: &PatternArgs) -> Result<()> {
     let r = pattern::run(&params, &study, &args.out, &mut |progress| match progress {
         Progress::Patch { spec, unknowns, modes } => {
             println!(
-                "patch {:.4} x {:.4} (X x Z), depth {:.2}, {:?} sides: {} x {} x {} hexahedra (27 nodes), {} unknowns",
+                "patch {:.4} x {:.4} (X x Z), depth {:.2}, {} sides: {} x {} x {} {} hexahedra (27 nodes), {} unknowns",
                 spec.length_x,
                 spec.length_z,
                 spec.depth,
-                spec.sides,
+                format!("{:?}", spec.sides).to_lowercase(),
                 spec.nx,
                 spec.ny(),
                 spec.nz,
+                spec.element.name(),
                 unknowns
             );
             println!("admissible wave vectors nearest the onset (k = 2 pi (m / Lx, n / Lz)):");

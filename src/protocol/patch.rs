@@ -19,8 +19,8 @@ use crate::fem::added::NoAddedEnergy;
 use crate::fem::assembly::norm;
 use crate::fem::lanczos::inverse_lanczos;
 use crate::fem::{Assembled, Dirichlet, PatchSystem, SparseLdlt, Tangent};
-use crate::homogeneous::{biaxial_state, BiaxialState};
-use crate::material::Bilayer;
+use crate::homogeneous::{biaxial_state, normal_stress, BiaxialState};
+use crate::material::{Bilayer, Tissue};
 use crate::mesh::{Mesh, PatchSpec, BACK, BOTTOM, FRONT, LEFT, RIGHT, TOP, X, Y, Z};
 use serde::Serialize;
 
@@ -78,6 +78,17 @@ pub fn relative_residual(assembled: &Assembled, u: &[f64]) -> f64 {
     let k = assembled.tangent.as_ref().expect("assembled with the tangent");
     let largest = k.as_ref().val().iter().fold(0.0f64, |m, v| m.max(v.abs()));
     assembled.residual_norm() / (largest * norm(u)).max(f64::MIN_POSITIVE)
+}
+
+/// The pressure conjugate to `ln J` of a tissue at the principal `stretches`: the one that
+/// keeps an incompressible tissue free of `sigma_22` (`p = -lambda_2 P_rest,22`), else
+/// `kappa (ln J - ln Jg)` with the bulk modulus the tissue carries.
+fn homogeneous_pressure(tissue: Tissue, stretches: [f64; 3], incompressible: bool) -> Result<f64> {
+    let split = tissue.volumetric_split();
+    match incompressible {
+        true => Ok(-stretches[1] * normal_stress(&split.rest, stretches)?),
+        false => Ok(split.bulk * (stretches.iter().product::<f64>().ln() - split.log_volume)),
+    }
 }
 
 /// The first bifurcation of a perfect patch.
@@ -158,6 +169,20 @@ impl<'a> PatchPath<'a> {
         };
         self.system.set_average_gradient(h);
         let u = homogeneous_patch_displacement(self.system.mesh(), &state);
+        let u = match self.system.has_multipliers() {
+            true => {
+                let (layer, substrate) = (state.layer_stretches(), state.substrate_stretches());
+                let p_layer =
+                    homogeneous_pressure(self.materials.layer_tissue(), layer, self.materials.incompressible)?;
+                let p_substrate = homogeneous_pressure(
+                    self.materials.substrate_tissue(),
+                    substrate,
+                    self.materials.incompressible,
+                )?;
+                self.system.with_homogeneous_multipliers(u, p_layer, p_substrate)
+            }
+            false => u,
+        };
         Ok((state, bc, u))
     }
 

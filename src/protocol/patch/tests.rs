@@ -153,6 +153,21 @@ fn a_periodic_patch_bifurcates_at_the_exact_theorys_onset_over_its_wave_vectors(
     // divides the error by more than 4 (from above: the discretisation is stiffer).
     assert!(errors.iter().all(|&e| e > 0.0), "{errors:?}");
     assert!(errors[1] < errors[0] / 4.0 && errors[1] < 1e-3, "{errors:?}");
+    // The mixed hexahedra on the finer patch: the same modes, closer still.
+    let mixed = PatchPath::new(
+        &materials,
+        PatchSpec {
+            element: ElementKind::Mixed,
+            ..square_patch(length, 6)
+        },
+        1.0,
+    )
+    .unwrap()
+    .bifurcation(&settings, &mut |_, _| {})
+    .unwrap();
+    assert_eq!(mixed.negative_pivots, 4);
+    let error = mixed.d - modes[0].d_c;
+    assert!(error.abs() < errors[1], "mixed {error:e}, displacement {:e}", errors[1]);
 }
 
 /// Measurement (`--ignored --nocapture`): the onset of periodic patches against the exact
@@ -211,5 +226,55 @@ fn measure_patch_onset_against_the_linear_theory() {
                 start.elapsed().as_secs_f64()
             );
         }
+    }
+}
+
+/// Measurement (`--ignored --nocapture`): Biot's surface instability under equibiaxial
+/// compression, `z = lambda^3` the root of `z^3 + z^2 + 3 z - 1 = 0`, `d = 0.33386` for an
+/// incompressible neo-Hookean half-space at every wavelength and direction, against a periodic
+/// patch (`K / mu = 100`) with either element: the displacement hexahedra find it with the two
+/// shortest wave vectors, the mixed hexahedra a mode at the element scale first.
+#[test]
+#[ignore]
+fn measure_biots_equibiaxial_strain() {
+    let z = (1.0 - crate::stability::biot_compression()).powi(2);
+    let biot = 1.0 - z.cbrt();
+    let p = Parameters {
+        mu_l: 1.0,
+        K_l: 100.0,
+        K_s: 100.0,
+        phi_m: 1.0,
+        phi_f: 0.0,
+        ..Parameters::default()
+    };
+    let materials = Bilayer::new(&p);
+    for element in [ElementKind::Displacement, ElementKind::Mixed] {
+        let spec = PatchSpec {
+            nx: 8,
+            nz: 8,
+            length_x: 12.0,
+            length_z: 12.0,
+            layer_elements: 2,
+            substrate_elements: 6,
+            top_substrate_thickness: 0.75,
+            depth: 12.0,
+            sides: Sides::Periodic,
+            element,
+        };
+        let settings = BifurcationSettings {
+            scan_step: 0.05,
+            tolerance: 1e-6,
+            ..BifurcationSettings::default()
+        };
+        let path = PatchPath::new(&materials, spec, 1.0).unwrap();
+        let mesh = path.system().mesh().clone();
+        let b = path.bifurcation(&settings, &mut |_, _| {}).unwrap();
+        let waves = super::surface_spectrum(&mesh, &b.mode);
+        eprintln!(
+            "{element:?}: d = {:.6} (Biot {biot:.6}), {} negative pivots, the mode's wave vectors {:?}",
+            b.d,
+            b.negative_pivots,
+            waves.iter().take(2).map(|w| (w.m, w.n)).collect::<Vec<_>>()
+        );
     }
 }

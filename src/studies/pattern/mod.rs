@@ -47,12 +47,16 @@ pub struct PatternStudy {
     /// Depth of the substrate, in onset wavelengths.
     pub depth_wavelengths: f64,
     pub sides: Sides,
+    /// The hexahedra: the displacement element by default (the mixed one finds a spurious
+    /// mode at the element scale on a nearly incompressible half-space, `docs/pattern.md`).
+    pub element: ElementKind,
     pub settings: BifurcationSettings,
 }
 
 impl Default for PatternStudy {
     /// Equibiaxial compression, one period, 6 elements per wavelength, 2 + 12 elements through
-    /// the thickness (`h0 = 0.35`) down to two wavelengths, periodic sides.
+    /// the thickness (`h0 = 0.35`) down to two wavelengths, periodic sides, displacement
+    /// hexahedra.
     fn default() -> Self {
         PatternStudy {
             biaxial: 1.0,
@@ -63,6 +67,7 @@ impl Default for PatternStudy {
             top_substrate_thickness: 0.35,
             depth_wavelengths: 2.0,
             sides: Sides::Periodic,
+            element: ElementKind::Displacement,
             settings: BifurcationSettings {
                 scan_step: 0.02,
                 ..BifurcationSettings::default()
@@ -147,7 +152,7 @@ pub fn size_patch(params: &Parameters, study: &PatternStudy) -> Result<(SurfaceO
         top_substrate_thickness: study.top_substrate_thickness,
         depth,
         sides: study.sides,
-        element: ElementKind::Displacement,
+        element: study.element,
     };
     spec.validate()?;
     Ok((onset, spec))

@@ -260,3 +260,33 @@ fn a_homogeneous_3d_deformation_gives_the_displacement_hexahedron_s_energy_and_p
         condensed.pressure
     );
 }
+
+#[test]
+#[ignore]
+fn explore_hex_eigenvalues() {
+    let (nodes, _) = distorted_hexahedron();
+    let geometry = ElementGeometry::new::<Hex27>(&nodes).unwrap();
+    let p = Parameters {
+        mu_l: 1.0,
+        K_l: 100.0,
+        phi_m: 1.0,
+        phi_f: 0.0,
+        ..Parameters::default()
+    };
+    let tissue = Bilayer::new(&p).layer_tissue();
+    for mixed in [true, false] {
+        let mut k = [[0.0; 81]; 81];
+        if mixed {
+            let element = MixedElement::<3, 27, 4>::new(&geometry, &tissue, None);
+            element
+                .evaluate(&geometry, &[0.0; 81], &[0.0; MAX_PRESSURES], 1.0, Some(&mut k))
+                .unwrap();
+        } else {
+            displacement::evaluate(&geometry, &tissue, &[0.0; 81], Some(&mut k)).unwrap();
+        }
+        let m = DMatrix::from_fn(81, 81, |i, j| k[i][j]);
+        let mut e: Vec<f64> = SymmetricEigen::new(m).eigenvalues.iter().copied().collect();
+        e.sort_by(|a, b| a.total_cmp(b));
+        eprintln!("mixed {mixed}: {:?}", &e[..10]);
+    }
+}
