@@ -118,7 +118,7 @@ pub fn run(params: &Parameters, study: &BifurcationStudy, out: &Path) -> Result<
     let analysis = StabilityAnalysis::new(params, Method::Exact)?;
     let theory = admissible_minimum(&analysis, study.mesh.length)?;
     let at_k_mode = analysis.critical_compression(found.k_mode)?;
-    let mut files = write_inertia(out, &found)?;
+    let mut files = write_inertia(out, &found.path)?;
     files.extend(write_mode(out, &materials, study.mesh, &found)?);
     let json = out.join("bifurcation.json");
     files.push(json.clone());
@@ -151,11 +151,11 @@ pub fn run(params: &Parameters, study: &BifurcationStudy, out: &Path) -> Result<
     Ok(report)
 }
 
-/// `inertia.csv`: every `(d, negative pivots)` evaluated, sorted by `d`.
-fn write_inertia(out: &Path, found: &Bifurcation) -> Result<Vec<PathBuf>> {
+/// `inertia.csv`: every `(d, negative pivots)` of a homogeneous path evaluated, sorted by `d`.
+pub(crate) fn write_inertia(out: &Path, evaluated: &[(f64, usize)]) -> Result<Vec<PathBuf>> {
     let path = out.join("inertia.csv");
     let mut table = CsvWriter::create(&path, &["d", "negative_pivots"])?;
-    let mut points = found.path.clone();
+    let mut points = evaluated.to_vec();
     points.sort_by(|a, b| a.0.total_cmp(&b.0));
     for (d, negative) in points {
         table.append(&[d, negative as f64])?;

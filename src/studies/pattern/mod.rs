@@ -243,7 +243,7 @@ pub fn run(
         false => Vec::new(),
     };
     let mut files = write_wave_vectors(out, &modes)?;
-    files.extend(write_inertia(out, &found)?);
+    files.extend(super::bifurcation::write_inertia(out, &found.path)?);
     if mesh.is_periodic() {
         files.extend(write_spectrum(out, &surface_spectrum(&mesh, &found.mode))?);
         let view = figure::TopView {
@@ -305,18 +305,6 @@ fn write_wave_vectors(out: &Path, modes: &[BoxMode]) -> Result<Vec<PathBuf>> {
     let mut table = CsvWriter::create(&path, &["m", "n", "k", "theta_degrees", "d_c"])?;
     for mode in modes {
         table.append(&[mode.m as f64, mode.n as f64, mode.k, mode.theta.to_degrees(), mode.d_c])?;
-    }
-    Ok(vec![path])
-}
-
-/// `inertia.csv`: every `(d, negative pivots)` evaluated, sorted by `d`.
-fn write_inertia(out: &Path, found: &PatchBifurcation) -> Result<Vec<PathBuf>> {
-    let path = out.join("inertia.csv");
-    let mut table = CsvWriter::create(&path, &["d", "negative_pivots"])?;
-    let mut points = found.path.clone();
-    points.sort_by(|a, b| a.0.total_cmp(&b.0));
-    for (d, negative) in points {
-        table.append(&[d, negative as f64])?;
     }
     Ok(vec![path])
 }
