@@ -21,64 +21,17 @@ use super::element::{
 use crate::error::{Error, Result};
 use crate::material::{Bilayer, Tissue};
 use crate::mesh::{ElementKind, Mesh, Region};
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use rayon::prelude::*;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 mod multipliers;
 mod pattern;
+mod tangent;
+
+pub use tangent::Tangent;
 
 use pattern::{Pattern, Slot};
-
-/// The lower triangle of a tangent `K_ff` in CSC form: its values on the stored entries of the
-/// pattern it was assembled on (shared, not copied).
-#[derive(Clone, Debug)]
-pub struct Tangent {
-    structure: Arc<SymbolicSparseColMat<usize>>,
-    values: Vec<f64>,
-}
-
-impl Tangent {
-    /// The lower triangle of the `n x n` matrix with the given entries (`(row, column, value)`
-    /// with `row >= column`, each entry once).
-    pub fn from_lower_entries(n: usize, entries: &[(usize, usize, f64)]) -> Result<Self> {
-        let pairs: Vec<faer::sparse::Pair<usize, usize>> = entries
-            .iter()
-            .map(|&(row, col, _)| faer::sparse::Pair { row, col })
-            .collect();
-        let (symbolic, _) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
-            .map_err(|e| Error::invalid("tangent entry", format!("{e:?}"), &format!("indices in [0, {n})")))?;
-        let mut values = vec![0.0; symbolic.compute_nnz()];
-        for &(row, col, value) in entries {
-            values[pattern::position(&symbolic, row, col)] = value;
-        }
-        Ok(Tangent {
-            structure: Arc::new(symbolic),
-            values,
-        })
-    }
-
-    /// The matrix.
-    pub fn as_ref(&self) -> SparseColMatRef<'_, usize, f64> {
-        SparseColMatRef::new(self.symbolic(), &self.values)
-    }
-
-    /// Its stored entries.
-    pub fn symbolic(&self) -> SymbolicSparseColMatRef<'_, usize> {
-        self.structure.as_ref().as_ref()
-    }
-
-    /// Its dimension.
-    pub fn nrows(&self) -> usize {
-        self.structure.nrows()
-    }
-
-    /// Number of stored entries (the lower triangle).
-    pub fn compute_nnz(&self) -> usize {
-        self.values.len()
-    }
-}
 
 /// The assembled nonlinear system at one displacement.
 #[derive(Debug)]
@@ -448,10 +401,7 @@ where
                     values[position] += diagonal.curvature[dof];
                 }
             }
-            Tangent {
-                structure: Arc::clone(&pattern.symbolic),
-                values,
-            }
+            Tangent::on(Arc::clone(&pattern.symbolic), values)
         });
         self.entries = entries;
         Ok(Assembled {
@@ -479,7 +429,7 @@ where
         assert_eq!(pattern.id, assembled.pattern, "the assembly is of the current pattern");
         let mut tangent = assembled.tangent.clone().expect("assembled with the tangent");
         for (&position, &dof) in pattern.diagonal.iter().zip(&pattern.free) {
-            tangent.values[position] += curvature[dof];
+            tangent.values_mut()[position] += curvature[dof];
         }
         Assembled {
             residual: assembled.residual.clone(),
