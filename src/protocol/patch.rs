@@ -189,12 +189,14 @@ impl<'a> PatchPath<'a> {
     /// Negative pivots of the tangent at the homogeneous state `d`, which must be a discrete
     /// equilibrium ([`relative_residual`] at most 1e-10).
     pub fn negative_pivots(&mut self, d: f64) -> Result<usize> {
-        Ok(self.factorise(d)?.0)
+        let (negative, _, _) = self.factorise(d)?;
+        self.path.push((d, negative));
+        Ok(negative)
     }
 
-    /// Assembles and factorises the tangent at the homogeneous state `d`: its negative pivots
-    /// and the tangent.
-    fn factorise(&mut self, d: f64) -> Result<(usize, Tangent)> {
+    /// Assembles and factorises the tangent at the homogeneous state `d`: its negative pivots,
+    /// the tangent and the conditions there.
+    fn factorise(&mut self, d: f64) -> Result<(usize, Tangent, Dirichlet)> {
         let (_, bc, u) = self.homogeneous(d)?;
         let assembled = self.system.assemble_for_stability(&u, &bc, &NoAddedEnergy)?;
         let relative = relative_residual(&assembled, &u);
@@ -207,9 +209,7 @@ impl<'a> PatchPath<'a> {
         self.unknowns = k.nrows();
         let solver = self.solver.get_or_insert_with(|| SparseLdlt::new(k.symbolic()));
         solver.factorize(k.as_ref());
-        let negative = solver.negative_pivots().expect("just factorised");
-        self.path.push((d, negative));
-        Ok((negative, k))
+        Ok((solver.negative_pivots().expect("just factorised"), k, bc))
     }
 
     /// The first bifurcation along the path (the scan and bisection of `settings`), telling
@@ -227,10 +227,9 @@ impl<'a> PatchPath<'a> {
             },
             settings,
         )?;
-        let (_, k) = self.factorise(stable)?;
+        let (_, k, bc) = self.factorise(stable)?;
         let solver = self.solver.as_mut().expect("factorised above");
         let (free_mode, eigenvalue) = inverse_lanczos(solver, k.as_ref(), settings.mode_solves, 1e-12)?;
-        let (_, bc, _) = self.homogeneous(stable)?;
         let free = self.system.free_dofs(&bc)?.to_vec();
         let mut mode = vec![0.0; self.system.num_dofs()];
         for (&dof, &v) in free.iter().zip(&free_mode) {

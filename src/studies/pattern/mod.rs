@@ -238,14 +238,15 @@ pub fn run(
     let found = path.bifurcation(&study.settings, &mut |d, negative| {
         progress(Progress::Inertia { d, negative })
     })?;
-    let mode_wave_vectors = match mesh.is_periodic() {
-        true => surface_spectrum(&mesh, &found.mode).into_iter().take(4).collect(),
+    // The spectrum is that of a periodic surface; symmetry sides have none.
+    let spectrum = match mesh.is_periodic() {
+        true => surface_spectrum(&mesh, &found.mode),
         false => Vec::new(),
     };
     let mut files = write_wave_vectors(out, &modes)?;
     files.extend(super::bifurcation::write_inertia(out, &found.path)?);
     if mesh.is_periodic() {
-        files.extend(write_spectrum(out, &surface_spectrum(&mesh, &found.mode))?);
+        files.extend(write_spectrum(out, &spectrum)?);
         let view = figure::TopView {
             title: format!(
                 "Bifurcation mode at d = {:.5}: surface u_Y from above; lines: the fibres",
@@ -278,7 +279,7 @@ pub fn run(
         d_c_admissible: first.d_c,
         relative_difference: found.d / first.d_c - 1.0,
         admissible_wave_vectors: modes,
-        mode_wave_vectors,
+        mode_wave_vectors: spectrum.into_iter().take(4).collect(),
         inertia_evaluations: found.path.len(),
         wall_seconds: start.elapsed().as_secs_f64(),
         files: files.iter().map(|f| f.display().to_string()).collect(),
