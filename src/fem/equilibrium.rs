@@ -18,20 +18,21 @@ use super::added::{AddedEnergy, Sum};
 use super::assembly::System;
 use super::boundary::Dirichlet;
 use super::contact::{Contact, ContactUpdate};
-use super::element::PressureUpdate;
+use super::element::{PressureUpdate, Registry};
 use super::newton::{
     largest_move, Newton, NewtonError, NewtonPolicy, NewtonReport, Precision, SystemEquations, Updates,
 };
+use crate::mesh::ElementKind;
 
-/// What an outer loop does between two converged solves.
-pub trait Update {
+/// What an outer loop does between two converged solves of the system `S`.
+pub trait Update<S> {
     /// Most updates, each followed by another solve.
     fn max_updates(&self) -> usize;
 
     /// Checks the converged state `u` and updates: [`Check::Accepted`] if the state passes the
     /// loop's check (the update may still have refreshed estimates that do not change the
     /// state), otherwise [`Check::Updated`] with `u` or the loop's own unknowns changed.
-    fn update(&mut self, system: &System, u: &mut [f64]) -> Result<Check, NewtonError>;
+    fn update(&mut self, system: &S, u: &mut [f64]) -> Result<Check, NewtonError>;
 
     /// Counts one update into `updates`.
     fn count(&self, updates: &mut Updates);
@@ -63,11 +64,11 @@ const MAX_UNFINISHED_PASSES: usize = 200;
 /// unfinished pass of a minimisation is followed by a refresh ([`Update::refresh`]) and another
 /// pass, without a check and outside the updates' count, or passed up if the loop has nothing
 /// to refresh.
-pub fn repeat<U: Update>(
-    update: &mut U,
-    system: &mut System,
+pub fn repeat<S, L: Update<S>>(
+    update: &mut L,
+    system: &mut S,
     u: &mut [f64],
-    mut solve: impl FnMut(&U, &mut System, &mut [f64]) -> Result<NewtonReport, NewtonError>,
+    mut solve: impl FnMut(&L, &mut S, &mut [f64]) -> Result<NewtonReport, NewtonError>,
 ) -> Result<NewtonReport, NewtonError> {
     let mut report = solve(update, system, u)?;
     let (mut updates, mut unfinished_passes) = (0, 0);
@@ -107,40 +108,49 @@ pub enum Inner {
 }
 
 /// Equilibrium of the strain energy with `bc` prescribed, from `u`; on failure `u` is unchanged.
-pub fn solve(
+pub fn solve<const D: usize, const N: usize, const Q: usize, const U: usize>(
     newton: &mut Newton,
-    system: &mut System,
+    system: &mut System<D, N, Q, U>,
     u: &mut [f64],
     bc: &Dirichlet,
     policy: &NewtonPolicy,
-) -> Result<NewtonReport, NewtonError> {
+) -> Result<NewtonReport, NewtonError>
+where
+    ElementKind: Registry<D, N, Q, U>,
+{
     let loads = (None, &super::added::NoAddedEnergy as &dyn AddedEnergy);
     solve_equilibrium(newton, (system, u, bc), loads, (Inner::Newton, policy))
 }
 
 /// [`solve`] for the strain energy plus `added` (e.g. damping).
-pub fn solve_with(
+pub fn solve_with<const D: usize, const N: usize, const Q: usize, const U: usize>(
     newton: &mut Newton,
-    system: &mut System,
+    system: &mut System<D, N, Q, U>,
     u: &mut [f64],
     bc: &Dirichlet,
     added: &dyn AddedEnergy,
     policy: &NewtonPolicy,
-) -> Result<NewtonReport, NewtonError> {
+) -> Result<NewtonReport, NewtonError>
+where
+    ElementKind: Registry<D, N, Q, U>,
+{
     solve_equilibrium(newton, (system, u, bc), (None, added), (Inner::Newton, policy))
 }
 
 /// [`solve_with`] with contact: the strain energy plus `contact` plus `other`; on failure `u`
 /// and `contact` are restored.
-pub fn solve_with_contact(
+pub fn solve_with_contact<const D: usize, const N: usize, const Q: usize, const U: usize>(
     newton: &mut Newton,
-    system: &mut System,
+    system: &mut System<D, N, Q, U>,
     u: &mut [f64],
     bc: &Dirichlet,
     contact: &mut Contact,
     other: &dyn AddedEnergy,
     policy: &NewtonPolicy,
-) -> Result<NewtonReport, NewtonError> {
+) -> Result<NewtonReport, NewtonError>
+where
+    ElementKind: Registry<D, N, Q, U>,
+{
     solve_equilibrium(newton, (system, u, bc), (Some(contact), other), (Inner::Newton, policy))
 }
 
@@ -148,27 +158,33 @@ pub fn solve_with_contact(
 /// prescribed, from `u` (whose prescribed unknowns must hold their values), with the outer
 /// loops around the minimisation; the inertia of a stable state is counted (none negative)
 /// if `policy` asks for it. On failure `u` and `contact` are restored.
-pub fn minimise(
+pub fn minimise<const D: usize, const N: usize, const Q: usize, const U: usize>(
     newton: &mut Newton,
-    (system, u, bc): (&mut System, &mut [f64], &Dirichlet),
+    (system, u, bc): (&mut System<D, N, Q, U>, &mut [f64], &Dirichlet),
     contact: Option<&mut Contact>,
     other: &dyn AddedEnergy,
     policy: &NewtonPolicy,
-) -> Result<NewtonReport, NewtonError> {
+) -> Result<NewtonReport, NewtonError>
+where
+    ElementKind: Registry<D, N, Q, U>,
+{
     solve_equilibrium(newton, (system, u, bc), (contact, other), (Inner::Minimise, policy))
 }
 
-fn solve_equilibrium(
+fn solve_equilibrium<const D: usize, const N: usize, const Q: usize, const U: usize>(
     newton: &mut Newton,
-    (system, u, bc): (&mut System, &mut [f64], &Dirichlet),
+    (system, u, bc): (&mut System<D, N, Q, U>, &mut [f64], &Dirichlet),
     (mut contact, other): (Option<&mut Contact>, &dyn AddedEnergy),
     (inner, policy): (Inner, &NewtonPolicy),
-) -> Result<NewtonReport, NewtonError> {
+) -> Result<NewtonReport, NewtonError>
+where
+    ElementKind: Registry<D, N, Q, U>,
+{
     let policy = for_system(policy, system);
     let (start, saved) = (u.to_vec(), contact.as_deref().cloned());
     // The shift a minimisation's pass ended with, for the next pass to start from.
     let mut shift = policy.initial_shift;
-    let mut pressure_passes = |added: &dyn AddedEnergy, system: &mut System, u: &mut [f64]| {
+    let mut pressure_passes = |added: &dyn AddedEnergy, system: &mut System<D, N, Q, U>, u: &mut [f64]| {
         repeat(&mut PressureUpdate::new(), system, u, |pressure, system, u| {
             let mut equations = SystemEquations {
                 system,
@@ -239,7 +255,13 @@ fn solve_equilibrium(
 /// whose inertia is the state's ([`System::assemble_for_stability`]), so the start is not
 /// factorised for its inertia, and the penalty's conditioning leaves a reused factor too few
 /// digits in single precision.
-fn for_system(policy: &NewtonPolicy, system: &System) -> NewtonPolicy {
+fn for_system<const D: usize, const N: usize, const Q: usize, const U: usize>(
+    policy: &NewtonPolicy,
+    system: &System<D, N, Q, U>,
+) -> NewtonPolicy
+where
+    ElementKind: Registry<D, N, Q, U>,
+{
     match system.has_multipliers() {
         true => NewtonPolicy {
             factorise_start: false,

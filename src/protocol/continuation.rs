@@ -16,20 +16,20 @@
 //! [`Continuation::advance_to`] reads as the algorithm: [`Continuation::attempt`] (predict,
 //! correct), then [`Continuation::accept`] (record, grow), or a snap, or [`Continuation::cut`].
 
-use super::augmentation::{Augmentation, AugmentedRecord};
+use super::augmentation::AugmentedRecord;
 use super::measures::{measure_all, Measure};
 use super::predictor::{extrapolate, PREDICTOR_POINTS};
 use super::record::StepRecord;
 use super::snap::{SnapRecord, SnapSettings};
 use crate::error::{Error, Result};
-use crate::fem::equilibrium;
 use crate::fem::{Newton, NewtonPolicy, NewtonReport, Reuse, SparseLdlt, System};
-use crate::protocol::Loading;
 use serde::Serialize;
 use std::collections::VecDeque;
 use std::time::Instant;
 
+mod followed;
 mod minimised;
+pub use followed::{Augmenting, Followed, NoAugmentation};
 
 /// Step-size control.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -101,23 +101,24 @@ pub struct Cut {
     pub reason: String,
 }
 
-/// What a loading protocol reports as it goes.
-pub enum Event<'a> {
+/// What a loading protocol reports as it goes (of a system `S`).
+pub enum Event<'a, S = System> {
     /// The start of a stage, described.
     Stage(&'a str),
     /// A converged state, with its system and displacement.
     Step {
         record: &'a StepRecord,
-        system: &'a System,
+        system: &'a S,
         u: &'a [f64],
     },
     /// A discarded attempt; the step is cut.
     Cut(&'a Cut),
 }
 
-/// The solution path in `d`: the current converged state and the last few for the predictor.
-pub struct Continuation {
-    system: System,
+/// The solution path in `d` of a system `S`: the current converged state and the last few for
+/// the predictor.
+pub struct Continuation<S: Followed = System> {
+    system: S,
     newton: Newton,
     /// Newton's policy of every step (its reuse set per step, see [`Continuation::attempt`]).
     policy: NewtonPolicy,
@@ -126,7 +127,7 @@ pub struct Continuation {
     /// Up to four converged `(d, u)`, newest last.
     history: VecDeque<(f64, Vec<f64>)>,
     /// Contact and stabilisation, if any.
-    augmentation: Option<Augmentation>,
+    augmentation: Option<S::Augmentation>,
     /// When a failed step is retried as a snap (never if `None`).
     snaps: Option<SnapSettings>,
     /// `du/dd` for the predictor while only one state is known.
@@ -135,7 +136,7 @@ pub struct Continuation {
     /// still being counted: reported once it is known.
     pending: Option<StepRecord>,
     /// What is recorded of each accepted state.
-    measures: Vec<Box<dyn Measure>>,
+    measures: Vec<Box<dyn Measure<S>>>,
     /// What is known of the last accepted state.
     last: LastState,
 }
@@ -179,11 +180,11 @@ impl StepClock {
     }
 }
 
-impl Continuation {
+impl<S: Followed> Continuation<S> {
     /// Starts at the converged state `u` at `d`, solving with `newton` (and its cached factor)
     /// by `policy`.
     pub fn new(
-        (system, newton, policy): (System, Newton, NewtonPolicy),
+        (system, newton, policy): (S, Newton, NewtonPolicy),
         control: StepControl,
         d: f64,
         u: Vec<f64>,
@@ -206,13 +207,13 @@ impl Continuation {
     }
 
     /// The same continuation recording `measures` of every accepted state.
-    pub fn with_measures(mut self, measures: Vec<Box<dyn Measure>>) -> Self {
+    pub fn with_measures(mut self, measures: Vec<Box<dyn Measure<S>>>) -> Self {
         self.measures = measures;
         self
     }
 
     /// The same continuation with contact and stabilisation.
-    pub fn with_augmentation(mut self, augmentation: Augmentation) -> Self {
+    pub fn with_augmentation(mut self, augmentation: S::Augmentation) -> Self {
         self.augmentation = Some(augmentation);
         self
     }
@@ -239,7 +240,7 @@ impl Continuation {
     }
 
     /// Contact and stabilisation, if any.
-    pub fn augmentation(&self) -> Option<&Augmentation> {
+    pub fn augmentation(&self) -> Option<&S::Augmentation> {
         self.augmentation.as_ref()
     }
 
@@ -270,12 +271,12 @@ impl Continuation {
     }
 
     /// The system being solved.
-    pub fn system(&self) -> &System {
+    pub fn system(&self) -> &S {
         &self.system
     }
 
     /// The system and the current converged displacement, for post-processing.
-    pub fn into_state(self) -> (System, Vec<f64>) {
+    pub fn into_state(self) -> (S, Vec<f64>) {
         let (_, u) = self.history.into_iter().next_back().expect("never empty");
         (self.system, u)
     }
@@ -284,13 +285,13 @@ impl Continuation {
     /// [`Error::Solver`] naming `d` and the reason when the minimum step fails. A state whose
     /// inertia is counted in the background is reported once the count is in, before anything
     /// that follows it.
-    pub fn advance_to(&mut self, target: f64, observer: &mut dyn FnMut(Event<'_>) -> Result<()>) -> Result<()> {
+    pub fn advance_to(&mut self, target: f64, observer: &mut dyn FnMut(Event<'_, S>) -> Result<()>) -> Result<()> {
         let result = self.advance(target, observer);
         let reported = self.report_pending(observer, false);
         result.and(reported)
     }
 
-    fn advance(&mut self, target: f64, observer: &mut dyn FnMut(Event<'_>) -> Result<()>) -> Result<()> {
+    fn advance(&mut self, target: f64, observer: &mut dyn FnMut(Event<'_, S>) -> Result<()>) -> Result<()> {
         let mut clock = StepClock::start();
         while target - self.d() > 1e-12 {
             let step = self.step.min(target - self.d());
@@ -356,7 +357,7 @@ impl Continuation {
         (d, step): (f64, f64),
         ((report, u, augmented), reached): (Solved, Reached),
         clock: &StepClock,
-        observer: &mut dyn FnMut(Event<'_>) -> Result<()>,
+        observer: &mut dyn FnMut(Event<'_, S>) -> Result<()>,
     ) -> Result<()> {
         let mut record = StepRecord::new((d, step), &report, clock.started.elapsed().as_secs_f64());
         measure_all(&self.measures, &self.system, &u, &mut record)?;
@@ -401,7 +402,7 @@ impl Continuation {
         d: f64,
         step: f64,
         reason: Error,
-        observer: &mut dyn FnMut(Event<'_>) -> Result<()>,
+        observer: &mut dyn FnMut(Event<'_, S>) -> Result<()>,
     ) -> Result<()> {
         let c = self.control;
         if step <= c.min * (1.0 + 1e-9) {
@@ -425,7 +426,11 @@ impl Continuation {
     /// is booked as that state's inertia time if `within_step`, i.e. inside the next step's
     /// wall time). The observer sees the system at that state's load, not the next attempt's
     /// (under growth the tissues depend on it).
-    fn report_pending(&mut self, observer: &mut dyn FnMut(Event<'_>) -> Result<()>, within_step: bool) -> Result<()> {
+    fn report_pending(
+        &mut self,
+        observer: &mut dyn FnMut(Event<'_, S>) -> Result<()>,
+        within_step: bool,
+    ) -> Result<()> {
         let Some(mut record) = self.pending.take() else {
             return Ok(());
         };
@@ -473,21 +478,17 @@ impl Continuation {
                 ..self.policy
             },
         };
-        if let Some(augmentation) = &mut self.augmentation {
-            let (d0, u0) = self.history.back().expect("never empty");
-            let (report, record) = augmentation.solve(
-                &mut self.newton,
-                &policy,
-                &mut self.system,
-                &mut u,
-                &bc,
-                (*d0, u0),
-                (d, self.step),
-            )?;
-            return Ok((report, u, Some(record)));
-        }
-        let report = equilibrium::solve(&mut self.newton, &mut self.system, &mut u, &bc, &policy)?;
-        Ok((report, u, None))
+        let (d0, u0) = self.history.back().expect("never empty");
+        let (report, record) = self.system.correct(
+            &mut self.newton,
+            &policy,
+            &mut u,
+            &bc,
+            self.augmentation.as_mut(),
+            (*d0, u0),
+            (d, self.step),
+        )?;
+        Ok((report, u, record))
     }
 
     /// The predictor at `d` from the stored states (see [`extrapolate`]).

@@ -10,10 +10,10 @@ use crate::error::Result;
 use crate::fem::ellipticity::ellipticity_margins;
 use crate::fem::System;
 
-/// A quantity of a converged state, written into its record.
-pub trait Measure: Send + Sync {
+/// A quantity of a converged state of a system `S`, written into its record.
+pub trait Measure<S = System>: Send + Sync {
     /// Writes what it measures of the converged state `u` of `system` into `record`.
-    fn measure(&self, system: &System, u: &[f64], record: &mut StepRecord) -> Result<()>;
+    fn measure(&self, system: &S, u: &[f64], record: &mut StepRecord) -> Result<()>;
 }
 
 /// The wrinkle amplitude `A = (max y - min y) / 2` of the top surface ([`StepRecord::amplitude`]).
@@ -53,6 +53,6 @@ pub fn bilayer_measures() -> Vec<Box<dyn Measure>> {
 }
 
 /// Takes every measure of `measures` of the state `u` of `system` into `record`.
-pub fn measure_all(measures: &[Box<dyn Measure>], system: &System, u: &[f64], record: &mut StepRecord) -> Result<()> {
+pub fn measure_all<S>(measures: &[Box<dyn Measure<S>>], system: &S, u: &[f64], record: &mut StepRecord) -> Result<()> {
     measures.iter().try_for_each(|m| m.measure(system, u, record))
 }

@@ -14,6 +14,7 @@
 //! ([`super::bifurcation`]): the first `d` at which the tangent has a negative pivot.
 
 use super::bifurcation::{first_instability, BifurcationSettings};
+use super::continuation::Followed;
 use crate::error::{Error, Result};
 use crate::fem::added::NoAddedEnergy;
 use crate::fem::assembly::norm;
@@ -71,6 +72,19 @@ pub fn homogeneous_patch_displacement(mesh: &Mesh<3, 27>, state: &BiaxialState) 
     u
 }
 
+/// The unknowns of the homogeneous `state` on the patch of `system`: its displacement
+/// ([`homogeneous_patch_displacement`]) followed, with multipliers, by each layer's pressure.
+pub fn homogeneous_patch_unknowns(system: &PatchSystem, materials: &Bilayer, state: &BiaxialState) -> Result<Vec<f64>> {
+    let u = homogeneous_patch_displacement(system.mesh(), state);
+    if !system.has_multipliers() {
+        return Ok(u);
+    }
+    let (layer, substrate) = (state.layer_stretches(), state.substrate_stretches());
+    let p_layer = homogeneous_pressure(materials.layer_tissue(), layer, materials.incompressible)?;
+    let p_substrate = homogeneous_pressure(materials.substrate_tissue(), substrate, materials.incompressible)?;
+    Ok(system.with_homogeneous_multipliers(u, p_layer, p_substrate))
+}
+
 /// The residual of an assembly (with its tangent) at `u` relative to the forces the state's
 /// displacements carry, `|r| / (max |K_ij| |u|)`: on a periodic patch under an average
 /// gradient the internal forces cancel at equilibrium and no reaction sets a scale.
@@ -117,10 +131,7 @@ pub struct PatchBifurcation {
 /// The homogeneous path of a patch under `d_3 = biaxiality d`, with its reused factorisation.
 pub struct PatchPath<'a> {
     materials: &'a Bilayer,
-    biaxiality: f64,
-    system: PatchSystem,
-    /// Extra prescribed unknowns (a plane-strain slab's `u_Z = 0`).
-    held: Vec<usize>,
+    patch: BiaxialPatch,
     solver: Option<SparseLdlt>,
     path: Vec<(f64, usize)>,
     unknowns: usize,
@@ -134,9 +145,11 @@ impl<'a> PatchPath<'a> {
         }
         Ok(PatchPath {
             materials,
-            biaxiality,
-            system: PatchSystem::on_patch(Mesh::patch(spec)?, materials)?,
-            held: Vec::new(),
+            patch: BiaxialPatch::new(
+                PatchSystem::on_patch(Mesh::patch(spec)?, materials)?,
+                biaxiality,
+                Vec::new(),
+            ),
             solver: None,
             path: Vec::new(),
             unknowns: 0,
@@ -145,44 +158,27 @@ impl<'a> PatchPath<'a> {
 
     /// The same path with `u_Z = 0` everywhere: a slab in plane strain.
     pub fn in_plane_strain(mut self) -> Self {
-        let mesh = self.system.mesh();
-        self.held = (0..mesh.num_nodes()).map(|n| mesh.dofs().dof(n, Z)).collect();
+        let mesh = self.patch.system().mesh();
+        let held = (0..mesh.num_nodes()).map(|n| mesh.dofs().dof(n, Z)).collect();
+        self.patch.hold(held);
         self
     }
 
     /// The system.
     pub fn system(&self) -> &PatchSystem {
-        &self.system
+        self.patch.system()
+    }
+
+    /// The patch as a continuation follows it.
+    pub fn into_patch(self) -> BiaxialPatch {
+        self.patch
     }
 
     /// The homogeneous state at `d`, the conditions there, and its unknowns.
     pub fn homogeneous(&mut self, d: f64) -> Result<(BiaxialState, Dirichlet, Vec<f64>)> {
-        let state = biaxial_state(self.materials, d, self.biaxiality * d)?;
-        let (bc, h) = patch_conditions(self.system.mesh(), d, state.d3)?;
-        let bc = match self.held.is_empty() {
-            true => bc,
-            false => {
-                let mut pairs: Vec<(usize, f64)> = bc.dofs().iter().copied().zip(bc.values().iter().copied()).collect();
-                pairs.extend(self.held.iter().map(|&dof| (dof, 0.0)));
-                Dirichlet::new(pairs)?
-            }
-        };
-        self.system.set_average_gradient(h);
-        let u = homogeneous_patch_displacement(self.system.mesh(), &state);
-        let u = match self.system.has_multipliers() {
-            true => {
-                let (layer, substrate) = (state.layer_stretches(), state.substrate_stretches());
-                let p_layer =
-                    homogeneous_pressure(self.materials.layer_tissue(), layer, self.materials.incompressible)?;
-                let p_substrate = homogeneous_pressure(
-                    self.materials.substrate_tissue(),
-                    substrate,
-                    self.materials.incompressible,
-                )?;
-                self.system.with_homogeneous_multipliers(u, p_layer, p_substrate)
-            }
-            false => u,
-        };
+        let state = biaxial_state(self.materials, d, self.patch.biaxiality() * d)?;
+        let bc = self.patch.load_to(d)?;
+        let u = homogeneous_patch_unknowns(self.patch.system(), self.materials, &state)?;
         Ok((state, bc, u))
     }
 
@@ -198,7 +194,10 @@ impl<'a> PatchPath<'a> {
     /// the tangent and the conditions there.
     fn factorise(&mut self, d: f64) -> Result<(usize, Tangent, Dirichlet)> {
         let (_, bc, u) = self.homogeneous(d)?;
-        let assembled = self.system.assemble_for_stability(&u, &bc, &NoAddedEnergy)?;
+        let assembled = self
+            .patch
+            .system_mut()
+            .assemble_for_stability(&u, &bc, &NoAddedEnergy)?;
         let relative = relative_residual(&assembled, &u);
         if relative > 1e-10 {
             return Err(Error::Solver(format!(
@@ -215,7 +214,7 @@ impl<'a> PatchPath<'a> {
     /// The first bifurcation along the path (the scan and bisection of `settings`), telling
     /// `progress` every `(d, negative pivots)` evaluated.
     pub fn bifurcation(
-        mut self,
+        &mut self,
         settings: &BifurcationSettings,
         progress: &mut dyn FnMut(f64, usize),
     ) -> Result<PatchBifurcation> {
@@ -230,12 +229,12 @@ impl<'a> PatchPath<'a> {
         let (_, k, bc) = self.factorise(stable)?;
         let solver = self.solver.as_mut().expect("factorised above");
         let (free_mode, eigenvalue) = inverse_lanczos(solver, k.as_ref(), settings.mode_solves, 1e-12)?;
-        let free = self.system.free_dofs(&bc)?.to_vec();
-        let mut mode = vec![0.0; self.system.num_dofs()];
+        let free = self.patch.system_mut().free_dofs(&bc)?.to_vec();
+        let mut mode = vec![0.0; self.patch.system().num_dofs()];
         for (&dof, &v) in free.iter().zip(&free_mode) {
             mode[dof] = v;
         }
-        let mesh = self.system.mesh();
+        let mesh = self.patch.system().mesh();
         let largest = mesh
             .node_set(TOP)
             .iter()
@@ -247,7 +246,7 @@ impl<'a> PatchPath<'a> {
             d: 0.5 * (stable + unstable),
             bracket: (stable, unstable),
             negative_pivots,
-            path: self.path,
+            path: std::mem::take(&mut self.path),
             unknowns: self.unknowns,
             mode,
             eigenvalue,
@@ -255,8 +254,12 @@ impl<'a> PatchPath<'a> {
     }
 }
 
+mod biaxial;
+mod post_buckling;
 mod spectrum;
-pub use spectrum::{surface_spectrum, WaveVector};
+pub use biaxial::BiaxialPatch;
+pub use post_buckling::{PatchImperfection, PatchProtocol};
+pub use spectrum::{classify, height_spectrum, surface_spectrum, Direction, SurfacePattern, WaveVector};
 
 #[cfg(test)]
 mod tests;

@@ -13,12 +13,12 @@ pub fn surface_profile(mesh: &Mesh, u: &[f64]) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// `A = (max y - min y) / 2` over the deformed top-surface nodes.
-pub fn amplitude(mesh: &Mesh, u: &[f64]) -> f64 {
-    let (low, high) = surface_profile(mesh, u)
-        .into_iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), (_, y)| {
-            (lo.min(y), hi.max(y))
-        });
+/// `A = (max y - min y) / 2` over the deformed top-surface nodes (of a strip or a patch).
+pub fn amplitude<const D: usize, const N: usize>(mesh: &Mesh<D, N>, u: &[f64]) -> f64 {
+    let (low, high) = mesh
+        .node_set(TOP)
+        .iter()
+        .map(|&n| mesh.coordinates()[n][Y] + u[mesh.dofs().dof(n, Y)])
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), y| (lo.min(y), hi.max(y)));
     0.5 * (high - low)
 }

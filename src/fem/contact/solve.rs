@@ -9,7 +9,6 @@ use super::Contact;
 use crate::error::Error;
 use crate::fem::equilibrium::{Check, Update};
 use crate::fem::newton::{NewtonError, Updates};
-use crate::fem::System;
 
 /// The contact of one equilibrium solve, and the penetration of its last converged state.
 pub struct ContactUpdate<'c> {
@@ -33,13 +32,13 @@ impl<'c> ContactUpdate<'c> {
     }
 }
 
-impl Update for ContactUpdate<'_> {
+impl<S> Update<S> for ContactUpdate<'_> {
     /// `max_augmentations` solves in all.
     fn max_updates(&self) -> usize {
         self.contact.settings.max_augmentations.saturating_sub(1)
     }
 
-    fn update(&mut self, _: &System, u: &mut [f64]) -> Result<Check, NewtonError> {
+    fn update(&mut self, _: &S, u: &mut [f64]) -> Result<Check, NewtonError> {
         let contact = &mut *self.contact;
         let loaded = contact.loaded_pairs(u);
         contact.search(u);

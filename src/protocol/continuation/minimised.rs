@@ -13,16 +13,12 @@
 //!   with `A` unchanged to 1e-4, each after the step had been cut five or six times down to
 //!   `1e-6`.
 
-use super::{Continuation, Solved};
+use super::{Augmenting, Continuation, Followed, Solved};
 use crate::error::{Error, Result};
-use crate::fem::added::NoAddedEnergy;
-use crate::fem::equilibrium;
 use crate::fem::newton::largest_move;
 use crate::fem::{Dirichlet, NewtonPolicy, NewtonReport};
 use crate::protocol::augmentation::AugmentedRecord;
 use crate::protocol::snap::SnapRecord;
-use crate::protocol::surface::amplitude;
-use crate::protocol::Loading;
 use std::time::Instant;
 
 /// Most restarts of a minimisation from a minimum that the last contact update left with a
@@ -44,7 +40,7 @@ const CORRECTOR_REACH: f64 = 1.0;
 /// the predictor is the last state itself, whose move is the boundary's alone.
 const CORRECTOR_FLOOR: f64 = 1e-3;
 
-impl Continuation {
+impl<S: Followed> Continuation<S> {
     /// The snap at `d`: the stable equilibrium there reached by minimising the energy from the
     /// last equilibrium with the boundary moved to `d` ([`crate::protocol::snap`]); fails if the
     /// minimum reached is not stable (after the outer loops' updates).
@@ -63,14 +59,13 @@ impl Continuation {
         };
         let (report, augmented) = self.stable_minimum(&mut u, (&bc, d), &policy)?;
         let energy_after = self.energy(&u, &bc)?;
-        let mesh = self.system.mesh();
         let snap = SnapRecord {
             d,
             d_before: d0,
-            amplitude_before: amplitude(mesh, &u0),
+            amplitude_before: self.system.amplitude(&u0),
             energy_before,
             energy_start,
-            amplitude_after: amplitude(mesh, &u),
+            amplitude_after: self.system.amplitude(&u),
             energy_after,
             energy_released: energy_start - energy_after,
             negative_pivots_after: report.negative_pivots,
@@ -94,8 +89,8 @@ impl Continuation {
         let mut u = self.predict(d);
         bc.impose(&mut u);
         let predictor = u.clone();
-        let saved_contact = self.augmentation.as_ref().and_then(|a| a.contact.clone());
-        let n = self.system.mesh().num_dofs();
+        let saved = self.augmentation.as_ref().map(Augmenting::save);
+        let n = self.system.displacement_unknowns();
         let u0 = &self.history.back().expect("never empty").1;
         let reach = (CORRECTOR_REACH * largest_move(&predictor, u0, n)).max(CORRECTOR_FLOOR);
         // A minimisation heading beyond the reach stops there (it would be discarded).
@@ -107,8 +102,8 @@ impl Continuation {
         };
         let (report, augmented) = self.stable_minimum(&mut u, (&bc, d), &policy).ok()?;
         if largest_move(&u, &predictor, n) > reach {
-            if let Some(augmentation) = &mut self.augmentation {
-                augmentation.contact = saved_contact;
+            if let (Some(augmentation), Some(saved)) = (&mut self.augmentation, saved) {
+                augmentation.restore(saved);
             }
             return None;
         }
@@ -151,24 +146,12 @@ impl Continuation {
         (bc, d): (&Dirichlet, f64),
         policy: &NewtonPolicy,
     ) -> Result<(NewtonReport, Option<AugmentedRecord>)> {
-        Ok(match &mut self.augmentation {
-            Some(augmentation) => {
-                let (report, record) = augmentation.minimise(&mut self.newton, policy, &mut self.system, u, (bc, d))?;
-                (report, Some(record))
-            }
-            None => {
-                let state = (&mut self.system, &mut u[..], bc);
-                let report = equilibrium::minimise(&mut self.newton, state, None, &NoAddedEnergy, policy)?;
-                (report, None)
-            }
-        })
+        self.system
+            .minimise(&mut self.newton, policy, u, (bc, d), self.augmentation.as_mut())
     }
 
     /// The total energy (strain plus contact) at `u` with `bc` prescribed.
     fn energy(&mut self, u: &[f64], bc: &Dirichlet) -> Result<f64> {
-        match &self.augmentation {
-            Some(augmentation) => augmentation.energy(&mut self.system, u, bc),
-            None => Ok(self.system.assemble(u, bc, None, false)?.energy),
-        }
+        self.system.energy(u, bc, self.augmentation.as_ref())
     }
 }

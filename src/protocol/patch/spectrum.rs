@@ -11,7 +11,7 @@ use serde::Serialize;
 use std::f64::consts::PI;
 
 /// One wave vector of the surface and its amplitude.
-#[derive(Clone, Copy, Debug, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct WaveVector {
     /// `k = 2 pi (m / Lx, n / Lz)`, `m > 0` or `m = 0, n > 0` (`k` and `-k` are one wave).
     pub m: i64,
@@ -27,6 +27,17 @@ pub struct WaveVector {
 /// The spectrum of the top surface's `u_Y` of the full vector `u` on a periodic patch, for the
 /// wave vectors below the grid's Nyquist limit, by decreasing amplitude.
 pub fn surface_spectrum(mesh: &Mesh<3, 27>, u: &[f64]) -> Vec<WaveVector> {
+    spectrum_of(mesh, |node| u[mesh.dofs().dof(node, Y)])
+}
+
+/// The spectrum of the deformed top surface's height `Y + u_Y` (the reference surface's own
+/// imperfection included) of the state `u` of a periodic patch, by decreasing amplitude.
+pub fn height_spectrum(mesh: &Mesh<3, 27>, u: &[f64]) -> Vec<WaveVector> {
+    spectrum_of(mesh, |node| mesh.coordinates()[node][Y] + u[mesh.dofs().dof(node, Y)])
+}
+
+/// The spectrum of `height` over the top nodes of a periodic patch (module docs).
+fn spectrum_of(mesh: &Mesh<3, 27>, height: impl Fn(usize) -> f64) -> Vec<WaveVector> {
     assert!(mesh.is_periodic(), "the spectrum of a periodic patch");
     let [length_x, _, length_z] = *mesh.periods();
     let spec = mesh.patch_spec();
@@ -34,7 +45,7 @@ pub fn surface_spectrum(mesh: &Mesh<3, 27>, u: &[f64]) -> Vec<WaveVector> {
     let top = mesh.node_set(crate::mesh::TOP);
     let samples: Vec<([f64; 3], f64)> = top
         .iter()
-        .map(|&node| (mesh.coordinates()[node], u[mesh.dofs().dof(node, Y)]))
+        .map(|&node| (mesh.coordinates()[node], height(node)))
         .collect();
     let mut waves = Vec::new();
     for m in 0..m_max {
@@ -58,6 +69,88 @@ pub fn surface_spectrum(mesh: &Mesh<3, 27>, u: &[f64]) -> Vec<WaveVector> {
     }
     waves.sort_by(|a, b| b.amplitude.total_cmp(&a.amplitude));
     waves
+}
+
+/// What a surface's spectrum shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SurfacePattern {
+    /// No wave above [`FLAT_AMPLITUDE`].
+    Flat,
+    /// One direction of wave vectors (a wave and its harmonics) holds the surface.
+    Stripes,
+    /// Two directions hold it, the weaker with at least [`SECOND_DIRECTION`] of the surface's
+    /// spectral energy: the superposed waves of a checkerboard (rhombic where the two are not
+    /// perpendicular).
+    Checkerboard,
+    /// More directions, or two of which one is weak: a modulated pattern (herringbone,
+    /// labyrinth and their kin).
+    Mixed,
+}
+
+/// A wave amplitude below which the surface is flat (units of the layer thickness).
+pub const FLAT_AMPLITUDE: f64 = 1e-3;
+
+/// The share of the spectral energy that the directions of a pattern hold together.
+pub const PATTERN_SHARE: f64 = 0.95;
+
+/// The smallest share of the spectral energy of the second direction of a checkerboard.
+pub const SECOND_DIRECTION: f64 = 0.2;
+
+/// A direction of wave vectors and the share of the surface's spectral energy its waves hold.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Direction {
+    /// The direction's leading wave.
+    pub wave: WaveVector,
+    /// The share of `sum amplitude^2` held by the waves along it (the leading one and its
+    /// harmonics).
+    pub share: f64,
+}
+
+/// The pattern of a surface from its spectrum `waves` (by decreasing amplitude): its directions
+/// of wave vectors by decreasing share, those with at least 1 % of the energy, and what they
+/// make.
+pub fn classify(waves: &[WaveVector]) -> (SurfacePattern, Vec<Direction>) {
+    if waves.first().is_none_or(|w| w.amplitude < FLAT_AMPLITUDE) {
+        return (SurfacePattern::Flat, Vec::new());
+    }
+    let total: f64 = waves.iter().map(|w| w.amplitude * w.amplitude).sum();
+    let mut directions: Vec<((i64, i64), Direction)> = Vec::new();
+    for wave in waves {
+        let key = direction_of(wave.m, wave.n);
+        let energy = wave.amplitude * wave.amplitude / total;
+        match directions.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, direction)) => direction.share += energy,
+            None => directions.push((
+                key,
+                Direction {
+                    wave: *wave,
+                    share: energy,
+                },
+            )),
+        }
+    }
+    let mut directions: Vec<Direction> = directions.into_iter().map(|(_, d)| d).collect();
+    directions.sort_by(|a, b| b.share.total_cmp(&a.share));
+    directions.retain(|d| d.share >= 0.01);
+    let share = |n: usize| directions.iter().take(n).map(|d| d.share).sum::<f64>();
+    let pattern = if share(1) >= PATTERN_SHARE {
+        SurfacePattern::Stripes
+    } else if share(2) >= PATTERN_SHARE && directions[1].share >= SECOND_DIRECTION {
+        SurfacePattern::Checkerboard
+    } else {
+        SurfacePattern::Mixed
+    };
+    (pattern, directions)
+}
+
+/// The direction of the wave vector `(m, n)`: `(m, n)` over their greatest common divisor.
+fn direction_of(m: i64, n: i64) -> (i64, i64) {
+    let (mut a, mut b) = (m.abs(), n.abs());
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    (m / a, n / a)
 }
 
 #[cfg(test)]
@@ -94,5 +187,32 @@ mod tests {
         assert!(waves[2].amplitude < 1e-12);
         let theta = (-2.0f64 / 6.0).atan2(1.0 / 8.0).rem_euclid(PI).to_degrees();
         assert!((waves[0].theta_degrees - theta).abs() < 1e-9);
+        // Two directions, the second with 0.1^2 / (0.3^2 + 0.1^2) = 10 % of the energy.
+        let (pattern, directions) = classify(&waves);
+        assert_eq!(pattern, SurfacePattern::Mixed);
+        assert!((directions[1].share - 0.1).abs() < 1e-12, "{directions:?}");
+    }
+
+    fn wave(m: i64, n: i64, amplitude: f64) -> WaveVector {
+        WaveVector {
+            m,
+            n,
+            k: 0.0,
+            theta_degrees: 0.0,
+            amplitude,
+        }
+    }
+
+    #[test]
+    fn harmonics_belong_to_their_waves_direction() {
+        let stripes = [wave(1, 1, 0.3), wave(2, 2, 0.05), wave(3, 3, 0.01)];
+        assert_eq!(classify(&stripes).0, SurfacePattern::Stripes);
+        let checkerboard = [wave(1, 1, 0.2), wave(1, -1, 0.2), wave(2, 0, 0.02)];
+        let (pattern, directions) = classify(&checkerboard);
+        assert_eq!(pattern, SurfacePattern::Checkerboard);
+        assert_eq!(directions.len(), 2, "the harmonic (2, 0) holds under 1 %");
+        let labyrinth = [wave(1, 0, 0.2), wave(0, 1, 0.2), wave(1, 1, 0.15), wave(1, -1, 0.15)];
+        assert_eq!(classify(&labyrinth).0, SurfacePattern::Mixed);
+        assert_eq!(classify(&[wave(1, 0, 1e-4)]).0, SurfacePattern::Flat);
     }
 }

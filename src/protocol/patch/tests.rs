@@ -33,7 +33,7 @@ fn the_homogeneous_biaxial_state_is_an_equilibrium_of_the_patch() {
         let mut path = PatchPath::new(&materials, patch(sides, 2), 0.5).unwrap();
         let (state, bc, u) = path.homogeneous(0.12).unwrap();
         assert!(state.lambda2_layer > 1.0 && state.lambda2_substrate > 1.0);
-        let assembled = path.system.assemble(&u, &bc, None, true).unwrap();
+        let assembled = path.patch.system_mut().assemble(&u, &bc, None, true).unwrap();
         let relative = relative_residual(&assembled, &u);
         assert!(relative < 1e-13, "{sides:?} {psi}: relative residual {relative:e}");
         // Not a trivial zero: the same state a little off is far from equilibrium.
@@ -42,7 +42,7 @@ fn the_homogeneous_biaxial_state_is_an_equilibrium_of_the_patch() {
             .enumerate()
             .map(|(i, v)| v * (1.0 + 1e-3 * (i % 7) as f64))
             .collect();
-        let assembled = path.system.assemble(&off, &bc, None, true).unwrap();
+        let assembled = path.patch.system_mut().assemble(&off, &bc, None, true).unwrap();
         assert!(relative_residual(&assembled, &off) > 1e-6, "{sides:?} {psi}");
     }
 }
@@ -128,7 +128,7 @@ fn a_periodic_patch_bifurcates_at_the_exact_theorys_onset_over_its_wave_vectors(
     let errors: Vec<f64> = [3, 6]
         .into_iter()
         .map(|n| {
-            let path = PatchPath::new(&materials, square_patch(length, n), 1.0).unwrap();
+            let mut path = PatchPath::new(&materials, square_patch(length, n), 1.0).unwrap();
             let mesh = path.system().mesh().clone();
             let b = path.bifurcation(&settings, &mut |_, _| {}).unwrap();
             assert_eq!(b.negative_pivots, 4, "n = {n}: {b:?}");
@@ -266,7 +266,7 @@ fn measure_biots_equibiaxial_strain() {
             tolerance: 1e-6,
             ..BifurcationSettings::default()
         };
-        let path = PatchPath::new(&materials, spec, 1.0).unwrap();
+        let mut path = PatchPath::new(&materials, spec, 1.0).unwrap();
         let mesh = path.system().mesh().clone();
         let b = path.bifurcation(&settings, &mut |_, _| {}).unwrap();
         let waves = super::surface_spectrum(&mesh, &b.mode);
@@ -277,4 +277,59 @@ fn measure_biots_equibiaxial_strain() {
             waves.iter().take(2).map(|w| (w.m, w.n)).collect::<Vec<_>>()
         );
     }
+}
+
+/// Past its bifurcation, a slab one hexahedron thick with `u_Z = 0` follows the strip's path:
+/// the same imperfection, protocol and steps give the same wrinkle amplitude `A(d)` on the
+/// hexahedra as on the quadrilaterals, to the solver's tolerance, from before the onset to
+/// well past it.
+#[test]
+fn a_slab_in_plane_strain_follows_the_strips_post_buckling_path() {
+    use crate::protocol::stages::{run, Protocol};
+    use crate::protocol::Event;
+    use std::f64::consts::PI;
+    let p = Parameters {
+        beta: std::f64::consts::FRAC_PI_4,
+        ..Parameters::default()
+    };
+    let materials = Bilayer::new(&p);
+    let (k, amplitude, d_max) = (2.0 * PI / 8.0, 0.01, 0.16);
+    let strip = MeshSpec::new(4, 1, 4, 1.0, 8.0, 10.0).with_element(ElementKind::Displacement);
+    let mut plane = Vec::new();
+    let outcome = run(&materials, strip, &Protocol::new(k, amplitude, d_max), &mut |event| {
+        if let Event::Step { record, .. } = event {
+            plane.push((record.d, record.amplitude));
+        }
+        Ok(())
+    })
+    .unwrap();
+    assert!(outcome.stopped.is_none());
+    let slab = PatchPath::new(&materials, patch(Sides::Symmetry, 1), 0.0)
+        .unwrap()
+        .in_plane_strain();
+    let imperfection = PatchImperfection {
+        amplitude,
+        waves: vec![[k, 0.0]],
+        depth: 10.0,
+    };
+    let mut solid = Vec::new();
+    let (_, stopped) = slab
+        .follow(&imperfection, &PatchProtocol::new(0.005, d_max), &mut |event| {
+            if let Event::Step { record, .. } = event {
+                solid.push((record.d, record.amplitude));
+            }
+            Ok(())
+        })
+        .unwrap();
+    assert!(stopped.is_none(), "{stopped:?}");
+    assert_eq!(plane.len(), solid.len(), "{plane:?}\n{solid:?}");
+    for ((d, a), (d3, a3)) in plane.iter().zip(&solid) {
+        assert!((d - d3).abs() < 1e-12, "d {d} vs {d3}");
+        assert!(
+            (a - a3).abs() <= 1e-9 * a,
+            "d = {d}: A {a} on the strip, {a3} on the slab"
+        );
+    }
+    let &(_, last) = plane.last().unwrap();
+    assert!(last > 20.0 * amplitude, "past the onset the wrinkle grew: A = {last}");
 }

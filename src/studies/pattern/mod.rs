@@ -226,7 +226,7 @@ pub fn run(
     })?;
     modes.truncate(LISTED_WAVE_VECTORS);
     let materials = crate::material::Bilayer::new(params);
-    let path = PatchPath::new(&materials, spec, study.biaxial)?;
+    let mut path = PatchPath::new(&materials, spec, study.biaxial)?;
     let mesh = path.system().mesh().clone();
     progress(Progress::Patch {
         spec: &spec,

@@ -10,9 +10,11 @@
 //! Newton's tolerance with it, since the residual's round-off grows in proportion.
 
 use crate::error::Error;
+use crate::fem::element::Registry;
 use crate::fem::equilibrium::{Check, Update};
 use crate::fem::newton::{NewtonError, Updates};
 use crate::fem::System;
+use crate::mesh::ElementKind;
 
 /// Largest violation `|M^-1 g - lambda / K|` accepted (the element-mean `ln J` and its
 /// gradient under the constraint `K = inf`; [`super`]).
@@ -62,7 +64,10 @@ impl Default for PressureUpdate {
     }
 }
 
-impl Update for PressureUpdate {
+impl<const D: usize, const N: usize, const Q: usize, const U: usize> Update<System<D, N, Q, U>> for PressureUpdate
+where
+    ElementKind: Registry<D, N, Q, U>,
+{
     fn max_updates(&self) -> usize {
         MULTIPLIER_UPDATES
     }
@@ -70,7 +75,7 @@ impl Update for PressureUpdate {
     /// Accepted without multipliers, or once the violation is within tolerance; otherwise the
     /// multipliers take the relaxed step towards the pressures (or, if the last update did not
     /// halve the violation, the penalty is raised tenfold and the relaxation restarts).
-    fn update(&mut self, system: &System, u: &mut [f64]) -> Result<Check, NewtonError> {
+    fn update(&mut self, system: &System<D, N, Q, U>, u: &mut [f64]) -> Result<Check, NewtonError> {
         let Some((violation, change)) = system.multiplier_step(u, self.penalty_scale)? else {
             return Ok(Check::Accepted);
         };

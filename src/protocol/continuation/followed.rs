@@ -1,0 +1,185 @@
+//! What a continuation in `d` needs of the system it follows ([`Followed`]): to be put at a load,
+//! its equilibrium corrected from a predictor (by Newton's iteration or by minimising the
+//! energy), and its energy. The bilayer strip follows with contact and stabilisation
+//! ([`Augmentation`]); the three-dimensional patch ([`crate::protocol::patch::BiaxialPatch`]) without.
+
+use crate::error::Result;
+use crate::fem::added::NoAddedEnergy;
+use crate::fem::contact::Contact;
+use crate::fem::equilibrium;
+use crate::fem::{Dirichlet, Newton, NewtonPolicy, NewtonReport, System};
+use crate::protocol::augmentation::{Augmentation, AugmentedRecord};
+use crate::protocol::surface::amplitude;
+use crate::protocol::Loading;
+
+/// A system that a continuation in `d` follows.
+pub trait Followed {
+    /// What the path adds to plain equilibrium (contact, stabilisation), if the system has any.
+    type Augmentation: Augmenting;
+
+    /// Puts the system at the load `d` and returns the boundary conditions there.
+    fn load_to(&mut self, d: f64) -> Result<Dirichlet>;
+
+    /// The load the system is at.
+    fn load(&self) -> f64;
+
+    /// The displacement unknowns (the leading entries of a state; multipliers may follow).
+    fn displacement_unknowns(&self) -> usize;
+
+    /// The wrinkle amplitude `A = (max y - min y) / 2` of the top surface of the state `u`.
+    fn amplitude(&self, u: &[f64]) -> f64;
+
+    /// Equilibrium at `d` (prescribed by `bc`) from the predictor `u`, stepping from the
+    /// converged `from` with the step control at `control_step`, with the augmentation if
+    /// there is one; on failure `u` is the predictor again.
+    #[allow(clippy::too_many_arguments)]
+    fn correct(
+        &mut self,
+        newton: &mut Newton,
+        policy: &NewtonPolicy,
+        u: &mut [f64],
+        bc: &Dirichlet,
+        augmentation: Option<&mut Self::Augmentation>,
+        from: (f64, &[f64]),
+        to: (f64, f64),
+    ) -> Result<(NewtonReport, Option<AugmentedRecord>)>;
+
+    /// A local minimum of the energy at `d` (prescribed by `bc`) from `u`, with the
+    /// augmentation's contact if there is one.
+    fn minimise(
+        &mut self,
+        newton: &mut Newton,
+        policy: &NewtonPolicy,
+        u: &mut [f64],
+        at: (&Dirichlet, f64),
+        augmentation: Option<&mut Self::Augmentation>,
+    ) -> Result<(NewtonReport, Option<AugmentedRecord>)>;
+
+    /// The total energy at `u` with `bc` prescribed: the strain energy plus the augmentation's
+    /// contact terms.
+    fn energy(&mut self, u: &[f64], bc: &Dirichlet, augmentation: Option<&Self::Augmentation>) -> Result<f64>;
+}
+
+/// What a continuation asks of its augmentation besides the solves.
+pub trait Augmenting {
+    /// What [`Augmenting::save`] keeps: the state a discarded trial restores.
+    type Saved;
+    /// The inertia counted in the background for the last accepted state.
+    fn next_inertia(&mut self) -> Option<usize>;
+    /// Frees the factorisations it holds.
+    fn release_factorisation(&mut self);
+    /// The state a trial may change.
+    fn save(&self) -> Self::Saved;
+    /// Back to a saved state.
+    fn restore(&mut self, saved: Self::Saved);
+}
+
+impl Augmenting for Augmentation {
+    type Saved = Option<Contact>;
+
+    fn next_inertia(&mut self) -> Option<usize> {
+        Augmentation::next_inertia(self)
+    }
+
+    fn release_factorisation(&mut self) {
+        Augmentation::release_factorisation(self)
+    }
+
+    fn save(&self) -> Option<Contact> {
+        self.contact.clone()
+    }
+
+    fn restore(&mut self, saved: Option<Contact>) {
+        self.contact = saved;
+    }
+}
+
+/// No augmentation: a system followed by plain equilibrium. It has no value, so a path of such
+/// a system never holds one.
+pub enum NoAugmentation {}
+
+impl Augmenting for NoAugmentation {
+    type Saved = ();
+
+    fn next_inertia(&mut self) -> Option<usize> {
+        match *self {}
+    }
+
+    fn release_factorisation(&mut self) {
+        match *self {}
+    }
+
+    fn save(&self) {
+        match *self {}
+    }
+
+    fn restore(&mut self, _: ()) {
+        match *self {}
+    }
+}
+
+impl Followed for System {
+    type Augmentation = Augmentation;
+
+    fn load_to(&mut self, d: f64) -> Result<Dirichlet> {
+        Loading::load_to(self, d)
+    }
+
+    fn load(&self) -> f64 {
+        System::load(self)
+    }
+
+    fn displacement_unknowns(&self) -> usize {
+        self.mesh().num_dofs()
+    }
+
+    fn amplitude(&self, u: &[f64]) -> f64 {
+        amplitude(self.mesh(), u)
+    }
+
+    fn correct(
+        &mut self,
+        newton: &mut Newton,
+        policy: &NewtonPolicy,
+        u: &mut [f64],
+        bc: &Dirichlet,
+        augmentation: Option<&mut Augmentation>,
+        from: (f64, &[f64]),
+        to: (f64, f64),
+    ) -> Result<(NewtonReport, Option<AugmentedRecord>)> {
+        match augmentation {
+            Some(augmentation) => {
+                let (report, record) = augmentation.solve(newton, policy, self, u, bc, from, to)?;
+                Ok((report, Some(record)))
+            }
+            None => Ok((equilibrium::solve(newton, self, u, bc, policy)?, None)),
+        }
+    }
+
+    fn minimise(
+        &mut self,
+        newton: &mut Newton,
+        policy: &NewtonPolicy,
+        u: &mut [f64],
+        (bc, d): (&Dirichlet, f64),
+        augmentation: Option<&mut Augmentation>,
+    ) -> Result<(NewtonReport, Option<AugmentedRecord>)> {
+        match augmentation {
+            Some(augmentation) => {
+                let (report, record) = augmentation.minimise(newton, policy, self, u, (bc, d))?;
+                Ok((report, Some(record)))
+            }
+            None => {
+                let report = equilibrium::minimise(newton, (self, u, bc), None, &NoAddedEnergy, policy)?;
+                Ok((report, None))
+            }
+        }
+    }
+
+    fn energy(&mut self, u: &[f64], bc: &Dirichlet, augmentation: Option<&Augmentation>) -> Result<f64> {
+        match augmentation {
+            Some(augmentation) => augmentation.energy(self, u, bc),
+            None => Ok(self.assemble(u, bc, None, false)?.energy),
+        }
+    }
+}
