@@ -15,6 +15,8 @@ fn a_coarse_patch_writes_its_summary_tables_figure_and_vtu() {
         "psi=0.5235988",
         "--elements-per-wavelength",
         "3",
+        "--follow-to",
+        "0.13",
         "--out",
         out.to_str().unwrap(),
     ]);
@@ -45,6 +47,26 @@ fn a_coarse_patch_writes_its_summary_tables_figure_and_vtu() {
     let vtu = std::fs::read_to_string(out.join("mode.vtu")).unwrap();
     assert!(vtu.contains("<VTKFile type=\"UnstructuredGrid\"") && vtu.contains("Name=\"mode\""));
     assert!(std::fs::metadata(out.join("mode_top.png")).unwrap().len() > 1000);
+    // The path past the onset, seeded with the one critical wave: stripes along the fibres'
+    // projection, growing from the imperfection (0.01) to many times it.
+    let text = std::fs::read_to_string(out.join("pattern.csv")).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let column = |name: &str| header.iter().position(|c| *c == name).unwrap();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert!(rows.len() >= 20, "{text}");
+    let last = rows.last().unwrap();
+    assert_eq!(last[column("d")], "0.13", "{text}");
+    assert_eq!(last[column("pattern")], "stripes", "{text}");
+    let theta: f64 = last[column("theta1_degrees")].parse().unwrap();
+    assert!((theta - 120.0).abs() < 0.5, "{theta}");
+    let amplitude: f64 = last[column("A")].parse().unwrap();
+    assert!(amplitude > 0.3, "{text}");
+    assert_eq!(report["path"]["stopped"], serde_json::Value::Null, "{report}");
+    assert_eq!(report["path"]["last"]["pattern"], "stripes", "{report}");
+    let vtu = std::fs::read_to_string(out.join("state.vtu")).unwrap();
+    assert!(vtu.contains("Name=\"displacement\""));
+    assert!(std::fs::metadata(out.join("state_top.png")).unwrap().len() > 1000);
 }
 
 #[test]
@@ -57,6 +79,10 @@ fn bad_input_is_refused_with_exit_code_2_naming_the_flag() {
         (&["--d-max", "2"][..], "`d-max`"),
         (&["--sides", "symmetry", "--set", "psi=0.3"][..], "`sides`"),
         (&["--load", "growth"][..], "`load`"),
+        (&["--follow-to", "0.99"][..], "`follow-to`"),
+        (&["--follow-to", "0.2", "--imperfection", "0"][..], "`imperfection`"),
+        (&["--follow-to", "0.2", "--d-start", "0.3"][..], "`d-start`"),
+        (&["--follow-to", "0.2", "--sides", "symmetry"][..], "`sides`"),
     ] {
         let out = scratch("pattern-bad");
         let output = fiberfold(&[&["pattern"][..], args, &["--out", out.to_str().unwrap()]].concat());
@@ -67,4 +93,55 @@ fn bad_input_is_refused_with_exit_code_2_naming_the_flag() {
             "{args:?}: {stderr}"
         );
     }
+}
+
+/// Fibres in the surface under equibiaxial compression: the two critical waves of a mirror pair
+/// are seeded (the second at half the first's amplitude). Their superposition, a rhombic
+/// checkerboard, turns unstable past the onset; the path leaves it for a stable state at the
+/// same `d`, releasing energy, and goes on from there.
+#[test]
+fn a_checkerboard_that_turns_unstable_is_left_for_a_stable_pattern() {
+    let out = scratch("pattern-left");
+    let output = fiberfold(&[
+        "pattern",
+        "--set",
+        "beta=0",
+        "--elements-per-wavelength",
+        "4",
+        "--substrate-elements",
+        "8",
+        "--follow-to",
+        "0.12",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        output.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("pattern.json")).unwrap()).unwrap();
+    let path = &report["path"];
+    assert_eq!(path["seeded"].as_array().unwrap().len(), 2, "{path}");
+    assert_eq!(path["stopped"], serde_json::Value::Null, "{path}");
+    let left = path["branches_left"].as_array().unwrap();
+    assert!(!left.is_empty(), "{path}");
+    let (d_left, released) = (left[0][0].as_f64().unwrap(), left[0][1].as_f64().unwrap());
+    assert!(
+        d_left > report["d_bifurcation"].as_f64().unwrap() && released > 0.0,
+        "{path}"
+    );
+    let text = std::fs::read_to_string(out.join("pattern.csv")).unwrap();
+    let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+    let column = |name: &str| header.iter().position(|c| *c == name).unwrap();
+    let rows: Vec<Vec<&str>> = text.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    let at = rows.iter().position(|r| r[column("left_unstable")] == "1").unwrap();
+    // The state left had a negative pivot; the one reached at the same d has none.
+    assert_eq!(rows[at - 1][column("d")], rows[at][column("d")], "{text}");
+    assert_ne!(rows[at - 1][column("negative_pivots")], "0", "{text}");
+    assert_eq!(rows[at][column("negative_pivots")], "0", "{text}");
+    assert_eq!(rows[at - 1][column("pattern")], "checkerboard", "{text}");
+    assert_eq!(rows.last().unwrap()[column("d")], "0.12", "{text}");
 }

@@ -338,7 +338,8 @@ fn bifurcation_run(
 /// A patch of tissue in three dimensions (`fiberfold pattern`), written into `out`; returns
 /// `pattern.json` as JSON text.
 #[pyfunction]
-#[pyo3(signature = (params, out, biaxial=1.0, periods=1, elements_per_wavelength=6))]
+#[pyo3(signature = (params, out, biaxial=1.0, periods=1, elements_per_wavelength=6, follow_to=None, imperfection=0.01))]
+#[allow(clippy::too_many_arguments)]
 fn pattern_run(
     py: Python<'_>,
     params: &PyParameters,
@@ -346,12 +347,19 @@ fn pattern_run(
     biaxial: f64,
     periods: usize,
     elements_per_wavelength: usize,
+    follow_to: Option<f64>,
+    imperfection: f64,
 ) -> PyResult<String> {
-    use fiberfold::studies::pattern::{run, PatternStudy};
+    use fiberfold::studies::pattern::{run, PathStudy, PatternStudy};
     let study = PatternStudy {
         biaxial,
         periods,
         elements_per_wavelength,
+        path: follow_to.map(|d_end| PathStudy {
+            imperfection,
+            d_end,
+            ..PathStudy::default()
+        }),
         ..PatternStudy::default()
     };
     let p = params.inner.clone();

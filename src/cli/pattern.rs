@@ -5,7 +5,7 @@ use super::common::{report_files, ParamArgs};
 use clap::Args;
 use fiberfold::mesh::{ElementKind, Sides};
 use fiberfold::protocol::BifurcationSettings;
-use fiberfold::studies::pattern::{self, PatternStudy, Progress};
+use fiberfold::studies::pattern::{self, PathStudy, PatternStudy, Progress};
 use fiberfold::{Error, Result};
 use std::path::PathBuf;
 use std::time::Instant;
@@ -62,6 +62,27 @@ pub struct PatternArgs {
     #[arg(long, default_value_t = 1e-6)]
     pub tolerance: f64,
 
+    /// Follow the path past the onset to this d, in (d-start, 0.95) (periodic sides only): the
+    /// patch seeded with every wave vector critical at the onset, one row of pattern.csv per
+    /// state. Not followed if absent.
+    #[arg(long, value_name = "D")]
+    pub follow_to: Option<f64>,
+
+    /// Amplitude A_init of the first seeded wave of the path's imperfection, in layer
+    /// thicknesses H, in (0, 1).
+    #[arg(long, default_value_t = PathStudy::default().imperfection)]
+    pub imperfection: f64,
+
+    /// Amplitude of every further critical wave seeded, relative to the first's, in [0, 1]: 1
+    /// seeds their equal superposition (a checkerboard, which the path then keeps by symmetry
+    /// even where the tissue would leave it), less lets the path choose.
+    #[arg(long, default_value_t = PathStudy::default().seed_ratio)]
+    pub seed_ratio: f64,
+
+    /// Where the followed path starts, in (0, --follow-to).
+    #[arg(long, default_value_t = PathStudy::default().d_start)]
+    pub d_start: f64,
+
     /// Output folder.
     #[arg(long, value_name = "DIR", default_value = "results/pattern")]
     pub out: PathBuf,
@@ -90,6 +111,12 @@ pub fn run(args: &PatternArgs) -> Result<()> {
             tolerance: args.tolerance,
             ..PatternStudy::default().settings
         },
+        path: args.follow_to.map(|d_end| PathStudy {
+            imperfection: args.imperfection,
+            seed_ratio: args.seed_ratio,
+            d_start: args.d_start,
+            d_end,
+        }),
     };
     println!(
         "pattern: a patch of tissue under d_3 = {} d, sized by the exact 3D theory; its first bifurcation from the inertia of the tangent along the homogeneous path",
@@ -128,6 +155,31 @@ pub fn run(args: &PatternArgs) -> Result<()> {
                 start.elapsed().as_secs_f64()
             )
         }
+        Progress::State(state) => {
+            let leading = state.directions.first().map_or(String::new(), |direction| {
+                format!(
+                    ", leading wave (m, n) = ({}, {}) at {:.1} deg with {:.0} % of the relief",
+                    direction.wave.m,
+                    direction.wave.n,
+                    direction.wave.theta_degrees,
+                    100.0 * direction.share
+                )
+            });
+            println!(
+                "  path d = {:.4}{}: A = {:.4}, {}{}, {} negative pivot(s) ({:.1} s)",
+                state.d,
+                if state.left_unstable {
+                    " (left the unstable state)"
+                } else {
+                    ""
+                },
+                state.amplitude,
+                fiberfold::output::table::variant_name(&state.pattern),
+                leading,
+                state.negative_pivots.map_or("?".into(), |n| n.to_string()),
+                start.elapsed().as_secs_f64()
+            )
+        }
     })?;
     println!(
         "d_bifurcation = {:.7} (bracket [{:.7}, {:.7}], {} negative pivot(s) past it); the theory's smallest d_c over the patch's wave vectors {:.7}: relative difference {:+.3e}",
@@ -140,6 +192,25 @@ pub fn run(args: &PatternArgs) -> Result<()> {
                 "  (m, n) = ({:2}, {:2}): |k| = {:.5}, theta = {:6.2} deg, amplitude {:.4}",
                 w.m, w.n, w.k, w.theta_degrees, w.amplitude
             );
+        }
+    }
+    if let Some(path) = &r.path {
+        println!(
+            "path: {} states from d = {} to {:.4}; the pattern {}",
+            path.states,
+            path.d_start,
+            path.d_reached,
+            path.changes
+                .iter()
+                .map(|(d, p)| format!("{} from d = {d:.4}", fiberfold::output::table::variant_name(p)))
+                .collect::<Vec<_>>()
+                .join(", then ")
+        );
+        for (d, released) in &path.branches_left {
+            println!("  at d = {d:.4} the path turned unstable and was left for a stable state (energy released {released:.3e})");
+        }
+        if let Some(why) = &path.stopped {
+            println!("the path stopped early: {why}");
         }
     }
     println!("{} inertia evaluations, {:.1} s", r.inertia_evaluations, r.wall_seconds);

@@ -139,6 +139,9 @@ pub struct Continuation<S: Followed = System> {
     measures: Vec<Box<dyn Measure<S>>>,
     /// What is known of the last accepted state.
     last: LastState,
+    /// Whether the path halts at the first accepted state that is unstable
+    /// ([`Continuation::halting_where_unstable`]).
+    halt_where_unstable: bool,
 }
 
 /// Whether the last accepted state is stable (its inertia counted, none negative) and in
@@ -147,6 +150,8 @@ pub struct Continuation<S: Followed = System> {
 #[derive(Clone, Copy, Debug, Default)]
 struct LastState {
     stable: bool,
+    /// Its inertia is counted, with a negative pivot.
+    unstable: bool,
     in_contact: bool,
 }
 
@@ -203,6 +208,7 @@ impl<S: Followed> Continuation<S> {
             pending: None,
             measures: Vec::new(),
             last: LastState::default(),
+            halt_where_unstable: false,
         })
     }
 
@@ -229,6 +235,21 @@ impl<S: Followed> Continuation<S> {
         self.snaps = Some(snaps);
         self.policy.inertia_at_solution = true;
         self
+    }
+
+    /// The same continuation halting, before its target, at the first accepted state whose
+    /// tangent has a negative eigenvalue ([`Continuation::is_unstable`]): a branch the
+    /// structure would leave, which it may then do ([`Continuation::leave_unstable_state`]).
+    /// The inertia of every state is counted.
+    pub fn halting_where_unstable(mut self) -> Self {
+        self.halt_where_unstable = true;
+        self.policy.inertia_at_solution = true;
+        self
+    }
+
+    /// Whether the current state is known to be unstable (a negative eigenvalue of its tangent).
+    pub fn is_unstable(&self) -> bool {
+        self.last.unstable
     }
 
     /// The same continuation predicting its first step along `du/dd = slope` (all unknowns),
@@ -275,6 +296,13 @@ impl<S: Followed> Continuation<S> {
         &self.system
     }
 
+    /// The system at the current state's load, for post-processing of that state (an
+    /// assembly, a factorisation); the path goes on from the current state whatever is done
+    /// with it.
+    pub fn system_mut(&mut self) -> &mut S {
+        &mut self.system
+    }
+
     /// The system and the current converged displacement, for post-processing.
     pub fn into_state(self) -> (S, Vec<f64>) {
         let (_, u) = self.history.into_iter().next_back().expect("never empty");
@@ -293,7 +321,7 @@ impl<S: Followed> Continuation<S> {
 
     fn advance(&mut self, target: f64, observer: &mut dyn FnMut(Event<'_, S>) -> Result<()>) -> Result<()> {
         let mut clock = StepClock::start();
-        while target - self.d() > 1e-12 {
+        while target - self.d() > 1e-12 && !(self.halt_where_unstable && self.last.unstable) {
             let step = self.step.min(target - self.d());
             let d = self.d() + step;
             let attempt_started = Instant::now();
@@ -364,6 +392,7 @@ impl<S: Followed> Continuation<S> {
         let pending = augmented.as_ref().is_some_and(|a| a.inertia_pending);
         self.last = LastState {
             stable: report.negative_pivots == Some(0),
+            unstable: report.negative_pivots.is_some_and(|n| n > 0),
             in_contact: augmented.as_ref().is_some_and(|a| a.in_contact),
         };
         record.augmented = augmented;
@@ -438,6 +467,7 @@ impl<S: Followed> Continuation<S> {
         let waited = std::time::Instant::now();
         record.negative_pivots = augmentation.next_inertia();
         self.last.stable = record.negative_pivots == Some(0);
+        self.last.unstable = record.negative_pivots.is_some_and(|n| n > 0);
         if let Some(augmented) = &mut record.augmented {
             augmented.inertia_pending = false;
             if within_step {

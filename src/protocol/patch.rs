@@ -105,6 +105,42 @@ fn homogeneous_pressure(tissue: Tissue, stretches: [f64; 3], incompressible: boo
     }
 }
 
+/// The eigenvector of the tangent at the state `u` (with `bc` prescribed) whose eigenvalue is
+/// nearest zero, and that eigenvalue, by `solves` inverse-Lanczos steps: where the state has
+/// just turned unstable, its unstable direction. Scaled as [`full_mode`].
+pub fn nearest_singular_mode(
+    system: &mut PatchSystem,
+    u: &[f64],
+    bc: &Dirichlet,
+    solves: usize,
+) -> Result<(Vec<f64>, f64)> {
+    let assembled = system.assemble_for_stability(u, bc, &NoAddedEnergy)?;
+    let k = assembled.tangent.expect("assembled with the tangent");
+    let mut solver = SparseLdlt::new(k.symbolic());
+    solver.factorize(k.as_ref());
+    let (free_mode, eigenvalue) = inverse_lanczos(&mut solver, k.as_ref(), solves, 1e-12)?;
+    Ok((full_mode(system, bc, &free_mode)?, eigenvalue))
+}
+
+/// A mode on the free unknowns as a vector of all unknowns (zero where prescribed), scaled so
+/// that the largest top-surface `|u_Y|` is 1.
+fn full_mode(system: &mut PatchSystem, bc: &Dirichlet, free_mode: &[f64]) -> Result<Vec<f64>> {
+    let free = system.free_dofs(bc)?.to_vec();
+    let mut mode = vec![0.0; system.num_dofs()];
+    for (&dof, &v) in free.iter().zip(free_mode) {
+        mode[dof] = v;
+    }
+    let mesh = system.mesh();
+    let largest = mesh
+        .node_set(TOP)
+        .iter()
+        .fold(0.0f64, |m, &n| m.max(mode[mesh.dofs().dof(n, Y)].abs()));
+    if largest > 0.0 {
+        mode.iter_mut().for_each(|v| *v /= largest);
+    }
+    Ok(mode)
+}
+
 /// The first bifurcation of a perfect patch.
 #[derive(Clone, Debug, Serialize)]
 pub struct PatchBifurcation {
@@ -229,19 +265,7 @@ impl<'a> PatchPath<'a> {
         let (_, k, bc) = self.factorise(stable)?;
         let solver = self.solver.as_mut().expect("factorised above");
         let (free_mode, eigenvalue) = inverse_lanczos(solver, k.as_ref(), settings.mode_solves, 1e-12)?;
-        let free = self.patch.system_mut().free_dofs(&bc)?.to_vec();
-        let mut mode = vec![0.0; self.patch.system().num_dofs()];
-        for (&dof, &v) in free.iter().zip(&free_mode) {
-            mode[dof] = v;
-        }
-        let mesh = self.patch.system().mesh();
-        let largest = mesh
-            .node_set(TOP)
-            .iter()
-            .fold(0.0f64, |m, &n| m.max(mode[mesh.dofs().dof(n, Y)].abs()));
-        if largest > 0.0 {
-            mode.iter_mut().for_each(|v| *v /= largest);
-        }
+        let mode = full_mode(self.patch.system_mut(), &bc, &free_mode)?;
         Ok(PatchBifurcation {
             d: 0.5 * (stable + unstable),
             bracket: (stable, unstable),

@@ -13,7 +13,7 @@
 //!   with `A` unchanged to 1e-4, each after the step had been cut five or six times down to
 //!   `1e-6`.
 
-use super::{Augmenting, Continuation, Followed, Solved};
+use super::{Augmenting, Continuation, Event, Followed, Solved};
 use crate::error::{Error, Result};
 use crate::fem::newton::largest_move;
 use crate::fem::{Dirichlet, NewtonPolicy, NewtonReport};
@@ -74,6 +74,52 @@ impl<S: Followed> Continuation<S> {
             seconds: started.elapsed().as_secs_f64(),
         };
         Ok(((report, u, augmented), snap))
+    }
+
+    /// Leaves the current state, an unstable equilibrium, for the stable one the structure
+    /// goes to at the same `d`: the energy minimised from the state moved by `perturbation`
+    /// (all unknowns; along an unstable direction of its tangent), reported like a snap, from
+    /// which the path goes on (its predictor restarts there). Fails if the minimum reached is
+    /// not stable.
+    pub fn leave_unstable_state(
+        &mut self,
+        perturbation: &[f64],
+        observer: &mut dyn FnMut(Event<'_, S>) -> Result<()>,
+    ) -> Result<()> {
+        let started = Instant::now();
+        let (d, u0) = self.history.back().expect("never empty").clone();
+        let bc = self.system.load_to(d)?;
+        let energy_before = self.energy(&u0, &bc)?;
+        let mut u: Vec<f64> = u0.iter().zip(perturbation).map(|(a, b)| a + b).collect();
+        bc.impose(&mut u);
+        let energy_start = self.energy(&u, &bc)?;
+        let policy = NewtonPolicy {
+            inertia_at_solution: true,
+            ..self.policy
+        };
+        let (report, augmented) = self.stable_minimum(&mut u, (&bc, d), &policy)?;
+        let energy_after = self.energy(&u, &bc)?;
+        let snap = SnapRecord {
+            d,
+            d_before: d,
+            amplitude_before: self.system.amplitude(&u0),
+            energy_before,
+            energy_start,
+            amplitude_after: self.system.amplitude(&u),
+            energy_after,
+            energy_released: energy_before - energy_after,
+            negative_pivots_after: report.negative_pivots,
+            steps: report.iterations,
+            factorisations: report.timings.factorisations,
+            seconds: started.elapsed().as_secs_f64(),
+        };
+        let clock = super::StepClock::start();
+        self.accept(
+            (d, 0.0),
+            ((report, u, augmented), super::Reached::Snap(snap)),
+            &clock,
+            observer,
+        )
     }
 
     /// The step to `d` whose Newton correction failed, corrected by minimising the energy

@@ -4,8 +4,14 @@
 //! state, and the path is followed in `d` to `d_max` by the continuation
 //! ([`crate::protocol::Continuation`], adaptive steps, extrapolating predictor), each accepted
 //! state reported with its wrinkle amplitude and the inertia of its tangent.
+//!
+//! Where the followed branch turns unstable (a negative eigenvalue of the tangent: the
+//! superposed waves of a checkerboard, say, giving way to another pattern), the structure leaves
+//! it: the energy is minimised at that `d` from the unstable state moved a little along its
+//! unstable direction ([`Continuation::leave_unstable_state`]), and the path goes on from the
+//! stable state reached.
 
-use super::{homogeneous_patch_unknowns, BiaxialPatch, PatchPath};
+use super::{homogeneous_patch_unknowns, nearest_singular_mode, BiaxialPatch, PatchPath};
 use crate::error::{Error, Result};
 use crate::fem::{Newton, NewtonPolicy, PatchSystem};
 use crate::homogeneous::biaxial_state;
@@ -15,16 +21,14 @@ use crate::protocol::measures::{Measure, SurfaceAmplitude};
 use crate::protocol::record::StepRecord;
 use crate::protocol::stages::simulation_newton;
 
-/// The reference-geometry imperfection `Delta Y = A_init sum_j cos(k_j . X) s_j(Y)` of a
-/// patch: one cosine of amplitude `A_init` per seeded wave vector `k_j = (k_x, k_z)`, each
-/// decaying into the substrate as the strip's ([`Imperfection::shape`] at `|k_j|`). Nodes move
-/// vertically only.
+/// The reference-geometry imperfection `Delta Y = sum_j A_j cos(k_j . X) s_j(Y)` of a patch:
+/// one cosine of amplitude `A_j` per seeded wave vector `k_j = (k_x, k_z)`, each decaying into
+/// the substrate as the strip's ([`Imperfection::shape`] at `|k_j|`). Nodes move vertically
+/// only.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PatchImperfection {
-    /// `A_init`, the amplitude of each seeded wave.
-    pub amplitude: f64,
-    /// The seeded wave vectors `(k_x, k_z)`.
-    pub waves: Vec<[f64; 2]>,
+    /// The seeded waves: `(k_x, k_z)` and the amplitude `A_j`.
+    pub waves: Vec<([f64; 2], f64)>,
     /// Substrate depth `D`.
     pub depth: f64,
 }
@@ -35,13 +39,13 @@ impl PatchImperfection {
         let height = self
             .waves
             .iter()
-            .map(|&[kx, kz]| {
+            .map(|&([kx, kz], amplitude)| {
                 let shape = Imperfection {
-                    amplitude: self.amplitude,
+                    amplitude,
                     k: kx.hypot(kz),
                     depth: self.depth,
                 };
-                self.amplitude * (kx * x + kz * z).cos() * shape.shape(y)
+                amplitude * (kx * x + kz * z).cos() * shape.shape(y)
             })
             .sum();
         [0.0, height, 0.0]
@@ -75,6 +79,36 @@ impl PatchProtocol {
             },
         }
     }
+}
+
+/// Most unstable branches a path leaves.
+const MAX_BRANCHES_LEFT: usize = 8;
+
+/// Inverse-Lanczos steps for an unstable direction.
+const MODE_SOLVES: usize = 60;
+
+/// The size of the move off an unstable state, relative to its wrinkle amplitude (at least
+/// [`SMALLEST_MOVE`]): large enough for the minimisation to leave the saddle, small against the
+/// pattern.
+const MOVE_OFF: f64 = 0.1;
+
+/// The smallest move off an unstable state, in layer thicknesses.
+const SMALLEST_MOVE: f64 = 1e-3;
+
+/// A move of the current (unstable) state along the unstable direction of its tangent, whose
+/// largest nodal displacement is [`MOVE_OFF`] times the state's wrinkle amplitude.
+fn unstable_perturbation(continuation: &mut Continuation<BiaxialPatch>) -> Result<Vec<f64>> {
+    let u = continuation.displacement().to_vec();
+    let d = continuation.d();
+    let patch = continuation.system_mut();
+    let size = (MOVE_OFF * patch.amplitude(&u)).max(SMALLEST_MOVE);
+    let bc = patch.load_to(d)?;
+    let (mode, _) = nearest_singular_mode(patch.system_mut(), &u, &bc, MODE_SOLVES)?;
+    let largest = mode[..patch.displacement_unknowns()]
+        .iter()
+        .fold(0.0f64, |m, v| m.max(v.abs()))
+        .max(f64::MIN_POSITIVE);
+    Ok(mode.into_iter().map(|v| size * v / largest).collect())
 }
 
 /// The amplitude measure of a patch's state.
@@ -139,8 +173,28 @@ impl PatchPath<'_> {
         let measures: Vec<Box<dyn Measure<BiaxialPatch>>> = vec![Box::new(SurfaceAmplitude)];
         let mut continuation = Continuation::new((patch, newton, protocol.newton), protocol.control, d_start, u)?
             .with_first_slope(slope)
-            .with_measures(measures);
-        let stopped = continuation.advance_to(d_max, observer).err();
-        Ok((continuation, stopped))
+            .with_measures(measures)
+            .halting_where_unstable();
+        let mut left = 0;
+        loop {
+            if let Err(stopped) = continuation.advance_to(d_max, observer) {
+                return Ok((continuation, Some(stopped)));
+            }
+            if !continuation.is_unstable() {
+                return Ok((continuation, None));
+            }
+            if left == MAX_BRANCHES_LEFT {
+                let d = continuation.d();
+                let why = format!("the path turned unstable at d = {d:.6} after leaving {left} unstable branches");
+                return Ok((continuation, Some(Error::Solver(why))));
+            }
+            let perturbation = unstable_perturbation(&mut continuation)?;
+            if let Err(e) = continuation.leave_unstable_state(&perturbation, observer) {
+                let d = continuation.d();
+                let why = format!("the unstable state at d = {d:.6} could not be left for a stable one: {e}");
+                return Ok((continuation, Some(Error::Solver(why))));
+            }
+            left += 1;
+        }
     }
 }

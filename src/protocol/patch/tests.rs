@@ -308,8 +308,7 @@ fn a_slab_in_plane_strain_follows_the_strips_post_buckling_path() {
         .unwrap()
         .in_plane_strain();
     let imperfection = PatchImperfection {
-        amplitude,
-        waves: vec![[k, 0.0]],
+        waves: vec![([k, 0.0], amplitude)],
         depth: 10.0,
     };
     let mut solid = Vec::new();

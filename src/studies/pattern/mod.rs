@@ -10,8 +10,13 @@
 //! `inertia.csv` (negative pivots along the homogeneous path), `mode_spectrum.csv` and
 //! `mode.vtu` (the patch, cut open along its periodic sides, with the mode), and on periodic
 //! sides `mode_top.png/svg` (the mode's surface seen from above, with the fibres' projection).
+//! Asked to, it follows the path past the onset ([`path`]): `pattern.csv`, `state.vtu`,
+//! `state_top.png/svg`.
 
 mod figure;
+mod path;
+
+pub use path::{PathStudy, PathSummary, PatternState};
 
 use crate::error::{Error, Result};
 use crate::fem::element::{Hex27, ReferenceElement};
@@ -51,6 +56,8 @@ pub struct PatternStudy {
     /// mode at the element scale on a nearly incompressible half-space, `docs/pattern.md`).
     pub element: ElementKind,
     pub settings: BifurcationSettings,
+    /// The path past the onset, if it is followed.
+    pub path: Option<PathStudy>,
 }
 
 impl Default for PatternStudy {
@@ -72,6 +79,7 @@ impl Default for PatternStudy {
                 scan_step: 0.02,
                 ..BifurcationSettings::default()
             },
+            path: None,
         }
     }
 }
@@ -195,6 +203,8 @@ pub struct PatternReport {
     /// the surface), by decreasing amplitude (periodic sides only).
     pub mode_wave_vectors: Vec<WaveVector>,
     pub inertia_evaluations: usize,
+    /// The path past the onset, if it was followed.
+    pub path: Option<PathSummary>,
     pub wall_seconds: f64,
     pub files: Vec<String>,
 }
@@ -210,6 +220,16 @@ pub fn run(
 ) -> Result<PatternReport> {
     params.validate()?;
     let start = Instant::now();
+    if let Some(path) = &study.path {
+        path.validate()?;
+        if study.sides != Sides::Periodic {
+            return Err(Error::invalid(
+                "sides",
+                "symmetry",
+                "periodic to follow the path past the onset (the pattern is read from a periodic surface)",
+            ));
+        }
+    }
     let (onset, spec) = size_patch(params, study)?;
     let k_max = 3.0 * onset.onset.k0;
     // Symmetry sides admit the waves `cos(m pi X / Lx) cos(n pi Z / Lz)`: the wave vectors of
@@ -224,6 +244,7 @@ pub fn run(
         lower: 0.0,
         upper: 1.0,
     })?;
+    let admissible = modes.clone();
     modes.truncate(LISTED_WAVE_VECTORS);
     let materials = crate::material::Bilayer::new(params);
     let mut path = PatchPath::new(&materials, spec, study.biaxial)?;
@@ -259,6 +280,16 @@ pub fn run(
         files.extend(figure::top_view(&view, out, "mode_top")?);
     }
     files.push(write_mode(out, &mesh, &found)?);
+    let followed = match &study.path {
+        Some(path_study) => {
+            let (summary, written) = path::follow(params, path, &admissible, path_study, out, &mut |state| {
+                progress(Progress::State(state))
+            })?;
+            files.extend(written);
+            Some(summary)
+        }
+        None => None,
+    };
     let json = out.join("pattern.json");
     files.push(json.clone());
     let report = PatternReport {
@@ -281,6 +312,7 @@ pub fn run(
         admissible_wave_vectors: modes,
         mode_wave_vectors: spectrum.into_iter().take(4).collect(),
         inertia_evaluations: found.path.len(),
+        path: followed,
         wall_seconds: start.elapsed().as_secs_f64(),
         files: files.iter().map(|f| f.display().to_string()).collect(),
     };
@@ -298,6 +330,8 @@ pub enum Progress<'a> {
     },
     /// The tangent's negative pivots at the homogeneous state `d`.
     Inertia { d: f64, negative: usize },
+    /// A state of the path past the onset.
+    State(&'a PatternState),
 }
 
 /// `wave_vectors.csv`: the admissible wave vectors nearest the onset and their `d_c`.

@@ -1,0 +1,299 @@
+//! The pattern past the onset: the periodic patch seeded with every wave vector critical at the
+//! onset (an imperfection of the reference geometry, [`PatchImperfection`]: the first at
+//! `A_init`, the others at a fraction of it) and followed in `d`
+//! ([`PatchPath::follow`]), leaving for a stable state wherever the followed branch turns
+//! unstable; at each state the deformed surface's spectrum, its directions of wave vectors and
+//! what they make ([`classify`]).
+//!
+//! Writes `pattern.csv` (one row per state, flushed as it is reached), and at the last state
+//! `state.vtu` (the patch cut open along its periodic sides, with the displacement) and
+//! `state_top.png/svg` (its surface relief seen from above, with the fibres' projection).
+
+use super::figure;
+use crate::error::{Error, Result};
+use crate::fem::element::{Hex27, ReferenceElement};
+use crate::mesh::{Mesh, TOP, Y};
+use crate::output::table::Cell;
+use crate::output::vtu::{write_vtu, CellType, DataArray};
+use crate::output::CsvWriter;
+use crate::parameters::Parameters;
+use crate::protocol::patch::{
+    classify, height_spectrum, BiaxialPatch, Direction, PatchImperfection, PatchPath, PatchProtocol, SurfacePattern,
+};
+use crate::protocol::Event;
+use crate::stability::oblique::BoxMode;
+use serde::Serialize;
+use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
+
+/// How the path past the onset is followed.
+#[derive(Clone, Copy, Debug)]
+pub struct PathStudy {
+    /// `A_init`, the amplitude of the first seeded wave.
+    pub imperfection: f64,
+    /// The amplitude of every further seeded wave relative to the first's, in `[0, 1]`: below
+    /// 1 the seed favours none of the patterns the critical waves make together (their equal
+    /// superposition, a checkerboard, is a symmetric path that the tissue may leave).
+    pub seed_ratio: f64,
+    /// Where the path starts.
+    pub d_start: f64,
+    /// Where it ends.
+    pub d_end: f64,
+}
+
+impl Default for PathStudy {
+    /// Waves of amplitude 0.01 H, from the strip's first state `d = 0.005` to 0.2.
+    fn default() -> Self {
+        PathStudy {
+            imperfection: 0.01,
+            seed_ratio: 0.5,
+            d_start: crate::protocol::STAGE_ONE_COMPRESSION,
+            d_end: 0.2,
+        }
+    }
+}
+
+impl PathStudy {
+    /// Checks `A_init` in `(0, 1)`, `d_start` in `(0, d_end)` and `d_end` below 0.95.
+    pub fn validate(&self) -> Result<()> {
+        if !(self.imperfection.is_finite() && self.imperfection > 0.0 && self.imperfection < 1.0) {
+            return Err(Error::invalid("imperfection", self.imperfection, "(0, 1)"));
+        }
+        if !(0.0..=1.0).contains(&self.seed_ratio) {
+            return Err(Error::invalid("seed-ratio", self.seed_ratio, "[0, 1]"));
+        }
+        if !(self.d_end.is_finite() && self.d_end < 0.95) {
+            return Err(Error::invalid("follow-to", self.d_end, "(d-start, 0.95)"));
+        }
+        if !(self.d_start.is_finite() && self.d_start > 0.0 && self.d_start < self.d_end) {
+            return Err(Error::invalid(
+                "d-start",
+                self.d_start,
+                &format!("(0, follow-to = {})", self.d_end),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Admissible wave vectors whose `d_c` is within this fraction of the smallest are critical
+/// together (a mirror pair, or the waves of an isotropic surface), and all are seeded.
+const CRITICAL_TOGETHER: f64 = 1e-6;
+
+/// A state of the path, as `pattern.csv` has it.
+#[derive(Clone, Debug, Serialize)]
+pub struct PatternState {
+    pub d: f64,
+    /// `A = (max y - min y) / 2` of the top surface.
+    pub amplitude: f64,
+    pub strain_energy: f64,
+    pub negative_pivots: Option<usize>,
+    /// Whether the state was reached by leaving an unstable one at the same `d` (the energy
+    /// minimised from it, moved along its unstable direction), not by a step along the path.
+    pub left_unstable: bool,
+    pub pattern: SurfacePattern,
+    /// The directions of wave vectors with at least 1 % of the surface's spectral energy.
+    pub directions: Vec<Direction>,
+}
+
+/// What the path showed (`pattern.json`'s `path`).
+#[derive(Debug, Serialize)]
+pub struct PathSummary {
+    pub imperfection: f64,
+    pub seed_ratio: f64,
+    /// The seeded wave vectors `(m, n)`.
+    pub seeded: Vec<(i64, i64)>,
+    pub d_start: f64,
+    pub d_end: f64,
+    /// The last `d` reached.
+    pub d_reached: f64,
+    pub states: usize,
+    /// Why the path stopped before `d_end`, if it did.
+    pub stopped: Option<String>,
+    /// Where the path turned unstable and was left for a stable state: `(d, energy released)`.
+    pub branches_left: Vec<(f64, f64)>,
+    /// Where the pattern changed: the first state of each new pattern.
+    pub changes: Vec<(f64, SurfacePattern)>,
+    /// The last state.
+    pub last: Option<PatternState>,
+}
+
+/// Every column of `pattern.csv`: the state, then the two leading directions (empty where there
+/// is none).
+const COLUMNS: [&str; 17] = [
+    "d",
+    "A",
+    "strain_energy",
+    "negative_pivots",
+    "left_unstable",
+    "pattern",
+    "directions",
+    "m1",
+    "n1",
+    "theta1_degrees",
+    "amplitude1",
+    "share1",
+    "m2",
+    "n2",
+    "theta2_degrees",
+    "amplitude2",
+    "share2",
+];
+
+/// Follows `path` (whose first bifurcation is found) seeded with the critical ones of the
+/// admissible wave vectors `modes` (sorted by `d_c`), writes the files (module docs) into `out`
+/// and tells `progress` every state.
+pub fn follow(
+    params: &Parameters,
+    path: PatchPath<'_>,
+    modes: &[BoxMode],
+    study: &PathStudy,
+    out: &Path,
+    progress: &mut dyn FnMut(&PatternState),
+) -> Result<(PathSummary, Vec<PathBuf>)> {
+    study.validate()?;
+    let mesh = path.system().mesh().clone();
+    assert!(mesh.is_periodic(), "the path is followed on periodic sides");
+    let [length_x, _, length_z] = *mesh.periods();
+    let first = modes.first().map_or(f64::NAN, |m| m.d_c);
+    let seeded: Vec<&BoxMode> = modes
+        .iter()
+        .filter(|m| m.d_c <= first * (1.0 + CRITICAL_TOGETHER))
+        .collect();
+    let imperfection = PatchImperfection {
+        waves: seeded
+            .iter()
+            .enumerate()
+            .map(|(i, m)| {
+                let k = [2.0 * PI * m.m as f64 / length_x, 2.0 * PI * m.n as f64 / length_z];
+                (k, study.imperfection * if i == 0 { 1.0 } else { study.seed_ratio })
+            })
+            .collect(),
+        depth: mesh.patch_spec().depth,
+    };
+    let csv = out.join("pattern.csv");
+    let mut table = CsvWriter::create(&csv, &COLUMNS)?;
+    let mut states: Vec<PatternState> = Vec::new();
+    let mut branches_left = Vec::new();
+    let mut last_u = Vec::new();
+    let protocol = PatchProtocol::new(study.d_start, study.d_end);
+    let (continuation, stopped) = path.follow(&imperfection, &protocol, &mut |event: Event<'_, BiaxialPatch>| {
+        let Event::Step { record, system, u } = event else {
+            return Ok(());
+        };
+        let (pattern, directions) = classify(&height_spectrum(system.system().mesh(), u));
+        let state = PatternState {
+            d: record.d,
+            amplitude: record.amplitude,
+            strain_energy: record.strain_energy,
+            negative_pivots: record.negative_pivots,
+            left_unstable: record.snap.is_some(),
+            pattern,
+            directions,
+        };
+        append_row(&mut table, &state)?;
+        progress(&state);
+        if let Some(snap) = &record.snap {
+            branches_left.push((snap.d, snap.energy_released));
+        }
+        states.push(state);
+        last_u = u.to_vec();
+        Ok(())
+    })?;
+    let mut files = vec![csv];
+    let patch = continuation.system();
+    let d = states.last().map_or(study.d_start, |s| s.d);
+    let gradient = [[-d, 0.0, 0.0], [0.0; 3], [0.0, 0.0, -patch.biaxiality() * d]];
+    files.push(write_state(out, patch.system().mesh(), &last_u, gradient)?);
+    let relief = surface_relief(patch.system().mesh(), &last_u);
+    let view = figure::TopView {
+        title: format!("Surface relief at d = {d:.4} (blue down, red up); lines: the fibres"),
+        mesh: patch.system().mesh(),
+        field: &relief,
+        fibres: (params.beta.cos() > 1e-6).then(|| [params.psi.cos(), params.psi.sin()]),
+    };
+    files.extend(figure::top_view(&view, out, "state_top")?);
+    let mut changes: Vec<(f64, SurfacePattern)> = Vec::new();
+    for state in &states {
+        if changes.last().is_none_or(|&(_, p)| p != state.pattern) {
+            changes.push((state.d, state.pattern));
+        }
+    }
+    let summary = PathSummary {
+        imperfection: study.imperfection,
+        seed_ratio: study.seed_ratio,
+        seeded: seeded.iter().map(|m| (m.m, m.n)).collect(),
+        d_start: study.d_start,
+        d_end: study.d_end,
+        d_reached: d,
+        states: states.len(),
+        stopped: stopped.map(|e| e.to_string()),
+        branches_left,
+        changes,
+        last: states.pop(),
+    };
+    Ok((summary, files))
+}
+
+/// One row of `pattern.csv`.
+fn append_row(table: &mut CsvWriter, state: &PatternState) -> Result<()> {
+    let name = crate::output::table::variant_name(&state.pattern);
+    let mut cells = vec![
+        Cell::Number(state.d),
+        Cell::Number(state.amplitude),
+        Cell::Number(state.strain_energy),
+        state.negative_pivots.map_or(Cell::Empty, |n| Cell::Number(n as f64)),
+        Cell::Number(f64::from(u8::from(state.left_unstable))),
+        Cell::Text(&name),
+        Cell::Number(state.directions.len() as f64),
+    ];
+    for i in 0..2 {
+        match state.directions.get(i) {
+            Some(direction) => {
+                let w = direction.wave;
+                cells.extend([
+                    Cell::Number(w.m as f64),
+                    Cell::Number(w.n as f64),
+                    Cell::Number(w.theta_degrees),
+                    Cell::Number(w.amplitude),
+                    Cell::Number(direction.share),
+                ]);
+            }
+            None => cells.extend([Cell::Empty; 5]),
+        }
+    }
+    table.append_cells(&cells)
+}
+
+/// A field of the mesh's unknowns holding, at the top nodes' `Y` entries, the deformed height
+/// `Y + u_Y` less its mean: the relief the figure draws.
+fn surface_relief(mesh: &Mesh<3, 27>, u: &[f64]) -> Vec<f64> {
+    let (top, dofs) = (mesh.node_set(TOP), mesh.dofs());
+    let height = |n: usize| mesh.coordinates()[n][Y] + u[dofs.dof(n, Y)];
+    let mean = top.iter().map(|&n| height(n)).sum::<f64>() / top.len() as f64;
+    let mut relief = vec![0.0; mesh.num_dofs()];
+    for &n in top {
+        relief[dofs.dof(n, Y)] = height(n) - mean;
+    }
+    relief
+}
+
+/// `state.vtu`: the patch cut open along its periodic sides at the last state `u` (the periodic
+/// part of the displacement), with the displacement `H X + u` as point vectors.
+fn write_state(out: &Path, mesh: &Mesh<3, 27>, u: &[f64], gradient: [[f64; 3]; 3]) -> Result<PathBuf> {
+    let (points, cells, source) = mesh.unwrapped();
+    let dofs = mesh.dofs();
+    let displacement = DataArray::vectors(
+        "displacement",
+        points.iter().zip(&source).map(|(x, &n)| {
+            std::array::from_fn(|c| u[dofs.dof(n, c)] + (0..3).map(|j| gradient[c][j] * x[j]).sum::<f64>())
+        }),
+    );
+    let cell_type = CellType {
+        vtk: <Hex27 as ReferenceElement<3, 27, 27>>::VTK_CELL_TYPE,
+        order: <Hex27 as ReferenceElement<3, 27, 27>>::VTK_ORDER,
+    };
+    let path = out.join("state.vtu");
+    write_vtu(&path, &points, &cell_type, &cells, &[displacement], &[])?;
+    Ok(path)
+}
