@@ -1,18 +1,18 @@
-//! Every example command of README.md is run here (at a small size where it is long) and checked
-//! against one number from an independent source, so the documentation cannot rot.
+//! Every example command of README.md and of the user guide (`docs/guide/src/**/*.md`) is run
+//! here (at a small size where it is long) and checked against one number from an independent
+//! source, so the documentation cannot rot.
 
 mod common;
 
 use common::{fiberfold, scratch};
-use std::f64::consts::FRAC_PI_2;
-use std::path::PathBuf;
+use std::f64::consts::{FRAC_PI_2, PI};
+use std::path::{Path, PathBuf};
 
-/// The `fiberfold ...` lines of README's shell blocks.
-fn readme_commands() -> Vec<String> {
-    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+/// The `fiberfold ...` lines of the shell blocks (```sh) of a Markdown text.
+fn shell_commands(text: &str) -> Vec<String> {
     let mut in_shell = false;
     let mut commands = Vec::new();
-    for line in readme.lines() {
+    for line in text.lines() {
         if line.starts_with("```") {
             in_shell = line == "```sh";
             continue;
@@ -25,15 +25,57 @@ fn readme_commands() -> Vec<String> {
     commands
 }
 
-/// Runs a README command with its `--out` redirected to a scratch folder and the `(flag, value)`
+/// The Markdown files under `dir`, recursively, sorted.
+fn markdown_files(dir: &Path) -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            files.extend(markdown_files(&path));
+        } else if path.extension().is_some_and(|e| e == "md") {
+            files.push(path);
+        }
+    }
+    files.sort();
+    files
+}
+
+fn read(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// The `fiberfold ...` lines of README's shell blocks.
+fn readme_commands() -> Vec<String> {
+    shell_commands(&read(&Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md")))
+}
+
+/// The `fiberfold ...` lines of the shell blocks of README and of every guide page, each once.
+fn documented_commands() -> Vec<String> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = vec![root.join("README.md")];
+    files.extend(markdown_files(&root.join("docs/guide/src")));
+    let mut commands: Vec<String> = Vec::new();
+    for file in &files {
+        for command in shell_commands(&read(file)) {
+            if !commands.contains(&command) {
+                commands.push(command);
+            }
+        }
+    }
+    commands
+}
+
+/// Runs a documented command with its `--out` redirected to a scratch folder and the `(flag, value)`
 /// pairs of `extra` replacing or extending its own (to shrink long runs); returns the output
 /// folder and stdout.
 fn run(command: &str, extra: &[(&str, &str)]) -> (PathBuf, String) {
-    let dir = scratch(&command.replace([' ', '/', '=', ','], "_"));
+    let name: String = command.replace([' ', '/', '=', ','], "_").chars().take(200).collect();
+    let dir = scratch(&name);
     let mut args: Vec<String> = command.split_whitespace().skip(1).map(String::from).collect();
     let out = dir.display().to_string();
     for (flag, value) in [("--out", out.as_str())].iter().chain(extra) {
         match args.iter().position(|a| a == flag) {
+            Some(_) if value.is_empty() => {}
             Some(i) => args[i + 1] = value.to_string(),
             None if *flag == "--out" => {}
             None if value.is_empty() => args.push(flag.to_string()),
@@ -49,7 +91,7 @@ fn run(command: &str, extra: &[(&str, &str)]) -> (PathBuf, String) {
     (dir, String::from_utf8(out.stdout).unwrap())
 }
 
-/// A map's small meshes, for README's `map` commands.
+/// A map's small meshes, for the documented `map` commands.
 const SMALL_MAP: &[(&str, &str)] = &[
     ("--waves", "2"),
     ("--elements-per-wave", "12"),
@@ -76,10 +118,22 @@ fn csv_column(path: PathBuf, column: &str) -> Vec<f64> {
         .collect()
 }
 
+/// The linear theory's onset `d_c` of a parameter set written by a command.
+fn theory_d_c(parameters: &serde_json::Value) -> f64 {
+    let p: fiberfold::Parameters = serde_json::from_value(parameters.clone()).unwrap();
+    fiberfold::stability::StabilityAnalysis::new(&p, fiberfold::stability::Method::Exact)
+        .unwrap()
+        .onset()
+        .unwrap()
+        .d_c
+}
+
 #[test]
-fn every_readme_example_runs_and_gives_an_independently_known_number() {
-    let commands = readme_commands();
-    assert!(commands.len() >= 7, "README lost its examples: {commands:?}");
+fn every_documented_example_runs_and_gives_an_independently_known_number() {
+    let readme = readme_commands();
+    assert!(readme.len() >= 2, "README lost its examples: {readme:?}");
+    let commands = documented_commands();
+    assert!(commands.len() >= 30, "the guide lost its examples: {commands:?}");
     for command in &commands {
         let verb = command.split_whitespace().nth(1).unwrap();
         match verb {
@@ -94,7 +148,7 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                 let l2 = csv_column(dir.join("homogeneous.csv"), "lambda2_layer");
                 assert_eq!(l2[0], 1.0);
             }
-            "onset" if command.contains("--biaxial") => {
+            "onset" if command.contains("--biaxial") && command.contains("psi=") => {
                 // Inclined fibres under equibiaxial compression: crests along the fibres'
                 // projection, the wave vector at psi + 90 degrees (psi = 30 degrees here).
                 let (dir, _) = run(command, &[]);
@@ -102,19 +156,18 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                 assert!((theta0.to_degrees() - 120.0).abs() < 0.01, "theta0 {theta0}");
                 assert!(dir.join("orientation.png").exists());
             }
+            "onset" if command.contains("--biaxial") => {
+                // Fibres in the surface along the compression, equibiaxial: the crests are
+                // oblique to the fibres (a mirror pair; the member in [0, pi/2] is reported).
+                let (dir, _) = run(command, &[]);
+                let theta0 = json(dir.join("onset.json"))["theta0"].as_f64().unwrap().to_degrees();
+                assert!(theta0 > 10.0 && theta0 < 80.0, "theta0 {theta0} degrees");
+            }
             "onset" if command.contains("incompressible=true") => {
                 // An incompressible stiff film (mu_l = 1000): the thin-film law within 2 %.
                 let (dir, _) = run(command, &[]);
                 let k0 = json(dir.join("onset.json"))["k0"].as_f64().unwrap();
                 assert!((k0 / (3.0f64 / 1000.0).cbrt() - 1.0).abs() < 0.02, "k0 {k0}");
-            }
-            "onset" if command.contains("law=ogden") => {
-                // An Ogden bilayer: the discrete solver, from the same moduli, agrees.
-                // (Both runs share one scratch folder: read each before the next.)
-                let d_c = |dir: PathBuf| json(dir.join("onset.json"))["d_c"].as_f64().unwrap();
-                let exact = d_c(run(command, &[]).0);
-                let discrete = d_c(run(command, &[("--method", "discrete")]).0);
-                assert!((exact - discrete).abs() < 1e-4, "{exact} vs {discrete}");
             }
             "onset" if command.contains("--load growth") => {
                 // A growing layer: the discrete solver, from the same grown moduli, agrees, and
@@ -126,10 +179,20 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                 assert!((g_c(&exact) - g_c(&discrete)).abs() < 1e-4, "{exact} vs {discrete}");
                 assert!((g_c(&exact) - 1.0 / (1.0 - exact["d_c"].as_f64().unwrap())).abs() < 1e-12);
             }
-            "onset" => {
+            "onset" if command.contains("mu_f=0") => {
                 // Paper, section 3.1: unloaded fibres (mu_f = 0) give k0 = 0.5515.
                 let (dir, _) = run(command, &[]);
                 assert!((json(dir.join("onset.json"))["k0"].as_f64().unwrap() - 0.5515).abs() < 5e-5);
+            }
+            "onset" => {
+                // Any other tissue (laws, fibres, prestress): the discrete solver, from the same
+                // moduli, agrees with the exact one. (Both runs share one scratch folder: read
+                // each before the next.)
+                let d_c = |dir: PathBuf| json(dir.join("onset.json"))["d_c"].as_f64().unwrap();
+                let exact = d_c(run(command, &[]).0);
+                let discrete = d_c(run(command, &[("--method", "discrete")]).0);
+                assert!((exact - discrete).abs() < 1e-4, "{exact} vs {discrete}");
+                assert!(exact > 0.0 && exact < 0.95, "d_c {exact}");
             }
             "dispersion" => {
                 // Default parameters: the minimum of the curve is the onset; d_c > 0 everywhere.
@@ -137,6 +200,26 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                 let d_c = csv_column(dir.join("dispersion.csv"), "d_c");
                 let k0 = json(dir.join("dispersion.json"))["onset"]["k0"].as_f64().unwrap();
                 assert!(d_c.iter().all(|d| *d > 0.0) && (0.3..0.8).contains(&k0));
+            }
+            "sweep" if command.contains("--biaxial") && command.contains("--param psi") => {
+                // Inclined fibres, equibiaxial: the wave vector turns with the fibres'
+                // projection, theta0 = psi + 90 degrees (mod 180).
+                let (dir, _) = run(command, &[("--points", "3")]);
+                let (psi, theta0) = (
+                    csv_column(dir.join("sweep.csv"), "value"),
+                    csv_column(dir.join("sweep.csv"), "theta0"),
+                );
+                for (psi, theta0) in psi.iter().zip(&theta0) {
+                    let gap = (theta0 - (psi + FRAC_PI_2).rem_euclid(PI)).abs();
+                    assert!(gap < 1e-4 || (gap - PI).abs() < 1e-4, "psi {psi}: theta0 {theta0}");
+                }
+            }
+            "sweep" if command.contains("--biaxial") => {
+                // Fibres turned from the surface towards its normal stiffen the substrate
+                // against compression along the surface: the onset comes later.
+                let (dir, _) = run(command, &[("--points", "3")]);
+                let d_c = csv_column(dir.join("sweep.csv"), "d_c");
+                assert!(d_c[0] > 0.0 && d_c[2] > d_c[0], "{d_c:?}");
             }
             "sweep" => {
                 // Fibres at beta = 0 are compressed: stiffer fibres destabilise (paper, Fig. 5a).
@@ -155,6 +238,25 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
             "bench" => {
                 let (_, stdout) = run(command, &[("--coarse-only", "")]);
                 assert!(stdout.contains("coarse") && stdout.contains("22110"), "{stdout}");
+            }
+            "simulate" if command.contains("law=") => {
+                // Another tissue law on the coarse mesh: the path reaches its end without
+                // inverting an element.
+                let (dir, _) = run(command, &[("--mesh", "coarse"), ("--d-max", "0.25")]);
+                assert_eq!(json(dir.join("simulate.json"))["completed"], true);
+                let min_j = json(dir.join("contact.json"))["min_jacobian"].as_f64().unwrap();
+                assert!(min_j > 0.0 && min_j <= 1.0, "min J {min_j}");
+            }
+            "simulate" if command.contains("growth_layer") => {
+                // A prestressed layer: the steepest point of A(d) against the linear theory's
+                // d_c(k) of the same prestressed bilayer, on the coarse mesh.
+                let (dir, _) = run(command, &[("--mesh", "coarse"), ("--d-max", "0.12")]);
+                let onset = json(dir.join("onset.json"));
+                let (fe, theory) = (
+                    onset["d_steepest"].as_f64().unwrap(),
+                    onset["d_linear_theory"].as_f64().unwrap(),
+                );
+                assert!((fe / theory - 1.0).abs() < 0.02, "FE {fe} vs theory {theory}");
             }
             "simulate" => {
                 // The steepest point of A(d) against the linear theory's d_c(k) (a second,
@@ -196,6 +298,15 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                 let report = std::fs::read_to_string(dir.join("report.md")).unwrap();
                 assert!(report.contains("| 0.5515 | 0.551513 |"), "{report}");
                 assert!(dir.join("report.html").exists() && dir.join("fig4b.png").exists());
+            }
+            "crease" if !command.contains("mu_l=1 ") => {
+                // A bilayer near its crossover (on the base mesh): the crease onset lies close
+                // to the wrinkling onset of the linear theory of the same bilayer.
+                let (dir, _) = run(command, &[("--fold", "0.5"), ("--no-convergence", "")]);
+                let report = json(dir.join("crease.json"));
+                let d = report["d_crease"].as_f64().unwrap();
+                let theory = theory_d_c(&report["parameters"]);
+                assert!((d - theory).abs() < 0.02, "d_crease {d} vs d_wrinkle {theory}");
             }
             "crease" => {
                 // One solid: Hong, Zhao and Suo's creasing strain, far below Biot's 0.456 (on a
@@ -250,6 +361,18 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                     d(1)
                 );
             }
+            "map" if command.contains("layer.alpha") => {
+                // A map over a law constant: each point's onset is the linear theory's of its
+                // parameters, and the stiff layer wrinkles first.
+                let (dir, _) = run(command, SMALL_MAP);
+                let points = json(dir.join("map.json"))["points"].as_array().unwrap().clone();
+                for point in &points {
+                    let d = point["d_wrinkle"].as_f64().unwrap();
+                    let theory = theory_d_c(&point["parameters"]);
+                    assert!((d - theory).abs() < 1e-9, "{d} vs {theory}");
+                    assert_eq!(point["first"], "wrinkle", "{point}");
+                }
+            }
             "map" => {
                 // One point, the stiffest layer at beta = 0, on small meshes: it wrinkles first,
                 // near the thin-film law d_c = (1/4) (3 mu_s / mu_l)^(2/3) = 0.054.
@@ -266,7 +389,7 @@ fn every_readme_example_runs_and_gives_an_independently_known_number() {
                 assert!((d / 0.054 - 1.0).abs() < 0.1, "d_wrinkle {d}");
                 assert!(dir.join("map.csv").exists() && dir.join("map.png").exists());
             }
-            other => panic!("README shows `{command}` but no test runs `{other}`"),
+            other => panic!("the documentation shows `{command}` but no test runs `{other}`"),
         }
     }
 }
