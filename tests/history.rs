@@ -34,9 +34,8 @@ fn has_date(line: &str) -> bool {
     let bytes = line.as_bytes();
     let digit = |i: usize| bytes[i].is_ascii_digit();
     (0..bytes.len().saturating_sub(9)).any(|i| {
-        let shape = [0, 1, 2, 3, 5, 6, 8, 9].iter().all(|&j| digit(i + j))
-            && bytes[i + 4] == b'-'
-            && bytes[i + 7] == b'-';
+        let shape =
+            [0, 1, 2, 3, 5, 6, 8, 9].iter().all(|&j| digit(i + j)) && bytes[i + 4] == b'-' && bytes[i + 7] == b'-';
         let before = i == 0 || !digit(i - 1);
         let after = i + 10 == bytes.len() || !digit(i + 10);
         shape && before && after

@@ -280,6 +280,17 @@ fn every_documented_example_runs_and_gives_an_independently_known_number() {
                 );
                 assert!((fe / theory - 1.0).abs() < 1e-3, "FE {fe} vs theory {theory}");
             }
+            "pattern" if command.contains("--follow-to") => {
+                // Fibres in the surface: the seeded mirror pair's checkerboard turns unstable
+                // past the onset and the path leaves it for a stable state, releasing energy.
+                let (dir, _) = run(command, &[("--follow-to", "0.12")]);
+                let report = json(dir.join("pattern.json"));
+                let path = &report["path"];
+                assert_eq!(path["d_reached"].as_f64().unwrap(), 0.12, "{path}");
+                let left = path["branches_left"].as_array().unwrap();
+                assert!(!left.is_empty() && left[0][1].as_f64().unwrap() > 0.0, "{path}");
+                assert_eq!(path["last"]["negative_pivots"], 0, "{path}");
+            }
             "pattern" => {
                 // A coarse patch: the theory's wave vector (crests along the fibres' projection,
                 // the wave vector at 90 + 30 deg) is the mode's, near the theory's onset.

@@ -50,7 +50,8 @@ enum Command {
     /// Exact bifurcation of the discretised perfect system from the inertia of its tangent.
     Bifurcation(bifurcation::BifurcationArgs),
     /// A patch of tissue in three dimensions under biaxial compression (27-node hexahedra):
-    /// its first bifurcation against the exact 3D theory, and the wave vectors of its mode.
+    /// its first bifurcation against the exact 3D theory, the wave vectors of its mode, and with
+    /// --follow-to the pattern the wrinkles make past the onset.
     Pattern(pattern::PatternArgs),
     /// Timings of the stability analysis or the finite-element solver.
     Bench(bench::BenchArgs),

@@ -24,7 +24,7 @@ pub struct PatternArgs {
     pub periods: usize,
 
     /// Hexahedra per onset wavelength along X and Z (an integer >= 2; more give an onset closer
-    /// to the continuum's, at a cost growing as their cube; docs/pattern.md shows the convergence).
+    /// to the continuum's, at a cost growing as their cube; the guide's "Patterns in three dimensions" shows the convergence).
     #[arg(long, default_value_t = 6)]
     pub elements_per_wavelength: usize,
 

@@ -53,7 +53,7 @@ pub struct PatternStudy {
     pub depth_wavelengths: f64,
     pub sides: Sides,
     /// The hexahedra: the displacement element by default (the mixed one finds a spurious
-    /// mode at the element scale on a nearly incompressible half-space, `docs/pattern.md`).
+    /// mode at the element scale on a nearly incompressible half-space: the guide's "Patterns in three dimensions").
     pub element: ElementKind,
     pub settings: BifurcationSettings,
     /// The path past the onset, if it is followed.
