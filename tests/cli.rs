@@ -19,8 +19,9 @@ fn rejected(args: &[&str], must_mention: &[&str]) -> String {
 
 #[test]
 fn volume_fraction_out_of_range() {
+    let out = scratch("phi-f");
     rejected(
-        &["homogeneous", "--set", "phi_f=1.5", "--out", "/nonexistent/x"],
+        &["homogeneous", "--set", "phi_f=1.5", "--out", out.to_str().unwrap()],
         &["phi_f", "[0, 1]"],
     );
     rejected(&["homogeneous", "--set", "phi_m=-0.1"], &["phi_m", "[0, 1]"]);
@@ -443,11 +444,51 @@ fn a_second_run_into_a_folder_being_written_is_refused() {
     }
     let message = rejected(&args, &["`out`", "no other running fiberfold", &first.id().to_string()]);
     assert_eq!(message.lines().filter(|l| l.starts_with("error: ")).count(), 1);
+    // Every command that writes is refused there, before it computes.
+    for command in [
+        &["onset"][..],
+        &["homogeneous"],
+        &["dispersion", "--points", "3"],
+        &["sweep", "--param", "beta", "--from", "0", "--to", "1", "--points", "2"],
+        &["params"],
+        &["bifurcation"],
+        &["crease"],
+        &["pattern"],
+        &["bench", "stability"],
+        &["map", "--x", "mu_l", "--x-from", "3", "--x-to", "4", "--x-points", "1"],
+        &["reproduce"],
+    ] {
+        let mut other = command.to_vec();
+        other.extend(["--out", out]);
+        rejected(&other, &["`out`", "no other running fiberfold"]);
+    }
     first.kill().unwrap();
     first.wait().unwrap();
     // The dead run's lock is taken over.
     let again = fiberfold(&["simulate", "--waves", "4.5", "--d-max", "0.01", "--out", out]);
     assert!(again.status.success(), "{}", String::from_utf8_lossy(&again.stderr));
+}
+
+/// An output folder that is a file, or that cannot be created or written, is refused as bad
+/// input before anything is computed.
+#[test]
+fn an_output_folder_that_cannot_be_written_is_refused() {
+    let file = scratch("out-file");
+    std::fs::write(&file, "not a folder").unwrap();
+    let map = ["map", "--x", "mu_l", "--x-from", "3", "--x-to", "4", "--x-points", "1"];
+    for command in [&["onset"][..], &["simulate", "--waves", "4.5"], &["pattern"], &map] {
+        let mut args = command.to_vec();
+        args.extend(["--out", file.to_str().unwrap()]);
+        rejected(&args, &["`out`", "a folder (this is a file)"]);
+    }
+    rejected(
+        &["onset", "--out", "/proc/fiberfold"],
+        &["`out`", "a folder that can be created"],
+    );
+    rejected(
+        &["homogeneous", "--out", "/proc"],
+        &["`out`", "a folder that can be written"],
+    );
 }
 
 #[test]

@@ -68,11 +68,12 @@ fn fill_leaving(dir: &Path, free_kib: u64) {
     file.set_len(written.saturating_sub(free_kib * 1024)).unwrap();
 }
 
-/// The run's error: one line, naming a file under `dir`, the cause `cause`, a non-zero exit.
-fn assert_one_line_error(out: &Output, dir: &Path, cause: &str) {
+/// The run's error: one line, naming a file under `dir`, the cause `cause`, exit code `code` (1
+/// for a fault of the machine, 2 for an output folder that cannot be written).
+fn assert_one_line_error(out: &Output, dir: &Path, cause: &str, code: i32) {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success(), "the run succeeded: {stderr}");
-    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert_eq!(out.status.code(), Some(code), "{stderr}");
     assert_eq!(stderr.trim_end().lines().count(), 1, "not one line: {stderr}");
     assert!(
         stderr.starts_with("error: ") && stderr.contains(dir.to_str().unwrap()) && stderr.contains(cause),
@@ -87,7 +88,7 @@ fn a_disk_that_fills_during_simulate_is_named_and_leaves_complete_files() {
     let disk = Mounted::tmpfs("full-simulate", 6 * 1024);
     let out = disk.0.join("run");
     let failed = fiberfold(&quick_simulate(&out));
-    assert_one_line_error(&failed, &out, "No space left on device");
+    assert_one_line_error(&failed, &out, "No space left on device", 1);
     let stdout = String::from_utf8_lossy(&failed.stdout);
     assert!(
         stdout.contains("d = 0.0"),
@@ -117,7 +118,7 @@ fn a_disk_that_fills_during_map_is_named_and_the_next_run_resumes() {
     std::fs::create_dir_all(out.join("points")).unwrap();
     fill_leaving(&disk.0, 16);
     let failed = fiberfold(&tiny_map_of(6, &out, &[]));
-    assert_one_line_error(&failed, &out, "No space left on device");
+    assert_one_line_error(&failed, &out, "No space left on device", 1);
     check_complete(&out);
     let written = std::fs::read_dir(out.join("points")).unwrap().count();
     assert!(
@@ -145,9 +146,9 @@ fn a_read_only_output_folder_is_named() {
     let read_only = Mounted::read_only("read-only", &source);
     for out in [read_only.0.join("existing"), read_only.0.join("new")] {
         let simulate = fiberfold(&quick_simulate(&out));
-        assert_one_line_error(&simulate, &out, "Read-only file system");
+        assert_one_line_error(&simulate, &out, "Read-only file system", 2);
         let map = fiberfold(&tiny_map_of(2, &out, &[]));
-        assert_one_line_error(&map, &out, "Read-only file system");
+        assert_one_line_error(&map, &out, "Read-only file system", 2);
     }
     drop(read_only);
     let _ = std::fs::remove_dir_all(&source);

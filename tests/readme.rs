@@ -251,7 +251,7 @@ fn every_documented_example_runs_and_gives_an_independently_known_number() {
                 // A prestressed layer: the steepest point of A(d) against the linear theory's
                 // d_c(k) of the same prestressed bilayer, on the coarse mesh.
                 let (dir, _) = run(command, &[("--mesh", "coarse"), ("--d-max", "0.12")]);
-                let onset = json(dir.join("onset.json"));
+                let onset = json(dir.join("onset_estimates.json"));
                 let (fe, theory) = (
                     onset["d_steepest"].as_f64().unwrap(),
                     onset["d_linear_theory"].as_f64().unwrap(),
@@ -262,7 +262,7 @@ fn every_documented_example_runs_and_gives_an_independently_known_number() {
                 // The steepest point of A(d) against the linear theory's d_c(k) (a second,
                 // independent method), on the coarse mesh.
                 let (dir, _) = run(command, &[("--mesh", "coarse"), ("--d-max", "0.2")]);
-                let onset = json(dir.join("onset.json"));
+                let onset = json(dir.join("onset_estimates.json"));
                 let (fe, theory) = (
                     onset["d_steepest"].as_f64().unwrap(),
                     onset["d_linear_theory"].as_f64().unwrap(),

@@ -131,7 +131,13 @@ fn failure_at_the_minimum_step_keeps_the_curve_and_names_d() {
     assert_eq!(d.len(), 3, "{csv}");
     assert!((d[2] - 0.205).abs() < 1e-12);
     assert!(rows.iter().all(|r| r.len() == 16 && r.iter().all(|x| x.is_finite())));
-    for file in ["surface.csv", "onset.json", "simulate.json", "simulate.pvd", "fig3.png"] {
+    for file in [
+        "surface.csv",
+        "onset_estimates.json",
+        "simulate.json",
+        "simulate.pvd",
+        "fig3.png",
+    ] {
         assert!(dir.join(file).exists(), "{file} missing after the failure");
     }
 }

@@ -317,7 +317,7 @@ fn a_run_through_a_snap_reads_its_onset_off_the_branch_before_the_snap() {
         let snaps: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(out.join("snaps.json")).unwrap_or("[]".into())).unwrap();
         let onset: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(out.join("onset.json")).unwrap()).unwrap();
+            serde_json::from_str(&std::fs::read_to_string(out.join("onset_estimates.json")).unwrap()).unwrap();
         serde_json::json!({ "onset": onset, "snaps": snaps })
     };
     let (through, before) = (onset("0.26"), onset("0.2"));

@@ -132,7 +132,7 @@ class Simulation:
             array each, one entry per accepted state.
         summary: the content of ``simulate.json`` (its ``files`` empty: nothing is written);
             each of its keys is also an attribute:
-        onset: the content of ``onset.json`` (the three estimates and the linear theory).
+        onset: the content of ``onset_estimates.json`` (the three estimates and the linear theory).
         contact: the content of ``contact.json``.
         secondary: the content of ``secondary.json``: ``d_secondary``, every change of the
             tangent's inertia (``changes``: ``d_before``, ``d_after``, ``negative_before``,

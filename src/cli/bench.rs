@@ -1,7 +1,7 @@
 //! `fiberfold bench stability | fe`: timings printed as Markdown tables (never timed tests),
 //! and written to the output folder (the tables, and the FE timings as JSON).
 
-use super::common::{prepare_out, report_files, ParamArgs};
+use super::common::{report_files, ParamArgs};
 use clap::{Args, ValueEnum};
 use fiberfold::output::atomic::write_file;
 use fiberfold::output::write_json;
@@ -55,7 +55,6 @@ struct FeTimings<'a> {
 
 pub fn run(args: &BenchArgs) -> Result<()> {
     let params = args.params.resolve()?;
-    prepare_out(&args.out)?;
     let files = match args.target {
         BenchTarget::Stability => {
             println!("timing the linear stability analysis (medians of repeated runs)...");

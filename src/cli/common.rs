@@ -3,7 +3,7 @@
 use clap::Args;
 use fiberfold::{Parameters, Result};
 use indicatif::{ProgressBar, ProgressStyle};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Model parameters: Table 1 of the paper, then a TOML file, then `--set` overrides.
 #[derive(Args, Clone, Debug, Default)]
@@ -41,11 +41,6 @@ impl ParamArgs {
         params.validate()?;
         Ok(params)
     }
-}
-
-/// Creates the output folder and says where results go.
-pub fn prepare_out(dir: &Path) -> Result<()> {
-    fiberfold::output::ensure_dir(dir)
 }
 
 /// Lists the files a command wrote.

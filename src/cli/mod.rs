@@ -13,6 +13,8 @@ mod simulate;
 mod stability;
 
 use clap::{Parser, Subcommand};
+use fiberfold::output::lock::OutputLock;
+use fiberfold::Result;
 use std::process::ExitCode;
 
 /// fiberfold: wrinkling, creasing and folding of a stiff layer on a fibre-reinforced substrate.
@@ -62,7 +64,42 @@ enum Command {
 /// Runs the command line; bad input exits with code 2, failures with code 1.
 pub fn run() -> ExitCode {
     let cli = Cli::parse();
-    let outcome = match cli.command {
+    let outcome = folder_lock(&cli.command).and_then(|_lock| dispatch(cli.command));
+    match outcome {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            eprintln!("error: {error}");
+            if error.is_user_input() {
+                ExitCode::from(2)
+            } else {
+                ExitCode::FAILURE
+            }
+        }
+    }
+}
+
+/// The lock of the command's output folder, taken before it computes (so that a folder another
+/// running command writes to, or one that cannot be written, is refused at once). `simulate` and
+/// `pattern` take theirs in the library (for Python too), `map` one per shard, `reproduce` its
+/// own; `params` without `--out` writes nothing.
+fn folder_lock(command: &Command) -> Result<Option<OutputLock>> {
+    let folder = match command {
+        Command::Params(args) => args.out.as_deref(),
+        Command::Homogeneous(args) => Some(args.out.as_path()),
+        Command::Dispersion(args) => Some(args.out.as_path()),
+        Command::Onset(args) => Some(args.out.as_path()),
+        Command::Sweep(args) => Some(args.out.as_path()),
+        Command::Crease(args) => Some(args.out.as_path()),
+        Command::Bifurcation(args) => Some(args.out.as_path()),
+        Command::Bench(args) => Some(args.out.as_path()),
+        Command::Simulate(_) | Command::Pattern(_) | Command::Map(_) | Command::Reproduce(_) => None,
+    };
+    folder.map(OutputLock::acquire).transpose()
+}
+
+/// Runs the command.
+fn dispatch(command: Command) -> Result<()> {
+    match command {
         Command::Params(args) => params::run(&args),
         Command::Homogeneous(args) => homogeneous::run(&args),
         Command::Dispersion(args) => stability::dispersion(&args),
@@ -75,16 +112,5 @@ pub fn run() -> ExitCode {
         Command::Pattern(args) => pattern::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Reproduce(args) => reproduce::run(&args),
-    };
-    match outcome {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(error) => {
-            eprintln!("error: {error}");
-            if error.is_user_input() {
-                ExitCode::from(2)
-            } else {
-                ExitCode::FAILURE
-            }
-        }
     }
 }

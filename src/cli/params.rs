@@ -19,7 +19,6 @@ pub fn run(args: &ParamsArgs) -> Result<()> {
     let text = args.params.resolve()?.to_toml();
     println!("{}", text.trim_end());
     if let Some(dir) = &args.out {
-        super::common::prepare_out(dir)?;
         let path = dir.join("params.toml");
         std::fs::write(&path, &text).map_err(|e| fiberfold::Error::io(&path, e))?;
         eprintln!("wrote {}", path.display());

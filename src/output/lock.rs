@@ -2,7 +2,8 @@
 //! pid, and releases it when it ends. A second run into a folder whose lock belongs to a live
 //! process is refused. A lock left by a dead process of this host (a killed run) is taken over;
 //! a lock from another host (a shared file system on a cluster) never is, since no process
-//! there can be checked: it is refused with the way to clear it.
+//! there can be checked: it is refused with the way to clear it. A folder that is a file, cannot be
+//! created or cannot be written is refused as bad input, before anything is computed.
 
 use crate::error::{Error, Result};
 use std::path::{Path, PathBuf};
@@ -22,7 +23,16 @@ impl OutputLock {
     /// Takes the lock file `name` of `dir`: writers of disjoint parts of one folder (the shards
     /// of a map) hold one each.
     pub fn acquire_named(dir: &Path, name: &str) -> Result<Self> {
-        super::ensure_dir(dir)?;
+        if dir.exists() && !dir.is_dir() {
+            return Err(Error::invalid("out", dir.display(), "a folder (this is a file)"));
+        }
+        if let Err(e) = std::fs::create_dir_all(dir) {
+            return Err(Error::invalid(
+                "out",
+                dir.display(),
+                &format!("a folder that can be created ({e})"),
+            ));
+        }
         let path = dir.join(name);
         for _ in 0..3 {
             // The lock appears whole or not at all: written aside, then hard-linked to its name
@@ -30,7 +40,11 @@ impl OutputLock {
             let staged = dir.join(format!("{name}.{}", std::process::id()));
             if let Err(e) = std::fs::write(&staged, format!("{} {}", host(), std::process::id())) {
                 let _ = std::fs::remove_file(&staged); // a full disk may have created it empty
-                return Err(Error::io(&path, e));
+                                                       // A full disk is a fault of the machine; any other failure, of the folder asked for.
+                return Err(match e.kind() {
+                    std::io::ErrorKind::StorageFull => Error::io(&path, e),
+                    _ => Error::invalid("out", dir.display(), &format!("a folder that can be written ({e})")),
+                });
             }
             let linked = std::fs::hard_link(&staged, &path);
             let _ = std::fs::remove_file(&staged);

@@ -23,7 +23,7 @@ use crate::fem::element::{Hex27, ReferenceElement};
 use crate::mesh::{ElementKind, Mesh, PatchSpec, Sides, Y};
 use crate::output::lock::OutputLock;
 use crate::output::vtu::{write_vtu, CellType, DataArray};
-use crate::output::{ensure_dir, write_json, CsvWriter};
+use crate::output::{write_json, CsvWriter};
 use crate::parameters::Parameters;
 use crate::protocol::patch::{surface_spectrum, PatchBifurcation, PatchPath, WaveVector};
 use crate::protocol::BifurcationSettings;
@@ -231,6 +231,7 @@ pub fn run(
         }
     }
     let (onset, spec) = size_patch(params, study)?;
+    let _lock = OutputLock::acquire(out)?;
     let k_max = 3.0 * onset.onset.k0;
     // Symmetry sides admit the waves `cos(m pi X / Lx) cos(n pi Z / Lz)`: the wave vectors of
     // a periodic patch twice as long each way.
@@ -254,8 +255,6 @@ pub fn run(
         unknowns: mesh.num_dofs(),
         modes: &modes,
     });
-    ensure_dir(out)?;
-    let _lock = OutputLock::acquire(out)?;
     let found = path.bifurcation(&study.settings, &mut |d, negative| {
         progress(Progress::Inertia { d, negative })
     })?;

@@ -1,6 +1,6 @@
 //! `simulate`: the paper's loading protocol (section 2.1) on one mesh. Writes, into the output
 //! folder, `amplitude.csv` (a row per converged state, flushed at once), VTU snapshots with
-//! `simulate.pvd`, `surface.csv` (final top surface), `onset.json`, `contact.json`,
+//! `simulate.pvd`, `surface.csv` (final top surface), `onset_estimates.json`, `contact.json`,
 //! `secondary.json` with its modes, `snaps.json` with the states before and after every snap
 //! (`snap_N_before.vtu`, `snap_N_after.vtu`), Fig. 3, Fig. 7's panels at the compressions it
 //! reaches (when contact is on) and `simulate.json`.
@@ -167,7 +167,7 @@ pub fn curve(params: &Parameters, spec: MeshSpec, protocol: &Protocol, monitor: 
     Ok(recorder.into_curve(outcome.stopped))
 }
 
-/// `onset.json`: the three estimates beside the linear theory.
+/// `onset_estimates.json`: the three estimates beside the linear theory.
 #[derive(Clone, Debug, Serialize)]
 pub struct OnsetReport {
     pub k: f64,
@@ -434,7 +434,7 @@ impl PathFiles {
         Ok(())
     }
 
-    /// Writes the files of the finished path: the last snapshot, `surface.csv`, `onset.json`,
+    /// Writes the files of the finished path: the last snapshot, `surface.csv`, `onset_estimates.json`,
     /// `contact.json`, `snaps.json`, Fig. 3 and Fig. 7; every file of the run so far.
     fn finish(
         mut self,
@@ -452,13 +452,13 @@ impl PathFiles {
         for &(x, y) in &solution.surface {
             surface.append(&[x, y])?;
         }
-        write_json(&out.join("onset.json"), &solution.onset)?;
+        write_json(&out.join("onset_estimates.json"), &solution.onset)?;
         write_json(&out.join("contact.json"), &solution.contact)?;
         write_json(&out.join("snaps.json"), &solution.snaps)?;
         let mut files: Vec<PathBuf> = [
             "amplitude.csv",
             "surface.csv",
-            "onset.json",
+            "onset_estimates.json",
             "contact.json",
             "snaps.json",
             "simulate.pvd",
