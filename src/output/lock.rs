@@ -8,10 +8,13 @@
 use crate::error::{Error, Result};
 use std::path::{Path, PathBuf};
 
-/// The lock of one output folder, released on drop.
+/// The lock of one output folder, released on drop; a folder the lock created and nothing else
+/// wrote into (the command was refused after all) is removed with it.
 #[derive(Debug)]
 pub struct OutputLock {
     path: PathBuf,
+    /// The folder, if the lock created it.
+    created: Option<PathBuf>,
 }
 
 impl OutputLock {
@@ -26,6 +29,7 @@ impl OutputLock {
         if dir.exists() && !dir.is_dir() {
             return Err(Error::invalid("out", dir.display(), "a folder (this is a file)"));
         }
+        let created = (!dir.exists()).then(|| dir.to_path_buf());
         if let Err(e) = std::fs::create_dir_all(dir) {
             return Err(Error::invalid(
                 "out",
@@ -49,7 +53,7 @@ impl OutputLock {
             let linked = std::fs::hard_link(&staged, &path);
             let _ = std::fs::remove_file(&staged);
             match linked {
-                Ok(()) => return Ok(OutputLock { path }),
+                Ok(()) => return Ok(OutputLock { path, created }),
                 Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
                     let text = std::fs::read_to_string(&path).unwrap_or_default();
                     match Holder::parse(&text) {
@@ -93,6 +97,9 @@ impl OutputLock {
 impl Drop for OutputLock {
     fn drop(&mut self) {
         let _ = std::fs::remove_file(&self.path);
+        if let Some(dir) = &self.created {
+            let _ = std::fs::remove_dir(dir); // only if empty
+        }
     }
 }
 
@@ -141,8 +148,27 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_folder_the_lock_created_goes_with_it_unless_something_was_written() {
+        let root = std::env::temp_dir().join(format!("fiberfold-lock-created-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&root);
+        let (empty, written) = (root.join("refused"), root.join("written"));
+        drop(OutputLock::acquire(&empty).unwrap());
+        assert!(!empty.exists());
+        let lock = OutputLock::acquire(&written).unwrap();
+        std::fs::write(written.join("result.csv"), "x\n").unwrap();
+        drop(lock);
+        assert!(written.join("result.csv").exists() && !written.join(".fiberfold.lock").exists());
+        // A folder that was there before stays, empty or not.
+        std::fs::create_dir_all(&empty).unwrap();
+        drop(OutputLock::acquire(&empty).unwrap());
+        assert!(empty.is_dir());
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
     fn a_live_lock_refuses_and_a_stale_one_is_taken_over() {
         let dir = std::env::temp_dir().join(format!("fiberfold-lock-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
         let lock = OutputLock::acquire(&dir).unwrap();
         // pid 1 is alive on Linux: a folder it holds is refused.
         std::fs::write(dir.join(".fiberfold.lock"), "1").unwrap();
