@@ -356,7 +356,7 @@ fn the_two_readings_of_phi_f_are_documented_and_reported_side_by_side() {
         text.contains("EACH of the two fibre families") && text.contains("0.05"),
         "{text}"
     );
-    let help = String::from_utf8_lossy(&fiberfold(&["onset", "--help"]).stdout).to_string();
+    let help = String::from_utf8_lossy(&fiberfold(&["params", "--help"]).stdout).to_string();
     assert!(help.contains("EACH of the two fibre families"), "{help}");
     let dir = scratch("phi-f-readings");
     let out = fiberfold(&["reproduce", "--quick", "--only", "fig5", "--out", dir.to_str().unwrap()]);
@@ -467,6 +467,59 @@ fn a_second_run_into_a_folder_being_written_is_refused() {
     // The dead run's lock is taken over.
     let again = fiberfold(&["simulate", "--waves", "4.5", "--d-max", "0.01", "--out", out]);
     assert!(again.status.success(), "{}", String::from_utf8_lossy(&again.stderr));
+}
+
+/// Small things a new user met: the seed's two flags in the usage line, the d-max range as the
+/// check applies it, `dispersion --biaxial` saying which direction it takes, warnings of a
+/// negative Poisson ratio, a short `--set` help pointing to the table, and a sweep of a shear
+/// modulus that keeps Poisson's ratio as a map does.
+#[test]
+fn what_a_new_user_met_is_mended() {
+    let help = String::from_utf8(fiberfold(&["simulate", "--help"]).stdout).unwrap();
+    assert!(help.contains("<--waves <WAVES>|--k <K>>"), "{help}");
+    rejected(
+        &["simulate", "--waves", "4.5", "--d-max", "1.5"],
+        &["`d-max`", "(0.005, 1)"],
+    );
+    let onset_help = String::from_utf8(fiberfold(&["onset", "--help"]).stdout).unwrap();
+    assert!(
+        onset_help.contains("fiberfold params --help") && !onset_help.contains("mu_l = 10"),
+        "{onset_help}"
+    );
+    let params_help = String::from_utf8(fiberfold(&["params", "--help"]).stdout).unwrap();
+    assert!(params_help.contains("  mu_l = 10, in [1e-12, 1e12]: "), "{params_help}");
+    let dir = scratch("new-user");
+    let out = dir.to_str().unwrap();
+    let dispersion = fiberfold(&["dispersion", "--biaxial", "1", "--points", "3", "--out", out]);
+    let stdout = String::from_utf8_lossy(&dispersion.stdout);
+    assert!(
+        stdout.contains("theta = 0 rad") && stdout.contains("onset --biaxial 1"),
+        "{stdout}"
+    );
+    let warned = fiberfold(&["onset", "--set", "K_l=5", "--out", out]);
+    let stderr = String::from_utf8_lossy(&warned.stderr);
+    assert!(
+        warned.status.success() && stderr.contains("warning: the layer has a negative Poisson ratio"),
+        "{stderr}"
+    );
+    // The sweep's last point, mu_l = 100 with K_l = 300 (Table 1's K/mu = 3), is the onset of
+    // that bilayer asked for directly.
+    let swept = fiberfold(&[
+        "sweep", "--param", "mu_l", "--from", "10", "--to", "100", "--points", "2", "--out", out,
+    ]);
+    assert!(swept.status.success(), "{}", String::from_utf8_lossy(&swept.stderr));
+    let sweep: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("sweep.json")).unwrap()).unwrap();
+    assert_eq!(sweep["keep_poisson"], true);
+    let last = sweep["points"][1]["onset"]["d_c"].as_f64().unwrap();
+    let direct = fiberfold(&["onset", "--set", "mu_l=100", "--set", "K_l=300", "--out", out]);
+    assert!(direct.status.success());
+    let onset: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("onset.json")).unwrap()).unwrap();
+    assert!(
+        (last - onset["d_c"].as_f64().unwrap()).abs() < 1e-9,
+        "{last} vs {onset}"
+    );
 }
 
 /// An output folder that is a file, or that cannot be created or written, is refused as bad

@@ -110,7 +110,9 @@ def sweep(
     """The onset along ``values`` of the numeric parameter ``name`` (for each value of
     ``series = (other_name, [v1, v2, ...])`` if given): arrays ``series`` (NaN without a
     series), ``value``, ``k0``, ``d_c`` (NaN where no onset exists) and ``theta0``, as in
-    ``sweep.csv``. ``biaxial`` and ``theta`` as in :func:`onset`."""
+    ``sweep.csv``. ``biaxial`` and ``theta`` as in :func:`onset`. A swept shear modulus
+    (``mu_l``, ``mu_s``) takes its bulk modulus along, keeping Poisson's ratio, as ``fiberfold
+    sweep`` does."""
     if not isinstance(name, str):
         raise TypeError(f"name must be a str, not {type(name).__name__}")
     if series is not None:

@@ -139,6 +139,7 @@ fn sweep<'py>(
         values: Some(values.as_array().to_vec()),
         method: method(method_name)?,
         modes: Modes { biaxial, theta },
+        keep_poisson: true,
     };
     let p = params.inner.clone();
     let points = py.detach(|| study.compute(&p, &|| {})).map_err(to_py)?;

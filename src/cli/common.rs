@@ -13,9 +13,9 @@ pub struct ParamArgs {
     #[arg(long, value_name = "FILE")]
     pub params: Option<PathBuf>,
 
-    /// Override one parameter, repeatable, e.g. `--set beta=0.785398 --set layer.law=ogden`
-    /// (`--help` lists every key with its default and units).
-    #[arg(long = "set", value_name = "KEY=VALUE", long_help = fiberfold::parameters::set_help())]
+    /// Override one parameter, repeatable, e.g. `--set beta=0.785398 --set layer.law=ogden`.
+    /// Every key with its default, range and units: `fiberfold params --help`.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
 
     /// What loads the bilayer, the parameter `load`: compression (the end-shortening d) |
@@ -39,6 +39,9 @@ impl ParamArgs {
             params.set_value("load", &toml::Value::String(load.clone()))?;
         }
         params.validate()?;
+        for warning in params.warnings() {
+            eprintln!("warning: {warning}");
+        }
         Ok(params)
     }
 }

@@ -15,7 +15,7 @@ pub struct CreaseArgs {
 
     /// Reference fold lengths a (units of H), comma separated: the onset is the smallest
     /// threshold over them, reported with its a.
-    #[arg(long, value_delimiter = ',', default_values_t = defaults().folds, allow_negative_numbers = true)]
+    #[arg(long, value_delimiter = ',', default_value = DEFAULT_FOLDS, allow_negative_numbers = true)]
     pub fold: Vec<f64>,
 
     /// First compression d scanned.
@@ -151,6 +151,18 @@ pub fn run(args: &CreaseArgs) -> Result<()> {
 
 fn defaults() -> CreaseOptions {
     CreaseOptions::default()
+}
+
+/// The default folds as `--fold` takes them (the library's, [`CreaseOptions::default`]).
+const DEFAULT_FOLDS: &str = "0.5,1,2";
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_default_folds_are_the_librarys() {
+        let folds: Vec<f64> = super::DEFAULT_FOLDS.split(',').map(|a| a.parse().unwrap()).collect();
+        assert_eq!(folds, super::defaults().folds);
+    }
 }
 
 /// What the fold at a threshold does when its nodes are let go to contact with the plane.

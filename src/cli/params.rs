@@ -6,6 +6,7 @@ use fiberfold::Result;
 use std::path::PathBuf;
 
 #[derive(Args)]
+#[command(after_long_help = fiberfold::parameters::set_help())]
 pub struct ParamsArgs {
     #[command(flatten)]
     pub params: ParamArgs,

@@ -68,6 +68,7 @@ impl MeshArgs {
 }
 
 #[derive(Args)]
+#[command(group(clap::ArgGroup::new("seed").required(true).args(["waves", "k"])))]
 pub struct SimulateArgs {
     #[command(flatten)]
     pub params: ParamArgs,
@@ -76,12 +77,7 @@ pub struct SimulateArgs {
     pub mesh: MeshArgs,
 
     /// Waves N of the seeded mode across the half domain, 2N a positive integer: k = 2 pi N / 50.
-    #[arg(
-        long,
-        conflicts_with = "k",
-        required_unless_present = "k",
-        allow_negative_numbers = true
-    )]
+    #[arg(long, allow_negative_numbers = true)]
     pub waves: Option<f64>,
 
     /// Referential wavenumber of the seeded mode, k = m pi / 50 with m a positive integer.

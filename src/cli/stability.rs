@@ -18,7 +18,8 @@ pub struct ModesArgs {
     #[arg(long, value_name = "R", allow_negative_numbers = true)]
     pub biaxial: Option<f64>,
     /// Direction of the wave vector in the surface, radians from X towards Z (the crests run
-    /// perpendicular to it). Absent with --biaxial: `onset` searches every direction.
+    /// perpendicular to it). Absent with --biaxial: `onset` and `sweep` search every direction,
+    /// `dispersion` takes theta = 0 (along X).
     #[arg(long, value_name = "RAD", allow_negative_numbers = true)]
     pub theta: Option<f64>,
 }
@@ -72,8 +73,13 @@ pub fn dispersion(args: &DispersionArgs) -> Result<()> {
         study.k_max,
         study.points,
         args.method,
-        study.modes.describe()
+        study.modes.along_one_direction().describe()
     );
+    if let (Some(biaxial), None) = (study.modes.biaxial, study.modes.theta) {
+        println!(
+            "  along X: --theta sets another direction; `fiberfold onset --biaxial {biaxial}` finds the critical one"
+        );
+    }
     let bar = progress(study.points, "dispersion");
     let files = stability::dispersion(&params, &study, &args.out, &|| bar.inc(1))?;
     bar.finish_and_clear();
@@ -187,6 +193,10 @@ pub struct SweepArgs {
     /// Solver.
     #[arg(long, value_enum, default_value_t = Solver::Exact)]
     pub method: Solver,
+    /// Let the bulk modulus stay at its base value when mu_l or mu_s is swept (by default it
+    /// scales with it, keeping the base K/mu: the Poisson ratio stays the base set's, as in `map`).
+    #[arg(long)]
+    pub free_bulk: bool,
     /// Output folder.
     #[arg(long, value_name = "DIR", default_value = "results/sweep")]
     pub out: PathBuf,
@@ -203,6 +213,7 @@ pub fn sweep(args: &SweepArgs) -> Result<()> {
         values: None,
         method: args.method.method(),
         modes: args.modes.modes(),
+        keep_poisson: !args.free_bulk,
     };
     study.modes.validate()?;
     println!(

@@ -194,26 +194,29 @@ pub fn validate(p: &Parameters) -> Result<()> {
     Ok(())
 }
 
-/// The table as the command line's help of `--set`: every key with its default and meaning.
+/// The table as the command line shows it (`fiberfold params --help`): every key of `--set`
+/// with its default, range and meaning, one per line, then the laws and the loads.
 pub fn help() -> String {
     let rows: Vec<String> = TABLE
         .iter()
         .map(|s| match s.kind {
             Kind::Number { default, range, .. } => {
-                format!("{} ({default}, in {}): {}", s.name, range.short(), s.meaning)
+                format!("  {} = {default}, in {}: {}", s.name, range.short(), s.meaning)
             }
-            Kind::Flag { default, .. } => format!("{} ({default}): {}", s.name, s.meaning),
+            Kind::Flag { default, .. } => format!("  {} = {default}: {}", s.name, s.meaning),
         })
         .collect();
     format!(
-        "Override one parameter, repeatable, e.g. `--set beta=0.785398 --set mu_f=20`. Keys (defaults): {}. \
-         Laws, by dotted keys (see README, \"Tissue laws\"): layer.law and substrate.law = neo_hookean \
-         (default) | mooney_rivlin (layer.c1, layer.c2) | ogden (layer.mu, layer.alpha: numbers or lists [..] \
-         of 1 to 3 terms) | gent (layer.jm); mu_l, mu_s stay each law's shear modulus and K_l, K_s its bulk \
-         modulus. fibres.law = quadratic (default: mu_f, lambda_f) | hgo (fibres.k1, fibres.k2, fibres.kappa \
-         in [0, 1/3], default 0). Set a law before its constants, e.g. `--set layer.law=ogden --set \
-         layer.alpha=-25`. load = compression (default: the end-shortening d) | growth (the layer's growth g \
-         from 1, ends held) | uniform_growth (both layers grow by g, ends held).",
-        rows.join("; ")
+        "Keys of --set (e.g. `--set beta=0.785398 --set mu_f=20`), with their defaults and ranges:\n{}\n\n\
+         Laws, by dotted keys (the guide's \"Your own tissue\"); set a law before its constants:\n  \
+         layer.law, substrate.law = neo_hookean (default) | mooney_rivlin (layer.c1, layer.c2) | ogden \
+         (layer.mu, layer.alpha: numbers or lists [..] of 1 to 3 terms) | gent (layer.jm); mu_l, mu_s stay \
+         each law's shear modulus and K_l, K_s its bulk modulus\n  \
+         fibres.law = quadratic (default: mu_f, lambda_f) | hgo (fibres.k1, fibres.k2, fibres.kappa in \
+         [0, 1/3], default 0)\n  \
+         e.g. `--set layer.law=ogden --set layer.alpha=-25`\n\n\
+         Loads: load = compression (default: the end-shortening d) | growth (the layer's growth g from 1, \
+         ends held) | uniform_growth (both layers grow by g, ends held).",
+        rows.join("\n")
     )
 }

@@ -17,7 +17,6 @@ use crate::fem::{Newton, NewtonPolicy, Reuse, Stall, System};
 use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
 use crate::mesh::{Mesh, MeshSpec};
-use crate::parameters::validate_compression;
 use crate::protocol::Loading;
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -101,8 +100,7 @@ impl Protocol {
                 return Err(Error::invalid(name, value, "[0, 1)"));
             }
         }
-        validate_compression("d-max", self.d_max)?;
-        if self.d_max <= STAGE_ONE_COMPRESSION {
+        if !(self.d_max.is_finite() && self.d_max > STAGE_ONE_COMPRESSION && self.d_max < 1.0) {
             return Err(Error::invalid(
                 "d-max",
                 self.d_max,

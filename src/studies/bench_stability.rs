@@ -64,6 +64,7 @@ pub fn run(params: &Parameters, map_side: usize) -> Result<String> {
             series: Some(("beta".into(), linspace(0.0, FRAC_PI_2, map_side))),
             values: None,
             method: Method::Exact,
+            keep_poisson: true,
             modes: Modes {
                 biaxial: Some(1.0),
                 theta: None,

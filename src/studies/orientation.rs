@@ -38,6 +38,15 @@ impl Modes {
         StabilityAnalysis::with_surface(params, method, self.surface())
     }
 
+    /// These modes along one direction, as a dispersion curve takes them: in the surface without
+    /// a `theta`, along X (`theta = 0`).
+    pub fn along_one_direction(&self) -> Modes {
+        Modes {
+            theta: Some(self.theta.unwrap_or(0.0)).filter(|_| self.surface().is_some()),
+            ..*self
+        }
+    }
+
     /// In words, for the terminal.
     pub fn describe(&self) -> String {
         match (self.surface(), self.theta) {

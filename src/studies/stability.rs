@@ -127,10 +127,7 @@ struct DispersionSummary<'a> {
 /// Writes `dispersion.csv` (`k,theta,d_c,lambda1_c`), `dispersion.json` and `dispersion.png/svg`.
 pub fn dispersion(params: &Parameters, study: &DispersionStudy, out: &Path, tick: Tick) -> Result<Vec<PathBuf>> {
     study.validate()?;
-    let modes = Modes {
-        theta: Some(study.modes.theta.unwrap_or(0.0)).filter(|_| study.modes.surface().is_some()),
-        ..study.modes
-    };
+    let modes = study.modes.along_one_direction();
     let analysis = modes.analysis(params, study.method)?;
     ensure_dir(out)?;
     let curve = DispersionCurve::compute(&analysis, &linspace(study.k_min, study.k_max, study.points), tick)?;
@@ -291,6 +288,9 @@ pub struct SweepStudy {
     /// Plane strain, or waves in the surface (the onset's direction `theta0` searched unless
     /// `theta` is given).
     pub modes: Modes,
+    /// Scale the bulk modulus with a swept shear modulus (`K_l` with `mu_l`, `K_s` with `mu_s`),
+    /// keeping the base set's Poisson ratio, as a map does.
+    pub keep_poisson: bool,
 }
 
 /// Parses `KEY=V1,V2,...` for `--series`.
@@ -359,10 +359,16 @@ impl SweepStudy {
         for s in series {
             for &value in &values {
                 let mut p = base.clone();
-                if let (Some(v), Some((key, _))) = (s, &self.series) {
-                    p.set_number(key, v)?;
+                let series_key = self.series.as_ref().map_or("", |(key, _)| key.as_str());
+                let apart = [series_key, self.param.as_str()];
+                let assign = |p: &mut Parameters, key: &str, v: f64| match self.keep_poisson {
+                    true => p.set_number_keeping_poisson(key, v, &apart),
+                    false => p.set_number(key, v),
+                };
+                if let Some(v) = s {
+                    assign(&mut p, series_key, v)?;
                 }
-                p.set_number(&self.param, value)?;
+                assign(&mut p, &self.param, value)?;
                 p.validate()?;
                 sets.push((s, value, p));
             }
@@ -429,6 +435,8 @@ struct SweepSummary<'a> {
     parameters: &'a Parameters,
     param: &'a str,
     series_param: Option<&'a str>,
+    /// Whether a swept shear modulus took its bulk modulus along (Poisson's ratio kept).
+    keep_poisson: bool,
     points: &'a [SweepPoint],
 }
 
@@ -532,6 +540,7 @@ pub fn sweep(params: &Parameters, study: &SweepStudy, out: &Path, tick: Tick) ->
         parameters: params,
         param: &study.param,
         series_param: study.series.as_ref().map(|(k, _)| k.as_str()),
+        keep_poisson: study.keep_poisson,
         points: &points,
     };
     write_json(&json, &summary)?;

@@ -56,6 +56,7 @@ pub fn onset_against_angle(
         values: None,
         method: Method::Exact,
         modes: Default::default(),
+        keep_poisson: true,
     }
     .compute(params, tick)
 }

@@ -90,7 +90,11 @@ impl CreaseOptions {
             scan: Scan {
                 from: self.d_from,
                 to: self.d_to,
-                step: self.d_step,
+                // A step longer than the range scans its two ends.
+                step: match self.d_to > self.d_from {
+                    true => self.d_step.min(self.d_to - self.d_from),
+                    false => self.d_step,
+                },
                 tolerance: self.tolerance,
             },
             criterion: self.criterion,
@@ -126,5 +130,17 @@ mod tests {
         assert!(message(r#"{"criterion": "open"}"#).contains("`released`"));
         let released = CreaseOptions::from_keywords(r#"{"criterion": "released"}"#).unwrap();
         assert_eq!(released.study().unwrap().criterion, Criterion::Released);
+    }
+
+    #[test]
+    fn a_range_shorter_than_the_default_step_is_scanned_at_its_ends() {
+        let short = CreaseOptions {
+            d_from: 0.3,
+            d_to: 0.31,
+            ..CreaseOptions::default()
+        };
+        assert!(CreaseOptions::default().d_step > 0.01);
+        let scan = short.study().unwrap().scan;
+        assert!((scan.step - 0.01).abs() < 1e-15, "{scan:?}");
     }
 }

@@ -294,20 +294,10 @@ impl MapStudy {
     }
 
     fn assign(&self, p: &mut Parameters, name: &str, value: f64) -> Result<()> {
-        if self.settings.keep_poisson {
-            let bulk = match name {
-                "mu_l" => Some(("K_l", self.base.K_l / self.base.mu_l)),
-                "mu_s" => Some(("K_s", self.base.K_s / self.base.mu_s)),
-                _ => None,
-            };
-            if let Some((key, ratio)) = bulk {
-                if key != self.x.name && key != self.y.name {
-                    p.set_number(key, ratio * value)?;
-                }
-            }
+        match self.settings.keep_poisson {
+            true => p.set_number_keeping_poisson(name, value, &[&self.x.name, &self.y.name]),
+            false => p.set_number(name, value),
         }
-        p.set_number(name, value)?;
-        Ok(())
     }
 }
 
