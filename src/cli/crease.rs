@@ -156,15 +156,6 @@ fn defaults() -> CreaseOptions {
 /// The default folds as `--fold` takes them (the library's, [`CreaseOptions::default`]).
 const DEFAULT_FOLDS: &str = "0.5,1,2";
 
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn the_default_folds_are_the_librarys() {
-        let folds: Vec<f64> = super::DEFAULT_FOLDS.split(',').map(|a| a.parse().unwrap()).collect();
-        assert_eq!(folds, super::defaults().folds);
-    }
-}
-
 /// What the fold at a threshold does when its nodes are let go to contact with the plane.
 fn print_release(fold: &FoldThreshold) {
     match (&fold.released, &fold.release_error) {
@@ -260,5 +251,14 @@ fn print_onset(report: &CreaseReport, study: &CreaseStudy) {
             }
         }
         _ => println!("no crease pays off within the scan"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_default_folds_are_the_librarys() {
+        let folds: Vec<f64> = super::DEFAULT_FOLDS.split(',').map(|a| a.parse().unwrap()).collect();
+        assert_eq!(folds, super::defaults().folds);
     }
 }
