@@ -395,3 +395,19 @@ def test_a_patch_in_three_dimensions_bifurcates_at_the_exact_theorys_onset():
     assert {(w["m"], w["n"]) for w in r["mode_wave_vectors"][:2]} == {(1, 0), (0, 1)}
     with pytest.raises(ValueError, match="periods"):
         fiberfold.pattern(fiberfold.Parameters(), periods=0)
+
+
+def test_the_pattern_past_the_onset_of_inclined_fibres_is_stripes_along_them():
+    # One critical wave vector (at 120 deg for fibres at psi = 30 deg): the path past the onset
+    # keeps it alone, growing from the seed, with no unstable branch to leave.
+    p = fiberfold.Parameters(beta=0.785398, psi=0.5235988)
+    r = fiberfold.pattern(p, elements_per_wavelength=3, follow_to=0.12)
+    path = r["path"]
+    assert path["d_reached"] == 0.12 and path["stopped"] is None
+    assert path["branches_left"] == []
+    last = path["last"]
+    assert last["pattern"] == "stripes" and last["negative_pivots"] == 0
+    assert abs(last["directions"][0]["wave"]["theta_degrees"] - 120.0) < 0.5
+    assert last["amplitude"] > 10 * path["imperfection"]
+    with pytest.raises(ValueError, match="follow-to"):
+        fiberfold.pattern(p, follow_to=0.99)
