@@ -4,6 +4,7 @@ pub mod atomic;
 pub mod lock;
 pub mod plot;
 pub mod table;
+pub mod ticks;
 pub mod vtu;
 
 use crate::error::{Error, Result};

@@ -1,6 +1,7 @@
 //! Line plots rendered to PNG and SVG with an embedded font (no fontconfig, no system fonts).
 
 use super::atomic::write_atomically;
+use super::ticks::{tick_label, AxisScale, RoundTicks};
 use crate::error::{Error, Result};
 use plotters::coord::Shift;
 use plotters::element::{Drawable, PointCollection};
@@ -66,6 +67,8 @@ pub struct Figure {
     pub y_range: Option<(f64, f64)>,
     /// Where the legend goes (default: upper right).
     pub legend: Legend,
+    /// How the x axis shows its values (ticks at round values in any case).
+    pub x_scale: AxisScale,
 }
 
 /// Legend corner.
@@ -95,6 +98,12 @@ impl Figure {
             y_label: y_label.into(),
             ..Default::default()
         }
+    }
+
+    /// The same figure showing its x values on `scale` (e.g. angles in degrees).
+    pub fn with_x_scale(mut self, scale: AxisScale) -> Self {
+        self.x_scale = scale;
+        self
     }
 
     pub fn with_legend(mut self, legend: Legend) -> Self {
@@ -136,10 +145,16 @@ impl Figure {
             .margin(12)
             .x_label_area_size(45)
             .y_label_area_size(65)
-            .build_cartesian_2d(x0..x1, y0..y1)
+            .build_cartesian_2d(
+                RoundTicks::new(x0, x1, self.x_scale),
+                RoundTicks::new(y0, y1, AxisScale::Linear),
+            )
             .map_err(|e| e.to_string())?;
+        let x_scale = self.x_scale;
         chart
             .configure_mesh()
+            .x_label_formatter(&|v| tick_label(*v, x_scale))
+            .y_label_formatter(&|v| tick_label(*v, AxisScale::Linear))
             .x_desc(&self.x_label)
             .y_desc(&self.y_label)
             .label_style((FONT, 14))

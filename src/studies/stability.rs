@@ -4,6 +4,7 @@ use super::orientation::{directed_onset, orientation_figure, DirectedOnset, Mode
 use super::{linspace, validate_points, Tick};
 use crate::error::{Error, Result};
 use crate::output::table::{variant_name, Cell};
+use crate::output::ticks::AxisScale;
 use crate::output::{ensure_dir, plot::save_panels, write_json, CsvWriter, Figure, LineStyle, Series};
 use crate::parameters::{Load, Parameters};
 use crate::stability::{Method, Minimum, Onset, StabilityAnalysis, SurfaceOnset, K_MAX};
@@ -440,13 +441,22 @@ struct SweepSummary<'a> {
     points: &'a [SweepPoint],
 }
 
-/// A parameter's name with its unit, for an axis.
+/// A parameter's name with its unit, for an axis (angles in degrees: [`parameter_scale`]).
 pub(crate) fn parameter_axis(name: &str) -> String {
     match name {
-        "beta" => "fibre angle beta (rad)".into(),
-        "psi" => "fibre azimuth psi (rad)".into(),
+        "beta" => "fibre angle beta (deg)".into(),
+        "psi" => "fibre azimuth psi (deg)".into(),
         "mu_l" | "K_l" | "mu_s" | "K_s" | "mu_f" => format!("{name} (units of mu_s)"),
         other => format!("{other} (-)"),
+    }
+}
+
+/// How an axis of the parameter `name` shows its values: the fibres' angles, held in radians,
+/// in degrees.
+pub(crate) fn parameter_scale(name: &str) -> AxisScale {
+    match name {
+        "beta" | "psi" => AxisScale::Degrees,
+        _ => AxisScale::Linear,
     }
 }
 
@@ -486,8 +496,10 @@ pub fn sweep(params: &Parameters, study: &SweepStudy, out: &Path, tick: Tick) ->
         }
     }
     let axis = parameter_axis(&study.param);
-    let mut k_panel = Figure::new("Onset wavenumber", axis.as_str(), "onset wavenumber k0 H");
-    let mut d_panel = Figure::new("Critical compression", axis.as_str(), "critical compression d_c");
+    let scale = parameter_scale(&study.param);
+    let mut k_panel = Figure::new("Onset wavenumber", axis.as_str(), "onset wavenumber k0 H").with_x_scale(scale);
+    let mut d_panel =
+        Figure::new("Critical compression", axis.as_str(), "critical compression d_c").with_x_scale(scale);
     let mut series_values: Vec<Option<f64>> = points.iter().map(|p| p.series).collect();
     series_values.dedup();
     for (i, s) in series_values.iter().enumerate() {
@@ -518,7 +530,8 @@ pub fn sweep(params: &Parameters, study: &SweepStudy, out: &Path, tick: Tick) ->
             "Direction of the first wrinkles",
             axis.as_str(),
             "theta0 (deg, wave vector from X)",
-        );
+        )
+        .with_x_scale(scale);
         for (i, s) in series_values.iter().enumerate() {
             let directions: Vec<(f64, f64)> = points
                 .iter()

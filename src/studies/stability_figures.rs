@@ -4,6 +4,7 @@ use super::stability::{DispersionCurve, SweepPoint, SweepStudy};
 use super::{linspace, Tick};
 use crate::error::Result;
 use crate::numerics::roots::brent;
+use crate::output::ticks::AxisScale;
 use crate::output::{plot::save_panels, CsvWriter, Figure, Legend, LineStyle, Series};
 use crate::parameters::Parameters;
 use crate::stability::{Method, StabilityAnalysis};
@@ -96,9 +97,10 @@ pub fn fig4b(params: &Parameters, resolution: &Resolution, out: &Path, tick: Tic
     let mut csv = CsvWriter::create(&out.join("fig4b.csv"), &["mu_f", "beta", "k0", "d_c"])?;
     let mut figure = Figure::new(
         "Fig. 4b: onset wavenumber",
-        "fibre angle beta (rad)",
+        "fibre angle beta (deg)",
         "onset wavenumber k0 H",
     )
+    .with_x_scale(AxisScale::Degrees)
     .with_legend(Legend::LowerRight);
     for (i, &mu_f) in FIBRE_STIFFNESSES.iter().enumerate() {
         let curve: Vec<(f64, f64)> = series_of(&points, mu_f, |o| o.k0);
@@ -264,6 +266,7 @@ pub fn fig6(params: &Parameters, resolution: &Resolution, out: &Path, tick: Tick
             axis,
             "onset wavenumber k0 H",
         )
+        .with_x_scale(super::stability::parameter_scale(key))
         .with_legend(Legend::LowerLeft)
         .with(Series::new("k_max", upper, LineStyle::Solid, 0))
         .with(Series::new("k_min", lower, LineStyle::Dashed, 0));

@@ -6,8 +6,10 @@
 use super::{First, MapPoint, MapReport, PostBuckling};
 use crate::error::Result;
 use crate::output::plot::{save_canvas, Canvas, FONT};
+use crate::output::ticks::{tick_label, AxisScale, RoundTicks};
 use crate::parameters::Parameters;
 use crate::stability::Minimum;
+use crate::studies::stability::parameter_scale;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
@@ -80,13 +82,16 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, report: &MapReport) ->
     let ys: Vec<f64> = ya.values().into_iter().map(plot_y).collect();
     let (xe, ye) = (edges(&xs), edges(&ys));
     let (x0, x1, y0, y1) = (xe[0], xe[xe.len() - 1], ye[0], ye[ye.len() - 1]);
-    let axis_name = |a: &super::Axis| {
-        if a.log {
-            format!("{} (log scale)", a.name)
-        } else {
-            a.name.clone()
-        }
+    let scale = |a: &super::Axis| match a.log {
+        true => AxisScale::Log10,
+        false => parameter_scale(&a.name),
     };
+    let axis_name = |a: &super::Axis| match scale(a) {
+        AxisScale::Log10 => format!("{} (log scale)", a.name),
+        AxisScale::Degrees => format!("{} (deg)", a.name),
+        AxisScale::Linear => a.name.clone(),
+    };
+    let (x_scale, y_scale) = (scale(xa), scale(ya));
     let (plot_area, legend_area) = root.split_horizontally(640);
     let mut chart = ChartBuilder::on(&plot_area)
         .caption(
@@ -96,24 +101,15 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, report: &MapReport) ->
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(65)
-        .build_cartesian_2d(x0..x1, y0..y1)
+        .build_cartesian_2d(RoundTicks::new(x0, x1, x_scale), RoundTicks::new(y0, y1, y_scale))
         .map_err(err)?;
-    let unplot = |log: bool| {
-        move |v: &f64| {
-            if log {
-                format!("{:.3}", 10f64.powf(*v))
-            } else {
-                format!("{v:.3}")
-            }
-        }
-    };
     chart
         .configure_mesh()
         .disable_mesh()
         .x_desc(axis_name(xa))
         .y_desc(axis_name(ya))
-        .x_label_formatter(&unplot(xa.log))
-        .y_label_formatter(&unplot(ya.log))
+        .x_label_formatter(&|v| tick_label(*v, x_scale))
+        .y_label_formatter(&|v| tick_label(*v, y_scale))
         .label_style((FONT, 14))
         .axis_desc_style((FONT, 16))
         .draw()
