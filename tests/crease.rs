@@ -391,3 +391,25 @@ fn the_released_threshold_is_where_the_equilibrium_crease_pays_off() {
     assert!(below.reopened || below.difference > 0.0, "{below:?}");
     assert!(fold.released_evaluations.windows(2).all(|w| w[0].strain <= w[1].strain));
 }
+
+/// A fold's threshold is computed on its own mesh (refined over `1.5 a` at the crease): the
+/// same, to the last digit, whatever other folds are asked for beside it.
+#[test]
+fn a_folds_threshold_does_not_depend_on_the_other_folds_asked_for() {
+    let threshold = |folds: &str| -> f64 {
+        let out = scratch(&format!("crease-folds-{folds}"));
+        let run = common::fiberfold(&[
+            "crease", "--set", "mu_l=2", "--set", "K_l=6", "--set", "beta=1.0", "--fold", folds, "--d-from", "0.3",
+            "--d-to", "0.42", "--d-step", "0.02", "--no-convergence", "--out", out.to_str().unwrap(),
+        ]);
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("crease.json")).unwrap()).unwrap();
+        let fold = &report["folds"][0];
+        assert_eq!(fold["fold_length"], 0.5);
+        fold["thresholds"][0].as_f64().unwrap()
+    };
+    let alone = threshold("0.5");
+    assert_eq!(alone, threshold("0.5,2"));
+    assert!((0.3..0.42).contains(&alone), "{alone}");
+}

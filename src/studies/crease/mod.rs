@@ -213,7 +213,7 @@ impl CreaseStudy {
                 return Err(Error::invalid("max-meshes", r.max_meshes, "[3, 6]"));
             }
         }
-        self.mesh.spec(self.longest()).validate()
+        self.fold_lengths.iter().try_for_each(|&a| self.mesh.spec(a).validate())
     }
 
     fn longest(&self) -> f64 {
@@ -299,6 +299,8 @@ pub struct MeshUsed {
     /// Element counts relative to the base mesh.
     pub factor: usize,
     pub mesh: CreaseMesh,
+    /// Unknowns of the mesh of the longest fold (each fold's mesh is refined over `1.5 a` at the
+    /// crease, so that its threshold is the same whatever other folds are asked for).
     pub unknowns: usize,
 }
 
@@ -414,11 +416,10 @@ pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<Cr
     let max_meshes = study.refinement.map_or(1, |r| r.max_meshes);
     for factor in 1..=max_meshes {
         let mesh = study.mesh.scaled(factor);
-        let spec = mesh.spec(longest);
         meshes.push(MeshUsed {
             factor,
             mesh,
-            unknowns: spec.num_dofs(),
+            unknowns: mesh.spec(longest).num_dofs(),
         });
         let mut lowest = study.scan.to;
         for (i, &a) in study.fold_lengths.iter().enumerate() {
@@ -440,6 +441,8 @@ pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<Cr
                 }
                 scan.to = scan.to.min(lowest);
             }
+            // Each fold on its own mesh: its threshold does not depend on the others asked for.
+            let spec = mesh.spec(a);
             let fold = match factor {
                 1 => fold_threshold(&materials, spec, a, scan, study.criterion, tick)?,
                 _ => refined_threshold(&materials, spec, a, scan, study, tick)?,
