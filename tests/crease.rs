@@ -399,8 +399,24 @@ fn a_folds_threshold_does_not_depend_on_the_other_folds_asked_for() {
     let threshold = |folds: &str| -> f64 {
         let out = scratch(&format!("crease-folds-{folds}"));
         let run = common::fiberfold(&[
-            "crease", "--set", "mu_l=2", "--set", "K_l=6", "--set", "beta=1.0", "--fold", folds, "--d-from", "0.3",
-            "--d-to", "0.42", "--d-step", "0.02", "--no-convergence", "--out", out.to_str().unwrap(),
+            "crease",
+            "--set",
+            "mu_l=2",
+            "--set",
+            "K_l=6",
+            "--set",
+            "beta=1.0",
+            "--fold",
+            folds,
+            "--d-from",
+            "0.3",
+            "--d-to",
+            "0.42",
+            "--d-step",
+            "0.02",
+            "--no-convergence",
+            "--out",
+            out.to_str().unwrap(),
         ]);
         assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
         let report: serde_json::Value =

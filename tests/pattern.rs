@@ -3,23 +3,13 @@
 mod common;
 
 use common::{fiberfold, scratch};
+use std::path::PathBuf;
 
-#[test]
-fn a_coarse_patch_writes_its_summary_tables_figure_and_vtu() {
-    let out = scratch("pattern");
-    let output = fiberfold(&[
-        "pattern",
-        "--set",
-        "beta=0.785398",
-        "--set",
-        "psi=0.5235988",
-        "--elements-per-wavelength",
-        "3",
-        "--follow-to",
-        "0.13",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+/// `fiberfold pattern` with `args` into a scratch folder named `name`, which must succeed: the
+/// folder and `pattern.json`.
+fn pattern(name: &str, args: &[&str]) -> (PathBuf, serde_json::Value) {
+    let out = scratch(name);
+    let output = fiberfold(&[&["pattern"][..], args, &["--out", out.to_str().unwrap()]].concat());
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(
         output.status.success(),
@@ -27,8 +17,21 @@ fn a_coarse_patch_writes_its_summary_tables_figure_and_vtu() {
         String::from_utf8_lossy(&output.stderr)
     );
     assert!(stdout.contains("admissible wave vectors nearest the onset"), "{stdout}");
-    let report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("pattern.json")).unwrap()).unwrap();
+    let report = serde_json::from_str(&std::fs::read_to_string(out.join("pattern.json")).unwrap()).unwrap();
+    (out, report)
+}
+
+#[test]
+fn a_coarse_patch_writes_its_summary_tables_figure_and_vtu() {
+    let args = [
+        "--set",
+        "beta=0.785398",
+        "--set",
+        "psi=0.5235988",
+        "--elements-per-wavelength",
+        "3",
+    ];
+    let (out, report) = pattern("pattern", &[&args[..], &["--follow-to", "0.13"]].concat());
     // Inclined fibres at psi = 30 deg: one critical wave vector, whose crests run along the
     // fibres' projection (the wave vector at 120 deg from X), a cosine and a sine mode.
     assert_eq!(report["negative_pivots"], 2, "{report}");
@@ -101,28 +104,15 @@ fn bad_input_is_refused_with_exit_code_2_naming_the_flag() {
 /// same `d`, releasing energy, and goes on from there.
 #[test]
 fn a_checkerboard_that_turns_unstable_is_left_for_a_stable_pattern() {
-    let out = scratch("pattern-left");
-    let output = fiberfold(&[
-        "pattern",
+    let args = [
         "--set",
         "beta=0",
         "--elements-per-wavelength",
         "4",
         "--substrate-elements",
         "8",
-        "--follow-to",
-        "0.12",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    let stdout = String::from_utf8_lossy(&output.stdout);
-    assert!(
-        output.status.success(),
-        "{stdout}{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    let report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("pattern.json")).unwrap()).unwrap();
+    ];
+    let (out, report) = pattern("pattern-left", &[&args[..], &["--follow-to", "0.12"]].concat());
     let path = &report["path"];
     assert_eq!(path["seeded"].as_array().unwrap().len(), 2, "{path}");
     assert_eq!(path["stopped"], serde_json::Value::Null, "{path}");

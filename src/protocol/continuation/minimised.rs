@@ -45,6 +45,13 @@ impl<S: Followed> Continuation<S> {
     /// last equilibrium with the boundary moved to `d` ([`crate::protocol::snap`]); fails if the
     /// minimum reached is not stable (after the outer loops' updates).
     pub(super) fn snap(&mut self, d: f64) -> Result<(Solved, SnapRecord)> {
+        self.minimum_from_last(d, None)
+    }
+
+    /// The stable minimum of the energy at `d` from the last equilibrium with the boundary moved
+    /// to `d` and, if given, moved by `perturbation` too; recorded as a snap from it (the energy
+    /// released is measured from the unperturbed start).
+    fn minimum_from_last(&mut self, d: f64, perturbation: Option<&[f64]>) -> Result<(Solved, SnapRecord)> {
         let started = Instant::now();
         let (d0, u0) = self.history.back().expect("never empty").clone();
         let before = self.system.load_to(d0)?;
@@ -53,6 +60,10 @@ impl<S: Followed> Continuation<S> {
         let mut u = u0.clone();
         bc.impose(&mut u);
         let energy_start = self.energy(&u, &bc)?;
+        if let Some(perturbation) = perturbation {
+            u.iter_mut().zip(perturbation).for_each(|(a, b)| *a += b);
+            bc.impose(&mut u);
+        }
         let policy = NewtonPolicy {
             inertia_at_solution: true,
             ..self.policy
@@ -86,33 +97,8 @@ impl<S: Followed> Continuation<S> {
         perturbation: &[f64],
         observer: &mut dyn FnMut(Event<'_, S>) -> Result<()>,
     ) -> Result<()> {
-        let started = Instant::now();
-        let (d, u0) = self.history.back().expect("never empty").clone();
-        let bc = self.system.load_to(d)?;
-        let energy_before = self.energy(&u0, &bc)?;
-        let mut u: Vec<f64> = u0.iter().zip(perturbation).map(|(a, b)| a + b).collect();
-        bc.impose(&mut u);
-        let energy_start = self.energy(&u, &bc)?;
-        let policy = NewtonPolicy {
-            inertia_at_solution: true,
-            ..self.policy
-        };
-        let (report, augmented) = self.stable_minimum(&mut u, (&bc, d), &policy)?;
-        let energy_after = self.energy(&u, &bc)?;
-        let snap = SnapRecord {
-            d,
-            d_before: d,
-            amplitude_before: self.system.amplitude(&u0),
-            energy_before,
-            energy_start,
-            amplitude_after: self.system.amplitude(&u),
-            energy_after,
-            energy_released: energy_before - energy_after,
-            negative_pivots_after: report.negative_pivots,
-            steps: report.iterations,
-            factorisations: report.timings.factorisations,
-            seconds: started.elapsed().as_secs_f64(),
-        };
+        let d = self.d();
+        let ((report, u, augmented), snap) = self.minimum_from_last(d, Some(perturbation))?;
         let clock = super::StepClock::start();
         self.accept(
             (d, 0.0),
