@@ -209,9 +209,6 @@ pub fn run(args: &PatternArgs) -> Result<()> {
         for (d, released) in &path.branches_left {
             println!("  at d = {d:.4} the path turned unstable and was left for a stable state (energy released {released:.3e})");
         }
-        if let Some(why) = &path.stopped {
-            println!("the path stopped early: {why}");
-        }
     }
     println!("{} inertia evaluations, {:.1} s", r.inertia_evaluations, r.wall_seconds);
     report_files(&r.files.iter().map(PathBuf::from).collect::<Vec<_>>());

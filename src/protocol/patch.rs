@@ -205,11 +205,6 @@ impl<'a> PatchPath<'a> {
         self.patch.system()
     }
 
-    /// The patch as a continuation follows it.
-    pub fn into_patch(self) -> BiaxialPatch {
-        self.patch
-    }
-
     /// The homogeneous state at `d`, the conditions there, and its unknowns.
     pub fn homogeneous(&mut self, d: f64) -> Result<(BiaxialState, Dirichlet, Vec<f64>)> {
         let state = biaxial_state(self.materials, d, self.patch.biaxiality() * d)?;

@@ -210,7 +210,8 @@ pub struct PatternReport {
 }
 
 /// Sizes the patch, finds its first bifurcation against the theory and writes the files (module
-/// docs); `progress` is told the patch with its admissible wave vectors once, then every
+/// docs); a path past the onset that stops before its end is an error, returned once every file
+/// is written; `progress` is told the patch with its admissible wave vectors once, then every
 /// `(d, negative pivots)` evaluated.
 pub fn run(
     params: &Parameters,
@@ -316,6 +317,16 @@ pub fn run(
         files: files.iter().map(|f| f.display().to_string()).collect(),
     };
     write_json(&json, &report)?;
+    // A path that stopped early is a failure, reported once everything up to it is written.
+    if let Some(path) = report.path.as_ref().filter(|p| p.stopped.is_some()) {
+        return Err(Error::Solver(format!(
+            "the path past the onset stopped at d = {:.6} (asked: {}): {}; every state up to there is in {}",
+            path.d_reached,
+            path.d_end,
+            path.stopped.as_deref().unwrap_or_default(),
+            out.display()
+        )));
+    }
     Ok(report)
 }
 
