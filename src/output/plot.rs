@@ -74,7 +74,9 @@ pub struct Figure {
 /// Legend corner.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub enum Legend {
+    /// The corner whose part of the plot holds the fewest points ([`Figure::emptiest_corner`]).
     #[default]
+    Emptiest,
     UpperRight,
     UpperLeft,
     LowerRight,
@@ -137,6 +139,32 @@ impl Figure {
         (lo - margin, hi + margin)
     }
 
+    /// The corner of the plot `[x0, x1] x [y0, y1]` whose box of 45 % of the width by 35 % of the
+    /// height holds the fewest points of the series (upper right first among equals): where a
+    /// legend covers the least data.
+    fn emptiest_corner(&self, (x0, x1): (f64, f64), (y0, y1): (f64, f64)) -> SeriesLabelPosition {
+        let (w, h) = (0.45 * (x1 - x0), 0.35 * (y1 - y0));
+        let inside = |right: bool, upper: bool| {
+            let xs = if right { (x1 - w)..=x1 } else { x0..=(x0 + w) };
+            let ys = if upper { (y1 - h)..=y1 } else { y0..=(y0 + h) };
+            self.series
+                .iter()
+                .flat_map(|s| &s.points)
+                .filter(|(x, y)| xs.contains(x) && ys.contains(y))
+                .count()
+        };
+        [
+            (SeriesLabelPosition::UpperRight, inside(true, true)),
+            (SeriesLabelPosition::UpperLeft, inside(false, true)),
+            (SeriesLabelPosition::LowerRight, inside(true, false)),
+            (SeriesLabelPosition::LowerLeft, inside(false, false)),
+        ]
+        .into_iter()
+        .min_by_key(|(_, count)| *count)
+        .map(|(corner, _)| corner)
+        .expect("four corners")
+    }
+
     fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> std::result::Result<(), String> {
         let (x0, x1) = self.range(|p| p.0, self.x_range);
         let (y0, y1) = self.range(|p| p.1, self.y_range);
@@ -165,7 +193,32 @@ impl Figure {
         for s in &self.series {
             let color = PALETTE[s.color % PALETTE.len()];
             let line = color.stroke_width(2);
-            let points = s.points.iter().copied().filter(|(x, y)| x.is_finite() && y.is_finite());
+            // A point with a non-finite coordinate breaks a line: each run between such points
+            // is drawn on its own, the first carrying the legend.
+            let runs: Vec<&[(f64, f64)]> = s
+                .points
+                .split(|(x, y)| !(x.is_finite() && y.is_finite()))
+                .filter(|run| !run.is_empty())
+                .collect();
+            if matches!(s.style, LineStyle::Solid | LineStyle::Dashed | LineStyle::DotsAndLine) {
+                for run in runs.iter().skip(1) {
+                    let points = run.iter().copied();
+                    match s.style {
+                        LineStyle::Dashed => chart.draw_series(DashedLineSeries::new(points, 8, 5, line)),
+                        _ => chart.draw_series(LineSeries::new(points, line)),
+                    }
+                    .map_err(|e| e.to_string())?;
+                    if s.style == LineStyle::DotsAndLine {
+                        let dots = run.iter().map(|&p| Circle::new(p, 3, color.filled()));
+                        chart.draw_series(dots).map_err(|e| e.to_string())?;
+                    }
+                }
+            }
+            let points: Vec<(f64, f64)> = match s.style {
+                LineStyle::Circles | LineStyle::Crosses => runs.concat(),
+                _ => runs.first().map_or_else(Vec::new, |run| run.to_vec()),
+            };
+            let points = points.into_iter();
             let anno = match s.style {
                 LineStyle::Solid => chart.draw_series(LineSeries::new(points, line)),
                 LineStyle::Dashed => chart.draw_series(DashedLineSeries::new(points, 8, 5, line)),
@@ -199,6 +252,7 @@ impl Figure {
                 .background_style(WHITE.mix(0.85))
                 .border_style(BLACK)
                 .position(match self.legend {
+                    Legend::Emptiest => self.emptiest_corner((x0, x1), (y0, y1)),
                     Legend::UpperRight => SeriesLabelPosition::UpperRight,
                     Legend::UpperLeft => SeriesLabelPosition::UpperLeft,
                     Legend::LowerRight => SeriesLabelPosition::LowerRight,
@@ -313,6 +367,27 @@ impl Figure {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_legend_goes_to_the_corner_with_the_fewest_points() {
+        let rising = Series::new(
+            "",
+            (0..=10).map(|i| (i as f64, i as f64)).collect(),
+            LineStyle::Solid,
+            0,
+        );
+        let figure = Figure::new("", "", "").with(rising);
+        // A diagonal from lower left to upper right leaves the other two corners empty.
+        assert_eq!(
+            figure.emptiest_corner((0.0, 10.0), (0.0, 10.0)),
+            SeriesLabelPosition::UpperLeft
+        );
+        let high = Series::new("", (0..=10).map(|i| (i as f64, 9.5)).collect(), LineStyle::Solid, 1);
+        assert_eq!(
+            figure.with(high).emptiest_corner((0.0, 10.0), (0.0, 10.0)),
+            SeriesLabelPosition::LowerRight
+        );
+    }
 
     /// Draws one legend glyph into a 20 x 20 white bitmap; whether pixel `(x, y)` was painted.
     fn glyph(style: LineStyle) -> impl Fn(u32, u32) -> bool {

@@ -503,13 +503,16 @@ pub fn sweep(params: &Parameters, study: &SweepStudy, out: &Path, tick: Tick) ->
     let mut series_values: Vec<Option<f64>> = points.iter().map(|p| p.series).collect();
     series_values.dedup();
     for (i, s) in series_values.iter().enumerate() {
+        // Where the onset is not of the kind asked for (or there is none), a gap: the curve of
+        // interior minima is broken there rather than drawn across.
         let of = |pick: fn(&Onset) -> f64, interior: bool| -> Vec<(f64, f64)> {
             points
                 .iter()
                 .filter(|p| p.series == *s)
-                .filter_map(|p| p.onset.as_ref().map(|o| (p.value, o)))
-                .filter(|(_, o)| (o.minimum == Minimum::Interior) == interior)
-                .map(|(v, o)| (v, pick(o)))
+                .map(|p| match &p.onset {
+                    Some(o) if (o.minimum == Minimum::Interior) == interior => (p.value, pick(o)),
+                    _ => (p.value, f64::NAN),
+                })
                 .collect()
         };
         k_panel
@@ -519,7 +522,7 @@ pub fn sweep(params: &Parameters, study: &SweepStudy, out: &Path, tick: Tick) ->
             .series
             .push(Series::new(label(*s), of(|o| o.d_c, true), LineStyle::Solid, i));
         let limits = of(|o| o.d_c, false);
-        if !limits.is_empty() {
+        if limits.iter().any(|(_, d)| d.is_finite()) {
             let name = format!("{}: no interior minimum (limit k -> 0 or inf)", label(*s));
             d_panel.series.push(Series::new(name, limits, LineStyle::Crosses, i));
         }
