@@ -263,8 +263,8 @@ pub fn error_norms(
     }
 }
 
-/// A command that must exit 2 with a one-line error mentioning each of `must_mention`.
-pub fn rejected(args: &[&str], must_mention: &[&str]) {
+/// A command that must exit 2 with a one-line error mentioning each of `must_mention`; its stderr.
+pub fn rejected(args: &[&str], must_mention: &[&str]) -> String {
     let out = fiberfold(args);
     let stderr = String::from_utf8_lossy(&out.stderr).to_string();
     assert_eq!(out.status.code(), Some(2), "{args:?} should exit 2, stderr: {stderr}");
@@ -276,6 +276,7 @@ pub fn rejected(args: &[&str], must_mention: &[&str]) {
     for word in must_mention {
         assert!(stderr.contains(word), "{args:?}: `{word}` missing from: {stderr}");
     }
+    stderr
 }
 
 /// An isotropic bilayer of stiffness ratio `mu_l / mu_s = ratio`, nearly incompressible
