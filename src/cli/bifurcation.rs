@@ -1,10 +1,10 @@
 //! `fiberfold bifurcation`: the exact first bifurcation of the discretised perfect system.
 
 use super::common::{report_files, ParamArgs};
-use super::simulate::MeshArgs;
 use clap::Args;
 use fiberfold::protocol::BifurcationSettings;
 use fiberfold::studies::bifurcation::{self, BifurcationStudy};
+use fiberfold::studies::simulate::MeshChoice;
 use fiberfold::{Error, Result};
 use std::path::PathBuf;
 
@@ -14,7 +14,7 @@ pub struct BifurcationArgs {
     pub params: ParamArgs,
 
     #[command(flatten)]
-    pub mesh: MeshArgs,
+    pub mesh: MeshChoice,
 
     /// Width in d of the final bisection bracket, in [1e-12, 1e-2].
     #[arg(long, default_value_t = 1e-6)]

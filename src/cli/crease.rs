@@ -2,85 +2,19 @@
 
 use super::common::{report_files, ParamArgs};
 use clap::Args;
-use fiberfold::fem::ElementKind;
 use fiberfold::studies::crease::{self, CreaseOptions, CreaseReport, CreaseStudy, Criterion, FoldThreshold};
 use fiberfold::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 
+/// The flags of `crease` are the library's options, read in place.
 #[derive(Args)]
 pub struct CreaseArgs {
     #[command(flatten)]
     pub params: ParamArgs,
 
-    /// Reference fold lengths a (units of H), comma separated: the onset is the smallest
-    /// threshold over them, reported with its a.
-    #[arg(long, value_delimiter = ',', default_value = DEFAULT_FOLDS, allow_negative_numbers = true)]
-    pub fold: Vec<f64>,
-
-    /// First compression d scanned.
-    #[arg(long, default_value_t = defaults().d_from, allow_negative_numbers = true)]
-    pub d_from: f64,
-
-    /// Last compression d scanned (below 1).
-    #[arg(long, default_value_t = defaults().d_to, allow_negative_numbers = true)]
-    pub d_to: f64,
-
-    /// Step of the scan in d.
-    #[arg(long, default_value_t = defaults().d_step, allow_negative_numbers = true)]
-    pub d_step: f64,
-
-    /// Width in d to which each threshold is located on each mesh.
-    #[arg(long, default_value_t = defaults().tolerance, allow_negative_numbers = true)]
-    pub tolerance: f64,
-
-    /// Side of the square block around the crease (units of H, at least 4).
-    #[arg(long, default_value_t = defaults().size, allow_negative_numbers = true)]
-    pub size: f64,
-
-    /// Elements along X in the base mesh (refined --ratio times near the crease).
-    #[arg(long, default_value_t = defaults().nx)]
-    pub nx: usize,
-
-    /// Elements through the layer in the base mesh.
-    #[arg(long, default_value_t = defaults().layer_elements)]
-    pub layer_elements: usize,
-
-    /// Graded elements through the substrate in the base mesh.
-    #[arg(long, default_value_t = defaults().substrate_elements)]
-    pub substrate_elements: usize,
-
-    /// Refinement near the crease: elements there this many times smaller.
-    #[arg(long, default_value_t = defaults().ratio, allow_negative_numbers = true)]
-    pub ratio: f64,
-
-    /// Ratio of consecutive layer elements from the surface down (1: uniform; up to 4): the
-    /// elements are smallest at the crease tip.
-    #[arg(long, default_value_t = defaults().layer_grading, allow_negative_numbers = true)]
-    pub layer_grading: f64,
-
-    /// Finite element (mixed, the default: the more accurate, and the only one for
-    /// incompressible = true; displacement locks above K/mu ~ 100).
-    #[arg(long, value_enum, default_value_t = defaults().element)]
-    pub element: ElementKind,
-
-    /// The creased state compared with the flat state.
-    #[arg(long, value_enum, default_value_t = defaults().criterion)]
-    pub criterion: Criterion,
-
-    /// Converge each threshold in the mesh: the base mesh (--nx, --layer-elements,
-    /// --substrate-elements) with its element counts times 1, 2, 3, ... until the threshold
-    /// changes by less than this (in d), then extrapolated with the observed order.
-    #[arg(long, default_value_t = defaults().mesh_tolerance, allow_negative_numbers = true)]
-    pub mesh_tolerance: f64,
-
-    /// Meshes of the sequence at most (3 to 6).
-    #[arg(long, default_value_t = defaults().max_meshes)]
-    pub max_meshes: usize,
-
-    /// The base mesh alone: no refinement, no uncertainty.
-    #[arg(long)]
-    pub no_convergence: bool,
+    #[command(flatten)]
+    pub options: CreaseOptions,
 
     /// Output folder.
     #[arg(long, value_name = "DIR", default_value = "results/crease")]
@@ -89,25 +23,7 @@ pub struct CreaseArgs {
 
 pub fn run(args: &CreaseArgs) -> Result<()> {
     let params = args.params.resolve()?;
-    let study = CreaseOptions {
-        folds: args.fold.clone(),
-        d_from: args.d_from,
-        d_to: args.d_to,
-        d_step: args.d_step,
-        tolerance: args.tolerance,
-        size: args.size,
-        nx: args.nx,
-        layer_elements: args.layer_elements,
-        substrate_elements: args.substrate_elements,
-        ratio: args.ratio,
-        layer_grading: args.layer_grading,
-        element: args.element,
-        criterion: args.criterion,
-        convergence: !args.no_convergence,
-        mesh_tolerance: args.mesh_tolerance,
-        max_meshes: args.max_meshes,
-    }
-    .study()?;
+    let study = args.options.study()?;
     println!(
         "crease onset (energy of a seeded crease, {}, against the flat state) for folds a = {:?} H, d in [{}, {}]",
         match study.criterion {
@@ -148,13 +64,6 @@ pub fn run(args: &CreaseArgs) -> Result<()> {
     report_files(&files);
     Ok(())
 }
-
-fn defaults() -> CreaseOptions {
-    CreaseOptions::default()
-}
-
-/// The default folds as `--fold` takes them (the library's, [`CreaseOptions::default`]).
-const DEFAULT_FOLDS: &str = "0.5,1,2";
 
 /// What the fold at a threshold does when its nodes are let go to contact with the plane.
 fn print_release(fold: &FoldThreshold) {
@@ -251,14 +160,5 @@ fn print_onset(report: &CreaseReport, study: &CreaseStudy) {
             }
         }
         _ => println!("no crease pays off within the scan"),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn the_default_folds_are_the_librarys() {
-        let folds: Vec<f64> = super::DEFAULT_FOLDS.split(',').map(|a| a.parse().unwrap()).collect();
-        assert_eq!(folds, super::defaults().folds);
     }
 }

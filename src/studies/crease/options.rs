@@ -8,33 +8,88 @@ use crate::fem::ElementKind;
 use crate::studies::keywords::{default_keywords, from_keywords};
 use serde::{Deserialize, Serialize};
 
-/// One `crease` computation as a user chooses it.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+/// One `crease` computation as a user chooses it; `clap` reads the flags into it, with these
+/// texts as their help and [`CreaseStudy::default`]'s values as their defaults.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, clap::Args)]
 #[serde(default)]
 pub struct CreaseOptions {
-    /// Reference fold lengths `a` (units of `H`).
+    /// Reference fold lengths a (units of H), comma separated: the onset is the smallest
+    /// threshold over them, reported with its a.
+    #[arg(id = "fold", long = "fold", value_name = "FOLD", value_delimiter = ',', default_value = DEFAULT_FOLDS,
+          allow_negative_numbers = true)]
     pub folds: Vec<f64>,
-    /// The scan of `d`: from, to, by; then the sign change located to `tolerance`.
+
+    /// First compression d scanned.
+    #[arg(long, default_value_t = defaults().d_from, allow_negative_numbers = true)]
     pub d_from: f64,
+
+    /// Last compression d scanned (below 1).
+    #[arg(long, default_value_t = defaults().d_to, allow_negative_numbers = true)]
     pub d_to: f64,
+
+    /// Step of the scan in d.
+    #[arg(long, default_value_t = defaults().d_step, allow_negative_numbers = true)]
     pub d_step: f64,
+
+    /// Width in d to which each threshold is located on each mesh.
+    #[arg(long, default_value_t = defaults().tolerance, allow_negative_numbers = true)]
     pub tolerance: f64,
-    /// The block's width and depth (units of `H`).
+
+    /// Side of the square block around the crease (units of H, at least 4).
+    #[arg(long, default_value_t = defaults().size, allow_negative_numbers = true)]
     pub size: f64,
+
+    /// Elements along X in the base mesh (refined --ratio times near the crease).
+    #[arg(long, default_value_t = defaults().nx)]
     pub nx: usize,
+
+    /// Elements through the layer in the base mesh.
+    #[arg(long, default_value_t = defaults().layer_elements)]
     pub layer_elements: usize,
+
+    /// Graded elements through the substrate in the base mesh.
+    #[arg(long, default_value_t = defaults().substrate_elements)]
     pub substrate_elements: usize,
-    /// How much finer the elements are at the crease than far from it, along X.
+
+    /// Refinement near the crease: elements there this many times smaller.
+    #[arg(long, default_value_t = defaults().ratio, allow_negative_numbers = true)]
     pub ratio: f64,
-    /// Ratio of the layer's thickest to its thinnest element.
+
+    /// Ratio of consecutive layer elements from the surface down (1: uniform; up to 4): the
+    /// elements are smallest at the crease tip.
+    #[arg(long, default_value_t = defaults().layer_grading, allow_negative_numbers = true)]
     pub layer_grading: f64,
+
+    /// Finite element (mixed, the default: the more accurate, and the only one for
+    /// incompressible = true; displacement locks above K/mu ~ 100).
+    #[arg(long, value_enum, default_value_t = defaults().element)]
     pub element: ElementKind,
-    /// Which creased state is compared with the flat one: `held` or `released`.
+
+    /// The creased state compared with the flat state.
+    #[arg(long, value_enum, default_value_t = defaults().criterion)]
     pub criterion: Criterion,
-    /// Converge each threshold in the mesh (false: the base mesh alone).
-    pub convergence: bool,
+
+    /// Converge each threshold in the mesh: the base mesh (--nx, --layer-elements,
+    /// --substrate-elements) with its element counts times 1, 2, 3, ... until the threshold
+    /// changes by less than this (in d), then extrapolated with the observed order.
+    #[arg(long, default_value_t = defaults().mesh_tolerance, allow_negative_numbers = true)]
     pub mesh_tolerance: f64,
+
+    /// Meshes of the sequence at most (3 to 6).
+    #[arg(long, default_value_t = defaults().max_meshes)]
     pub max_meshes: usize,
+
+    /// The base mesh alone: no refinement, no uncertainty.
+    #[arg(id = "no_convergence", long = "no-convergence", action = clap::ArgAction::SetFalse)]
+    pub convergence: bool,
+}
+
+/// The default folds as `--fold` takes them ([`CreaseStudy::default`]'s; a test holds them equal).
+const DEFAULT_FOLDS: &str = "0.5,1,2";
+
+/// The defaults the flags show.
+fn defaults() -> CreaseOptions {
+    CreaseOptions::default()
 }
 
 impl Default for CreaseOptions {
@@ -130,6 +185,23 @@ mod tests {
         assert!(message(r#"{"criterion": "open"}"#).contains("`released`"));
         let released = CreaseOptions::from_keywords(r#"{"criterion": "released"}"#).unwrap();
         assert_eq!(released.study().unwrap().criterion, Criterion::Released);
+    }
+
+    #[test]
+    fn the_flags_read_into_the_options_at_the_same_defaults() {
+        use clap::Parser;
+        #[derive(Parser)]
+        struct Flags {
+            #[command(flatten)]
+            options: CreaseOptions,
+        }
+        let parse = |flags: &[&str]| Flags::try_parse_from(["crease"].iter().chain(flags)).map(|f| f.options);
+        assert_eq!(parse(&[]).unwrap(), CreaseOptions::default());
+        let chosen = parse(&["--fold", "0.5,2", "--no-convergence", "--criterion", "released"]).unwrap();
+        assert_eq!(
+            (chosen.folds, chosen.convergence, chosen.criterion),
+            (vec![0.5, 2.0], false, Criterion::Released)
+        );
     }
 
     #[test]

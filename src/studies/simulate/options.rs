@@ -15,28 +15,43 @@ use crate::studies::keywords::{default_keywords, from_keywords};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
-/// The mesh of a run as a user chooses it: a preset, and the numbers that replace its own.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+/// The mesh of a run as a user chooses it: a preset, and the numbers that replace its own. As
+/// command-line flags, the mesh of the half domain 0 <= X <= 50, -50 <= Y <= 1.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize, clap::Args)]
 #[serde(default)]
 pub struct MeshChoice {
+    /// Mesh preset.
     #[serde(rename = "mesh")]
+    #[arg(id = "mesh", long = "mesh", value_name = "MESH", value_enum, default_value_t = MeshPreset::default())]
     pub preset: MeshPreset,
-    /// Elements along X.
+    /// Elements along X (overrides the preset).
+    #[arg(long)]
     pub nx: Option<usize>,
-    /// Elements through the layer.
+    /// Elements through the layer 0 <= Y <= 1 (overrides the preset).
+    #[arg(long)]
     pub layer_elements: Option<usize>,
-    /// Graded elements through the substrate.
+    /// Geometrically graded elements through the substrate (overrides the preset).
+    #[arg(long)]
     pub substrate_elements: Option<usize>,
-    /// Thickness of the top substrate element at `Y = 0`.
+    /// Thickness of the top substrate element at Y = 0, in (0, 50) (overrides the preset).
+    #[arg(long, conflicts_with = "grading", allow_negative_numbers = true)]
     pub h0: Option<f64>,
-    /// Growth ratio of consecutive substrate elements in `[1, 2]`, instead of `h0`.
+    /// Growth ratio of consecutive substrate elements in [1, 2], instead of --h0.
+    #[arg(long, allow_negative_numbers = true)]
     pub grading: Option<f64>,
+    /// Finite element on the mesh. mixed, the default, is the more accurate at every K/mu
+    /// (Table 1's 3 too: Fig. 7's first contact 0.239 vs 0.256 on the fine mesh, refined meshes
+    /// 0.233-0.241) for about 5 % more time per Newton iteration, and the only one for
+    /// incompressible = true. displacement, the paper's element, locks above K/mu ~ 100.
+    #[arg(long, value_enum, default_value_t = ElementKind::default())]
     pub element: ElementKind,
     /// Length and depth of the half domain, where a study sets them (the presets' 50 H
     /// otherwise; not a user's option).
     #[serde(skip)]
+    #[arg(skip)]
     pub length: Option<f64>,
     #[serde(skip)]
+    #[arg(skip)]
     pub depth: Option<f64>,
 }
 
@@ -65,38 +80,110 @@ impl MeshChoice {
     }
 }
 
-/// Every option of `fiberfold simulate` (same names, units and defaults; see its `--help`).
-/// As keywords (JSON, Python) the mesh's are at the top level and `crossing` is
-/// `stabilisation`.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+/// Every option of `fiberfold simulate`: its flags (`clap` reads them into this struct, with
+/// these defaults and these texts as their help) and the Python keywords (the same names; the
+/// mesh's at the top level, `crossing` as `stabilisation` and `contact`, `inertia` as booleans).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, clap::Args)]
 #[serde(default)]
+#[command(group(clap::ArgGroup::new("seed").required(true).args(["waves", "k"])))]
 pub struct SimulateOptions {
     #[serde(flatten)]
+    #[command(flatten)]
     pub mesh: MeshChoice,
-    /// Waves `N` across the half domain (`2N` a positive integer), or else `k`.
+
+    /// Waves N of the seeded mode across the half domain, 2N a positive integer: k = 2 pi N / 50.
+    #[arg(long, allow_negative_numbers = true)]
     pub waves: Option<f64>,
+
+    /// Referential wavenumber of the seeded mode, k = m pi / 50 with m a positive integer.
+    #[arg(long, allow_negative_numbers = true)]
     pub k: Option<f64>,
+
+    /// Final end-shortening d, in (0.005, 1); under --load growth the strain d = 1 - 1/g of the
+    /// final growth g (0.2: g = 1.25).
+    #[arg(long, default_value_t = defaults().d_max, allow_negative_numbers = true)]
     pub d_max: f64,
+
+    /// Amplitude A_init of the seeded imperfection, in [0, 1) (0: the perfect system). The
+    /// reference geometry is perturbed by Delta Y = A_init cos(k X) s(Y), s = 1 in the layer and
+    /// sinh(k (Y + 50)) / sinh(50 k) in the substrate, after stage 1 (homogeneous to d = 0.005).
+    #[arg(long, default_value_t = defaults().imperfection, allow_negative_numbers = true)]
     pub imperfection: f64,
+
+    /// Largest step in d, also the largest gap between recorded states.
+    #[arg(long, default_value_t = defaults().max_step, allow_negative_numbers = true)]
     pub max_step: f64,
+
+    /// Smallest step in d; a failure at this step stops the run (snaps to a crease are
+    /// crossed with steps down to about eta / 10).
+    #[arg(long, default_value_t = defaults().min_step, allow_negative_numbers = true)]
     pub min_step: f64,
-    /// Newton steps with a new tangent per load step, in [1, 100].
+
+    /// Newton steps with a newly factorised tangent allowed per load step before the step is
+    /// cut, in [1, 100] (steps with the reused factorisation are bounded by twice this).
+    #[arg(long, default_value_t = defaults().max_newton_iterations)]
     pub max_newton_iterations: usize,
+
+    /// Refine the mesh in X near the troughs of the seeded mode: elements RATIO times smaller
+    /// there (Gaussian bumps of width --refine-width), the same number of elements in X.
+    #[arg(long, value_name = "RATIO", allow_negative_numbers = true)]
     pub refine_troughs: Option<f64>,
+
+    /// Width in X of the refinement around each trough.
+    #[arg(long, default_value_t = defaults().refine_width, allow_negative_numbers = true)]
     pub refine_width: f64,
+
+    /// Amplitude A2 of the long-wave imperfection -A2 cos(2 pi N2 X / 50) of the reference
+    /// geometry, in [0, 1): it lets the pattern leave an unstable periodic branch (use the
+    /// shape of the first secondary mode: its N2 is printed at the end of a periodic run).
+    #[arg(long, default_value_t = defaults().imperfection2, allow_negative_numbers = true)]
     pub imperfection2: f64,
+
+    /// Waves N2 of the long-wave imperfection across the domain, 2 N2 a positive integer
+    /// (0.5: one half wave, deepest at X = 0; N/2: a period doubling).
+    #[arg(long, value_name = "N2", default_value_t = defaults().imperfection2_waves, allow_negative_numbers = true)]
     pub imperfection2_waves: f64,
+
+    /// Turn off contact of the top surface with the symmetry planes and with itself.
+    #[arg(id = "no_contact", long = "no-contact", action = clap::ArgAction::SetFalse)]
     pub contact: bool,
-    /// How stage 3 crosses where the branch it follows has no nearby equilibrium.
+
+    /// How to cross a snap (a limit point in d, a closing trough), where Newton's method cannot
+    /// follow the branch: `viscous` damps the steps the step control has cut below 1e-3
+    /// (ABAQUS's *STATIC, STABILIZE: those recorded states carry damping forces); `snap`
+    /// minimises the energy where a step of 1e-6 fails and records the stable equilibrium
+    /// reached (snaps.json: every recorded state an exact equilibrium; in contact a failed step
+    /// from a stable state is corrected by minimisation too, `minimised` in amplitude.csv;
+    /// slower than `viscous` through contact); `none` stops where Newton's method fails.
     #[serde(rename = "stabilisation")]
+    #[arg(id = "stabilisation", long = "stabilisation", value_name = "STABILISATION", value_enum,
+          default_value_t = defaults().crossing)]
     pub crossing: Crossing,
-    /// `eta` of the viscous stabilisation (with [`Crossing::Viscous`]).
+
+    /// Viscous stabilisation's damping eta / h relative to the reference stiffness on a step h
+    /// in d, in (0, inf) (with --stabilisation viscous).
+    #[arg(long, default_value_t = defaults().eta, allow_negative_numbers = true)]
     pub eta: f64,
-    /// Track the inertia of the tangent at every accepted state.
+
+    /// Do not track the number of negative eigenvalues of the tangent at every converged state
+    /// (saves the extra factorisation of damped and contact states; secondary.json then has no
+    /// bifurcations). Ignored with --stabilisation snap, which needs the inertia to tell a
+    /// stable state.
+    #[arg(id = "no_inertia", long = "no-inertia", action = clap::ArgAction::SetFalse)]
     pub inertia: bool,
+
+    /// Spacing in d of the VTU snapshots.
+    #[arg(long, default_value_t = defaults().vtu_every, allow_negative_numbers = true)]
     pub vtu_every: f64,
-    /// Run even when the memory estimate exceeds the memory available.
+
+    /// Run even when the memory estimate (printed in the header) exceeds the memory available.
+    #[arg(long)]
     pub force: bool,
+}
+
+/// The defaults the flags show.
+fn defaults() -> SimulateOptions {
+    SimulateOptions::default()
 }
 
 /// How stage 3 crosses a snap: where the branch it follows has no nearby equilibrium (a limit
@@ -262,6 +349,47 @@ mod tests {
             message(r#"{"length": 20}"#).contains("`keyword`"),
             "length is not a user's option"
         );
+    }
+
+    #[test]
+    fn the_flags_read_into_the_options_at_the_same_defaults() {
+        use clap::Parser;
+        #[derive(Parser)]
+        struct Flags {
+            #[command(flatten)]
+            options: SimulateOptions,
+        }
+        let parse = |flags: &[&str]| Flags::try_parse_from(["simulate"].iter().chain(flags)).map(|f| f.options);
+        assert_eq!(
+            parse(&["--waves", "4.5"]).unwrap(),
+            SimulateOptions {
+                waves: Some(4.5),
+                ..SimulateOptions::default()
+            }
+        );
+        let chosen = parse(&[
+            "--k",
+            "0.5",
+            "--mesh",
+            "fine",
+            "--element",
+            "displacement",
+            "--no-contact",
+            "--no-inertia",
+            "--stabilisation",
+            "snap",
+        ])
+        .unwrap();
+        assert_eq!(
+            (chosen.k, chosen.mesh.preset, chosen.mesh.element),
+            (Some(0.5), MeshPreset::Fine, ElementKind::Displacement)
+        );
+        assert_eq!(
+            (chosen.contact, chosen.inertia, chosen.crossing),
+            (false, false, Crossing::Snap)
+        );
+        assert!(parse(&[]).is_err(), "a seeded wave is required");
+        assert!(parse(&["--waves", "4", "--k", "0.5"]).is_err());
     }
 
     #[test]
