@@ -2,14 +2,23 @@
 //!
 //! In each layer `y = (a, b, s1/k, s2/k)` obeys `y' = k N y` ([`IncrementalModuli::stroh_matrix`]);
 //! `N` has eigenvalues `+-p1, +-p2`, the roots of the characteristic quartic in the Y-exponent.
-//! * Substrate: the solutions decaying as `Y -> -inf` span the invariant subspace of the roots
-//!   with `Re p > 0`, obtained from the matrix sign function of `N_s` (no eigenvector, hence no
-//!   arbitrary phase). On it the tractions are a linear function of the displacements, the
-//!   surface impedance `(s1, s2)/k = Z (a, b)` at `Y = 0`.
-//! * Layer: the transfer matrix `T = exp(k N_l)` carries `y(0)` to `y(1)`.
-//! * Continuity at `Y = 0` and zero traction at `Y = 1` leave `(T_21 + T_22 Z) (a, b)(0) = 0`:
-//!   the bifurcation condition is the real determinant `det(T_21 + T_22 Z) = 0`, continuous in
-//!   `d` while both layers are strongly elliptic, so its sign changes exactly at a root.
+//! The solutions with `Re p > 0` (growing with `Y`) and those with `Re p < 0` span two invariant
+//! subspaces, obtained from the matrix sign function of `N` (no eigenvector, hence no arbitrary
+//! phase, and no trouble where two roots meet, as they do in a nearly incompressible solid). On
+//! each the tractions are a linear function of the displacements: `(s1, s2)/k = Z (a, b)`, the
+//! subspace's impedance.
+//! * Substrate: the solutions decaying as `Y -> -inf` are the growing ones; their impedance at
+//!   `Y = 0` is the surface impedance `Z_s`.
+//! * Layer: `y(Y) = (I; Z_+) E_+(Y - 1) w_+ + (I; Z_-) E_-(Y) w_-`, where `E_+-(t) = exp(k A_+- t)`
+//!   and `A_+- = N_11 + N_12 Z_+-` is `N` on each subspace. Each exponential is anchored at the face
+//!   where it is largest, so that it is at most of order one across the layer: the transfer
+//!   matrix `exp(k N)` of the layer as a whole grows as `exp(k p)` and overflows, and loses the
+//!   decaying solutions to rounding long before, at large `k` or strong compression.
+//! * Continuity at `Y = 0` (`s = Z_s u`) and zero traction at `Y = 1` leave the 4x4 system
+//!   `M (w_+, w_-) = 0`,
+//!   `M = [(Z_+ - Z_s) E_+(-1), Z_- - Z_s; Z_+, Z_- E_-(1)]`: the bifurcation condition is
+//!   `det M = 0`. `M` is continuous in `d` while both layers are strongly elliptic, so the sign of
+//!   its determinant changes exactly at a root.
 
 use super::IncrementalModuli;
 use crate::error::{Error, Result};
@@ -33,8 +42,9 @@ fn matrix_sign(n: &Matrix4<f64>) -> Result<Matrix4<f64>> {
             break;
         }
     }
-    // A sign matrix squares to the identity; near a double root rounding limits the last digits.
-    if (s * s - Matrix4::identity()).norm() < 1e-8 {
+    // A sign matrix squares to the identity. Rounding limits the last digits relative to the
+    // size of `S` (large where the roots differ by orders of magnitude, or nearly meet).
+    if (s * s - Matrix4::identity()).norm() < 1e-8 * s.norm_squared().max(1.0) {
         Ok(s)
     } else {
         Err(not_elliptic())
@@ -42,29 +52,87 @@ fn matrix_sign(n: &Matrix4<f64>) -> Result<Matrix4<f64>> {
 }
 
 fn not_elliptic() -> Error {
-    Error::NonFinite("substrate impedance: Stroh roots on the imaginary axis (ellipticity lost)".into())
+    Error::NonFinite("Stroh roots on the imaginary axis (ellipticity lost)".into())
+}
+
+/// The impedances `(Z_+, Z_-)` of the solutions of `y' = k N y` growing and decaying with `Y`.
+/// Independent of `k`.
+fn impedances(n: &Matrix4<f64>) -> Result<(Matrix2<f64>, Matrix2<f64>)> {
+    // Tractions measured in units of the moduli, `s / sigma`, so that the blocks of `N` are of
+    // one size (the moduli of an Ogden law at large stretch reach 1e17).
+    let sigma = (n.fixed_view::<2, 2>(2, 0).norm() / n.fixed_view::<2, 2>(0, 2).norm()).sqrt();
+    if !(sigma.is_finite() && sigma > 0.0) {
+        return Err(not_elliptic());
+    }
+    let mut balanced = *n;
+    balanced.fixed_view_mut::<2, 2>(0, 2).scale_mut(sigma);
+    balanced.fixed_view_mut::<2, 2>(2, 0).unscale_mut(sigma);
+    let sign = matrix_sign(&balanced)?;
+    // The subspace of one sign is the kernel of the other's projector `(I -+ sign) / 2`:
+    // `[P11 P12; P21 P22] (U; Z U) = 0`, a consistent 4x2 system solved by least squares.
+    let impedance_on_kernel = |projector: Matrix4<f64>| {
+        let on_traction: Matrix4x2<f64> = projector.fixed_view::<4, 2>(0, 2).into_owned();
+        let on_displacement: Matrix4x2<f64> = projector.fixed_view::<4, 2>(0, 0).into_owned();
+        // By the singular values: the normal equations square a condition number that is
+        // large where the moduli are (an Ogden law at large stretch).
+        let svd = on_traction.svd(true, true);
+        if svd.singular_values.min() <= 1e-12 * svd.singular_values.max() {
+            return Err(not_elliptic());
+        }
+        svd.solve(&-on_displacement, 0.0).map_err(|_| not_elliptic())
+    };
+    Ok((
+        impedance_on_kernel((Matrix4::identity() - sign) * 0.5)? * sigma,
+        impedance_on_kernel((Matrix4::identity() + sign) * 0.5)? * sigma,
+    ))
 }
 
 /// Surface impedance of the substrate half-space: `(s1, s2)/k = Z (a, b)` at `Y = 0` for the
 /// solutions decaying as `Y -> -inf`. Independent of `k`.
 pub fn surface_impedance(substrate: &IncrementalModuli) -> Result<Matrix2<f64>> {
-    let sign = matrix_sign(&substrate.stroh_matrix())?;
-    // Decaying subspace = kernel of P_- = (I - sign)/2, i.e. [M11 M12; M21 M22] (U; s) = 0.
-    let minus = (Matrix4::identity() - sign) * 0.5;
-    let on_traction: Matrix4x2<f64> = minus.fixed_view::<4, 2>(0, 2).into_owned();
-    let on_displacement: Matrix4x2<f64> = minus.fixed_view::<4, 2>(0, 0).into_owned();
-    // Least squares of the consistent 4x2 system  on_traction * Z = -on_displacement.
-    let normal = on_traction.transpose() * on_traction;
-    let rhs = -(on_traction.transpose() * on_displacement);
-    normal.try_inverse().map(|inv| inv * rhs).ok_or_else(not_elliptic)
+    impedances(&substrate.stroh_matrix()).map(|(growing, _)| growing)
 }
 
-/// The bifurcation determinant `det(T_21 + T_22 Z)` at wavenumber `k` (normalised by the
-/// size of the transfer blocks so that it stays O(1)).
-pub fn bifurcation_determinant(layer: &IncrementalModuli, impedance: &Matrix2<f64>, k: f64) -> f64 {
-    let transfer = (layer.stroh_matrix() * k).exp();
-    let t21: Matrix2<f64> = transfer.fixed_view::<2, 2>(2, 0).into_owned();
-    let t22: Matrix2<f64> = transfer.fixed_view::<2, 2>(2, 2).into_owned();
-    let condition = t21 + t22 * impedance;
-    condition.determinant() / (1.0 + t21.norm_squared() + (t22 * impedance).norm_squared())
+/// The layer's solutions split by their growth through the thickness: what
+/// [`bifurcation_determinant`] needs of the layer at one state, for every `k`.
+#[derive(Clone, Copy, Debug)]
+pub struct LayerSolutions {
+    /// Impedances of the growing and the decaying solutions.
+    growing: Matrix2<f64>,
+    decaying: Matrix2<f64>,
+    /// `N` on each subspace, `N_11 + N_12 Z` (eigenvalues `k`-free roots `+-p`).
+    growing_rate: Matrix2<f64>,
+    decaying_rate: Matrix2<f64>,
+}
+
+impl LayerSolutions {
+    /// The split of `layer`'s solutions; an error where a Stroh root lies on the imaginary axis.
+    pub fn of(layer: &IncrementalModuli) -> Result<Self> {
+        let n = layer.stroh_matrix();
+        let (growing, decaying) = impedances(&n)?;
+        let n11: Matrix2<f64> = n.fixed_view::<2, 2>(0, 0).into_owned();
+        let n12: Matrix2<f64> = n.fixed_view::<2, 2>(0, 2).into_owned();
+        Ok(LayerSolutions {
+            growing,
+            decaying,
+            growing_rate: n11 + n12 * growing,
+            decaying_rate: n11 + n12 * decaying,
+        })
+    }
+}
+
+/// The bifurcation determinant `det M` at wavenumber `k` (module docs), divided by the product
+/// of the norms of the rows of `M` (Hadamard's bound), so that it lies in `[-1, 1]` at every `k`
+/// and `d` with its sign unchanged.
+pub fn bifurcation_determinant(layer: &LayerSolutions, impedance: &Matrix2<f64>, k: f64) -> f64 {
+    let base = (layer.growing_rate * -k).exp();
+    let top = (layer.decaying_rate * k).exp();
+    let mut m = Matrix4::zeros();
+    m.fixed_view_mut::<2, 2>(0, 0)
+        .copy_from(&((layer.growing - impedance) * base));
+    m.fixed_view_mut::<2, 2>(0, 2).copy_from(&(layer.decaying - impedance));
+    m.fixed_view_mut::<2, 2>(2, 0).copy_from(&layer.growing);
+    m.fixed_view_mut::<2, 2>(2, 2).copy_from(&(layer.decaying * top));
+    let rows: f64 = m.row_iter().map(|row| row.norm()).product();
+    m.determinant() / rows
 }

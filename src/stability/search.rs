@@ -3,7 +3,7 @@
 
 use super::discrete;
 use super::ellipticity::ellipticity_margin;
-use super::exact::{bifurcation_determinant, surface_impedance};
+use super::exact::{bifurcation_determinant, surface_impedance, LayerSolutions};
 use super::surface::Surface;
 use super::{IncrementalModuli, Method};
 use crate::error::{Error, Result};
@@ -46,8 +46,8 @@ pub enum Minimum {
 /// method is still well conditioned); a minimum still at either end is reported as the limit.
 const K_LONG: f64 = 1e-4;
 const K_SHORT: f64 = K_MAX;
-/// Largest wavenumber analysed: beyond `kH = 10` the layer acts as a half-space, and the exact
-/// method's exponentials of `k H` cost it its precision (garbage `d_c` from `k ~ 15`).
+/// Largest wavenumber analysed: beyond `kH = 10` the layer acts as a half-space (a nearly
+/// incompressible neo-Hookean layer's `d_c` is Biot's to 2e-10 there).
 pub const K_MAX: f64 = 10.0;
 /// Probes per decade beyond the grid.
 const PROBES_PER_DECADE: f64 = 4.0;
@@ -223,11 +223,13 @@ impl StabilityAnalysis {
             Method::Exact => {
                 // Within a hair of the loss of ellipticity a Stroh root touches the imaginary
                 // axis: the search has reached its end without a bifurcation.
-                let impedance = surface_impedance(&substrate).map_err(|_| Error::NoRoot {
+                let nearly_lost = |_| Error::NoRoot {
                     what: format!("the bifurcation condition at k = {k} before d = {d} (ellipticity nearly lost)"),
                     lower: 0.0,
                     upper: d,
-                })?;
+                };
+                let impedance = surface_impedance(&substrate).map_err(nearly_lost)?;
+                let layer = LayerSolutions::of(&layer).map_err(nearly_lost)?;
                 Ok(bifurcation_determinant(&layer, &impedance, k))
             }
             Method::Discrete(options) => match discrete::negative_eigenvalues(&layer, &substrate, k, options) {
@@ -409,8 +411,15 @@ impl StabilityAnalysis {
             b,
             1e-8,
         );
+        // Interior only where d_c rises on both sides by more than the tolerance of a rise (as
+        // in `onset`): a nearly flat d_c(k) is classified by the whole search.
+        let rises = |k: f64, d_c: f64| -> Result<bool> {
+            Ok(self.critical_compression_near(k, Some(d_c))? > d_c + RISE_TOLERANCE)
+        };
         match minimum {
-            Ok((k0, d_c)) if k0 > a * 1.001 && k0 < b * 0.999 => Ok(self.onset_at(k0, d_c, Minimum::Interior)),
+            Ok((k0, d_c)) if k0 > a * 1.001 && k0 < b * 0.999 && rises(a, d_c)? && rises(b, d_c)? => {
+                Ok(self.onset_at(k0, d_c, Minimum::Interior))
+            }
             _ => self.onset(),
         }
     }

@@ -405,3 +405,99 @@ fn compressible_moduli_tend_to_the_incompressible_ones() {
         .collect();
     assert!(gaps[1] < 1e-4 && gaps[1] < 0.05 * gaps[0], "{gaps:?}");
 }
+
+/// Table 1's tissue made nearly incompressible: `K/mu` of both layers `ratio`, contrast `mu_l`,
+/// fibres at `beta`.
+fn nearly_incompressible(ratio: f64, mu_l: f64, beta: f64) -> Parameters {
+    Parameters {
+        mu_l,
+        K_l: ratio * mu_l,
+        K_s: ratio,
+        beta,
+        ..Parameters::default()
+    }
+}
+
+/// On a grid of nearly incompressible tissues (K/mu 1e3 to 1e8, contrast 1.2 to 100, fibres
+/// along, across and between) the exact method answers everywhere, and its answer is that of
+/// independent references: at K/mu = 1e8 the exactly incompressible formulation (another Stroh
+/// matrix, with a pressure), at K/mu = 1e3 the discrete method (which locks beyond), and for a
+/// short-wave onset Biot's half-space. A sweep's continued search classifies as the cold one.
+#[test]
+fn the_exact_method_answers_nearly_incompressible_tissues_at_any_contrast() {
+    for ratio in [1e3, 1e5, 1e8] {
+        for mu_l in [1.2, 10.0, 100.0] {
+            for beta in [0.0, 0.5, 1.0, FRAC_PI_2] {
+                let p = nearly_incompressible(ratio, mu_l, beta);
+                let case = format!("K/mu = {ratio:e}, mu_l = {mu_l}, beta = {beta}");
+                let exact = StabilityAnalysis::new(&p, Method::Exact).unwrap().onset().unwrap();
+                if ratio == 1e8 {
+                    let incompressible = Parameters {
+                        incompressible: true,
+                        ..p.clone()
+                    };
+                    let reference = StabilityAnalysis::new(&incompressible, Method::Exact)
+                        .unwrap()
+                        .onset()
+                        .unwrap();
+                    assert_eq!(exact.minimum, reference.minimum, "{case}");
+                    assert!(
+                        (exact.d_c - reference.d_c).abs() < 1e-6,
+                        "{case}: {exact:?} vs {reference:?}"
+                    );
+                }
+                if ratio == 1e3 && exact.minimum == Minimum::Interior {
+                    let discrete = StabilityAnalysis::new(&p, Method::Discrete(DiscreteOptions::default()))
+                        .unwrap()
+                        .onset()
+                        .unwrap();
+                    assert!(
+                        (exact.d_c - discrete.d_c).abs() < 1e-5,
+                        "{case}: {exact:?} vs {discrete:?}"
+                    );
+                }
+                if exact.minimum == Minimum::ShortWave && ratio >= 1e5 {
+                    assert!((exact.d_c - biot_compression()).abs() < 1e-5, "{case}: {exact:?}");
+                }
+                // As `sweep` reaches it: continued from the onset at a neighbouring beta.
+                let neighbour = StabilityAnalysis::new(&nearly_incompressible(ratio, mu_l, beta + 0.05), Method::Exact)
+                    .unwrap()
+                    .onset()
+                    .unwrap();
+                let continued = StabilityAnalysis::new(&p, Method::Exact)
+                    .unwrap()
+                    .onset_near(&neighbour)
+                    .unwrap();
+                assert_eq!(continued.minimum, exact.minimum, "{case}");
+                assert!(
+                    (continued.d_c - exact.d_c).abs() < 1e-7,
+                    "{case}: {continued:?} vs {exact:?}"
+                );
+            }
+        }
+    }
+}
+
+/// Where the transfer matrix of the layer as a whole overflowed (K_l = 1e8: `non-finite value
+/// in the bifurcation determinant`), both methods agree.
+#[test]
+fn a_stiff_nearly_incompressible_layer_has_the_discrete_methods_onset() {
+    let p = Parameters {
+        mu_l: 100.0,
+        K_l: 1e8,
+        K_s: 1e6,
+        beta: 0.5,
+        ..Parameters::default()
+    };
+    let exact = StabilityAnalysis::new(&p, Method::Exact).unwrap().onset().unwrap();
+    let discrete = StabilityAnalysis::new(&p, Method::Discrete(DiscreteOptions::default()))
+        .unwrap()
+        .onset()
+        .unwrap();
+    assert_eq!(exact.minimum, Minimum::Interior);
+    assert!((exact.d_c - discrete.d_c).abs() < 1e-5, "{exact:?} vs {discrete:?}");
+    assert!(
+        (exact.k0 - discrete.k0).abs() < 1e-2 * exact.k0,
+        "{exact:?} vs {discrete:?}"
+    );
+}

@@ -67,12 +67,14 @@ impl StabilityAnalysis {
         let (layer, substrate) = self.surface_moduli(d)?;
         match &self.method {
             Method::Exact => {
-                let impedance = exact::surface_impedance(&substrate, theta).map_err(|_| Error::NoRoot {
+                let nearly_lost = |_| Error::NoRoot {
                     what: format!("the bifurcation condition at k = {k} before d = {d} (ellipticity nearly lost)"),
                     lower: 0.0,
                     upper: d,
-                })?;
-                Ok(exact::bifurcation_condition(&layer, &impedance, k, theta))
+                };
+                let impedance = exact::surface_impedance(&substrate, theta).map_err(nearly_lost)?;
+                let layer = exact::LayerSolutions::of(&layer, theta).map_err(nearly_lost)?;
+                Ok(exact::bifurcation_condition(&layer, &impedance, k))
             }
             Method::Discrete(options) => match discrete::negative_eigenvalues(&layer, &substrate, k, theta, options) {
                 Some(0) => Ok(1.0),

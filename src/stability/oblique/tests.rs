@@ -205,3 +205,42 @@ fn smallest_eigenvalue_in_closed_form_matches_the_eigensolver() {
         );
     }
 }
+
+/// Nearly incompressible tissues, where the transfer matrix of the layer as a whole overflowed:
+/// plane-strain modes along X are still the plane analysis, and a soft layer's short waves under
+/// equibiaxial compression are Biot's equibiaxial half-space (`1 - x^(1/3)`, as above) in every
+/// direction.
+#[test]
+fn nearly_incompressible_layers_are_answered_in_every_direction() {
+    let stiff = Parameters {
+        mu_l: 100.0,
+        K_l: 1e8,
+        K_s: 1e6,
+        beta: 0.5,
+        ..Parameters::default()
+    };
+    let plane = StabilityAnalysis::new(&stiff, Method::Exact).unwrap();
+    let oblique = StabilityAnalysis::with_surface(&stiff, Method::Exact, surface(0.0, 0.0)).unwrap();
+    for k in [0.3, 2.0, 8.0] {
+        let (a, b) = (
+            plane.critical_compression(k).unwrap(),
+            oblique.critical_compression(k).unwrap(),
+        );
+        assert!((a - b).abs() < 1e-9, "k {k}: plane {a} vs oblique {b}");
+    }
+    let x =
+        crate::numerics::roots::brent("Biot", |x: f64| Ok(x * x * x + x * x + 3.0 * x - 1.0), 0.0, 1.0, 1e-15).unwrap();
+    let biot = 1.0 - x.cbrt();
+    let soft = Parameters {
+        mu_l: 1.2,
+        K_l: 1.2e6,
+        K_s: 1e6,
+        beta: 0.5,
+        ..Parameters::default()
+    };
+    for theta in [0.0, 0.7, FRAC_PI_2] {
+        let analysis = StabilityAnalysis::with_surface(&soft, Method::Exact, surface(1.0, theta)).unwrap();
+        let d_c = analysis.critical_compression(8.0).unwrap();
+        assert!((d_c - biot).abs() < 1e-5, "theta {theta}: {d_c} vs {biot}");
+    }
+}
