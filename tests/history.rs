@@ -1,7 +1,9 @@
 //! History belongs in CHANGELOG.md. README.md, the user guide (`docs/guide/src/**/*.md`) and the
 //! documentation comments of the library (`///` and `//!` under `src/`) must hold no commit hash
 //! (a word of 7 to 40 hexadecimal digits with at least one digit and one letter a-f) and no date
-//! (`YYYY-MM-DD`), which would tie a measurement to a moment of the code's history.
+//! (`YYYY-MM-DD`), which would tie a measurement to a moment of the code's history. The one
+//! exception is the benchmarks page, which `bench/benchmarks.sh` writes whole, naming the date and
+//! the commit it measured (and which nobody edits by hand: it must say so in its first line).
 
 use std::path::{Path, PathBuf};
 
@@ -66,6 +68,9 @@ fn documentation_holds_no_commit_hash_and_no_date() {
     pages.extend(files(&root.join("docs/guide/src"), "md"));
     for page in &pages {
         let text = std::fs::read_to_string(page).unwrap_or_else(|e| panic!("{}: {e}", page.display()));
+        if text.starts_with(WRITTEN_BY_SCRIPT) {
+            continue;
+        }
         for (number, line) in text.lines().enumerate() {
             if let Some(what) = offence(line) {
                 hits.push(format!("{}:{}: {what}: {}", page.display(), number + 1, line.trim()));
@@ -89,4 +94,31 @@ fn documentation_holds_no_commit_hash_and_no_date() {
         "history belongs in CHANGELOG.md; found in the documentation:\n{}",
         hits.join("\n")
     );
+}
+
+/// The first line of the page `bench/benchmarks.sh` writes.
+const WRITTEN_BY_SCRIPT: &str = "<!-- Written by bench/benchmarks.sh";
+
+#[test]
+fn the_benchmarks_page_is_the_scripts() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let page = std::fs::read_to_string(root.join("docs/guide/src/benchmarks.md")).unwrap();
+    assert!(
+        page.starts_with(WRITTEN_BY_SCRIPT),
+        "the benchmarks page is written by bench/benchmarks.sh"
+    );
+    let script = std::fs::read_to_string(root.join("bench/benchmarks.sh")).unwrap();
+    assert!(
+        script.contains(&format!("echo \"{WRITTEN_BY_SCRIPT}")),
+        "the script writes the marker"
+    );
+    // Nothing else in the guide claims to be the script's.
+    for page in files(&root.join("docs/guide/src"), "md") {
+        let text = std::fs::read_to_string(&page).unwrap();
+        assert!(
+            !text.starts_with(WRITTEN_BY_SCRIPT) || page.ends_with("benchmarks.md"),
+            "{}",
+            page.display()
+        );
+    }
 }

@@ -190,59 +190,60 @@ impl Figure {
             .light_line_style(WHITE.mix(0.0))
             .draw()
             .map_err(|e| e.to_string())?;
+        let (x_box, y_box) = ((x0, x1), (y0, y1));
         for s in &self.series {
             let color = PALETTE[s.color % PALETTE.len()];
             let line = color.stroke_width(2);
-            // A point with a non-finite coordinate breaks a line: each run between such points
-            // is drawn on its own, the first carrying the legend.
-            let runs: Vec<&[(f64, f64)]> = s
+            // Every curve is clipped to the axes, and broken where a value is missing (a point
+            // with a non-finite coordinate).
+            let runs: Vec<Vec<(f64, f64)>> = s
                 .points
                 .split(|(x, y)| !(x.is_finite() && y.is_finite()))
-                .filter(|run| !run.is_empty())
+                .flat_map(|run| clip_polyline(run, x_box, y_box))
                 .collect();
-            if matches!(s.style, LineStyle::Solid | LineStyle::Dashed | LineStyle::DotsAndLine) {
-                for run in runs.iter().skip(1) {
-                    let points = run.iter().copied();
-                    match s.style {
-                        LineStyle::Dashed => chart.draw_series(DashedLineSeries::new(points, 8, 5, line)),
-                        _ => chart.draw_series(LineSeries::new(points, line)),
-                    }
-                    .map_err(|e| e.to_string())?;
-                    if s.style == LineStyle::DotsAndLine {
-                        let dots = run.iter().map(|&p| Circle::new(p, 3, color.filled()));
-                        chart.draw_series(dots).map_err(|e| e.to_string())?;
-                    }
-                }
-            }
-            let points: Vec<(f64, f64)> = match s.style {
-                LineStyle::Circles | LineStyle::Crosses => runs.concat(),
-                _ => runs.first().map_or_else(Vec::new, |run| run.to_vec()),
-            };
-            let points = points.into_iter();
-            let anno = match s.style {
-                LineStyle::Solid => chart.draw_series(LineSeries::new(points, line)),
-                LineStyle::Dashed => chart.draw_series(DashedLineSeries::new(points, 8, 5, line)),
-                LineStyle::Circles => chart.draw_series(points.map(|p| Circle::new(p, 5, color.stroke_width(2)))),
-                LineStyle::Crosses => chart.draw_series(points.map(|p| Cross::new(p, 7, color.stroke_width(3)))),
-                LineStyle::DotsAndLine => {
+            let inside = |&&(x, y): &&(f64, f64)| x >= x0 && x <= x1 && y >= y0 && y <= y1;
+            let marks = || s.points.iter().filter(inside).copied();
+            match s.style {
+                // Cut at sharp turns: a wide polyline's mitred corners spike there.
+                LineStyle::Solid | LineStyle::DotsAndLine => {
+                    let pieces = runs.iter().flat_map(|run| split_at_sharp_turns(run, x_box, y_box));
                     chart
-                        .draw_series(LineSeries::new(points.clone(), line))
+                        .draw_series(pieces.map(|piece| PathElement::new(piece, line)))
                         .map_err(|e| e.to_string())?;
-                    chart.draw_series(points.map(|p| Circle::new(p, 3, color.filled())))
                 }
+                LineStyle::Dashed => {
+                    for run in &runs {
+                        chart
+                            .draw_series(DashedLineSeries::new(run.iter().copied(), 8, 5, line))
+                            .map_err(|e| e.to_string())?;
+                    }
+                }
+                LineStyle::Circles | LineStyle::Crosses => {}
             }
-            .map_err(|e| e.to_string())?;
+            let marked = match s.style {
+                LineStyle::Circles => chart.draw_series(marks().map(|p| Circle::new(p, 5, color.stroke_width(2)))),
+                LineStyle::Crosses => chart.draw_series(marks().map(|p| Cross::new(p, 7, color.stroke_width(3)))),
+                LineStyle::DotsAndLine => chart.draw_series(marks().map(|p| Circle::new(p, 3, color.filled()))),
+                LineStyle::Solid | LineStyle::Dashed => {
+                    chart.draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+                }
+            };
+            marked.map_err(|e| e.to_string())?;
             if !s.label.is_empty() {
                 // The legend shows exactly the mark and line the series is drawn with.
                 let style = s.style;
-                anno.label(&s.label).legend(move |(x, y)| {
-                    LegendGlyph {
-                        at: (x, y),
-                        style,
-                        color,
-                    }
-                    .into_dyn()
-                });
+                chart
+                    .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())
+                    .map_err(|e| e.to_string())?
+                    .label(&s.label)
+                    .legend(move |(x, y)| {
+                        LegendGlyph {
+                            at: (x, y),
+                            style,
+                            color,
+                        }
+                        .into_dyn()
+                    });
             }
         }
         if self.series.iter().any(|s| !s.label.is_empty()) {
@@ -263,6 +264,78 @@ impl Figure {
         }
         Ok(())
     }
+}
+
+/// The parts of the polyline `points` inside the box `[x0, x1] x [y0, y1]`, each a polyline cut
+/// where it leaves the box (Liang and Barsky's clipping of each segment).
+fn clip_polyline(points: &[(f64, f64)], (x0, x1): (f64, f64), (y0, y1): (f64, f64)) -> Vec<Vec<(f64, f64)>> {
+    let mut runs: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut current: Vec<(f64, f64)> = Vec::new();
+    let clip = |(ax, ay): (f64, f64), (bx, by): (f64, f64)| -> Option<((f64, f64), (f64, f64))> {
+        let (dx, dy) = (bx - ax, by - ay);
+        let (mut t0, mut t1) = (0.0f64, 1.0f64);
+        for (p, q) in [(-dx, ax - x0), (dx, x1 - ax), (-dy, ay - y0), (dy, y1 - ay)] {
+            if p == 0.0 {
+                if q < 0.0 {
+                    return None;
+                }
+            } else if p < 0.0 {
+                t0 = t0.max(q / p);
+            } else {
+                t1 = t1.min(q / p);
+            }
+        }
+        (t0 <= t1).then_some(((ax + t0 * dx, ay + t0 * dy), (ax + t1 * dx, ay + t1 * dy)))
+    };
+    if let [only] = points {
+        let inside = only.0 >= x0 && only.0 <= x1 && only.1 >= y0 && only.1 <= y1;
+        return if inside { vec![vec![*only]] } else { Vec::new() };
+    }
+    for pair in points.windows(2) {
+        match clip(pair[0], pair[1]) {
+            Some((start, end)) => {
+                if current.last() != Some(&start) {
+                    if current.len() > 1 {
+                        runs.push(std::mem::take(&mut current));
+                    }
+                    current = vec![start];
+                }
+                current.push(end);
+            }
+            None => {
+                if current.len() > 1 {
+                    runs.push(std::mem::take(&mut current));
+                }
+                current.clear();
+            }
+        }
+    }
+    if current.len() > 1 {
+        runs.push(current);
+    }
+    runs
+}
+
+/// `run` cut into polylines at its turns sharper than a right angle (on the axes' scales),
+/// each piece sharing its end with the next.
+fn split_at_sharp_turns(run: &[(f64, f64)], (x0, x1): (f64, f64), (y0, y1): (f64, f64)) -> Vec<Vec<(f64, f64)>> {
+    let scaled = |(x, y): (f64, f64)| ((x - x0) / (x1 - x0), (y - y0) / (y1 - y0));
+    let mut pieces = Vec::new();
+    let mut piece = run.first().map(|&p| vec![p]).unwrap_or_default();
+    for window in run.windows(3) {
+        let (a, b, c) = (scaled(window[0]), scaled(window[1]), scaled(window[2]));
+        piece.push(window[1]);
+        if (b.0 - a.0) * (c.0 - b.0) + (b.1 - a.1) * (c.1 - b.1) < 0.0 {
+            pieces.push(std::mem::replace(&mut piece, vec![window[1]]));
+        }
+    }
+    if let Some(&last) = run.last().filter(|_| run.len() > 1) {
+        piece.push(last);
+    }
+    if piece.len() > 1 {
+        pieces.push(piece);
+    }
+    pieces
 }
 
 /// The legend's sample of a series: the same mark and line as the series, 20 px wide.
@@ -367,6 +440,34 @@ impl Figure {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn curves_are_cut_where_they_leave_the_axes() {
+        let zigzag = [(0.0, 0.0), (1.0, 2.0), (2.0, 0.0), (3.0, 0.5)];
+        let runs = clip_polyline(&zigzag, (0.0, 3.0), (0.0, 1.0));
+        assert_eq!(
+            runs,
+            vec![vec![(0.0, 0.0), (0.5, 1.0)], vec![(1.5, 1.0), (2.0, 0.0), (3.0, 0.5)]]
+        );
+        assert!(clip_polyline(&[(5.0, 5.0), (6.0, 6.0)], (0.0, 1.0), (0.0, 1.0)).is_empty());
+        assert_eq!(
+            clip_polyline(&[(0.5, 0.5)], (0.0, 1.0), (0.0, 1.0)),
+            vec![vec![(0.5, 0.5)]]
+        );
+    }
+
+    #[test]
+    fn a_curve_is_cut_where_it_turns_back() {
+        let pieces = split_at_sharp_turns(
+            &[(0.0, 0.0), (1.0, 1.0), (2.0, 1.5), (2.1, 0.0)],
+            (0.0, 2.0),
+            (0.0, 2.0),
+        );
+        assert_eq!(
+            pieces,
+            vec![vec![(0.0, 0.0), (1.0, 1.0), (2.0, 1.5)], vec![(2.0, 1.5), (2.1, 0.0)]]
+        );
+    }
 
     #[test]
     fn the_legend_goes_to_the_corner_with_the_fewest_points() {

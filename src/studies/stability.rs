@@ -152,10 +152,13 @@ pub fn dispersion(params: &Parameters, study: &DispersionStudy, out: &Path, tick
     let points: Vec<(f64, f64)> = curve.points.iter().map(|&(k, d)| (k, load.parameter(d))).collect();
     let figure = Figure::new(
         format!(
-            "Critical {}, beta = {:.4}, {}",
-            if load.is_growth() { "growth" } else { "compression" },
-            params.beta,
-            modes.describe()
+            "{name}(k), beta = {:.1} deg, {}",
+            params.beta.to_degrees(),
+            match (modes.surface(), modes.theta) {
+                (None, _) => "plane strain".to_string(),
+                (Some(s), Some(theta)) => format!("d_3 = {} d, theta = {:.1} deg", s.biaxial, theta.to_degrees()),
+                (Some(s), None) => format!("d_3 = {} d", s.biaxial),
+            }
         ),
         "wavenumber k H",
         if load.is_growth() {

@@ -60,6 +60,9 @@ pub fn box_modes(
             }
         }
     }
-    modes.sort_by(|a, b| a.d_c.total_cmp(&b.d_c));
+    // Wave vectors critical together (within rounding, 1e-10 in d: those a symmetry makes
+    // equal) in a fixed order, the direction nearest X first.
+    let tied = |d_c: f64| (d_c * 1e10).round();
+    modes.sort_by(|a, b| tied(a.d_c).total_cmp(&tied(b.d_c)).then(a.theta.total_cmp(&b.theta)));
     Ok(modes)
 }

@@ -155,7 +155,11 @@ fn panels(report: &CreaseReport) -> Vec<Figure> {
                 .push(Series::new(label, thresholds, LineStyle::DotsAndLine, i));
         }
     }
-    let mut panels = vec![energy, sequence];
+    // The sequence of meshes has a panel where there is one (not with `--no-convergence`).
+    let mut panels = vec![energy];
+    if sequence.series.iter().any(|s| s.points.len() > 1) {
+        panels.push(sequence);
+    }
     let fold = report
         .fold_length
         .and_then(|a| report.folds.iter().find(|f| f.fold_length == a));

@@ -1,6 +1,8 @@
-//! Fig. 3: the amplitude `A(d)` with the maximal-curvature onset (open circle and vertical line)
-//! and the linear theory's `d_c(k)` (cross); beside it, on its own axis, the curvature of `A(d)`
-//! whose first peak is the paper's onset rule. Under a growth load the abscissa is the
+//! Fig. 3: the amplitude `A(d)` with the paper's maximal-curvature onset (open circle and
+//! vertical line), the steepest point's onset (dashed line and circle: the peak of `A'`, nearer
+//! the theory where the imperfection rounds the curve early) and the linear theory's `d_c(k)`
+//! (cross); beside it, on its own axis, the curvature of `A(d)` whose first peak is the paper's
+//! onset rule. Under a growth load the abscissa is the
 //! layer's growth `g = 1 / (1 - d)`.
 
 use super::{Curve, OnsetReport};
@@ -57,6 +59,21 @@ pub fn fig3(curve: &Curve, onset: &OnsetReport, load: Load) -> [Figure; 2] {
             LineStyle::Dashed,
             5,
         ));
+    }
+    if let Some(ds) = onset.estimates.d_steepest {
+        amplitude = amplitude
+            .with(Series::new(
+                format!("{name}_c = {:.4} (steepest A)", x(ds)),
+                vec![(x(ds), interpolate(&d, &a, ds))],
+                LineStyle::Circles,
+                2,
+            ))
+            .with(Series::new(
+                "",
+                vec![(x(ds), 0.0), (x(ds), a_max)],
+                LineStyle::Dashed,
+                2,
+            ));
     }
     let theory = onset.d_linear_theory;
     amplitude = amplitude.with(Series::new(

@@ -10,6 +10,7 @@ use crate::material::Bilayer;
 use crate::mesh::{MeshSpec, X, Y};
 use crate::output::atomic::write_atomically;
 use crate::output::plot::{register_font, FONT};
+use crate::output::ticks::{tick_label, AxisScale, RoundTicks};
 use crate::output::write_json;
 use crate::parameters::Parameters;
 use crate::protocol::{stages, wavenumber_of_waves, Event, Protocol, StepControl, StepRecord};
@@ -289,20 +290,31 @@ fn draw<DB: DrawingBackend>(
     let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(e)?;
     let rows = root.split_evenly((panels.len(), 2));
+    let linear = |v: &f64| tick_label(*v, AxisScale::Linear);
     for (panel, pair) in panels.iter().zip(rows.chunks(2)) {
+        let surface = panel.surface_range();
         let mut profile = ChartBuilder::on(&pair[0])
             .caption(
-                format!("surface profile, beta = {beta:.3}, d = {:.3}", panel.d),
+                format!(
+                    "surface profile, beta = {:.1} deg, d = {:.3}",
+                    beta.to_degrees(),
+                    panel.d
+                ),
                 (FONT, 18),
             )
             .margin(8)
             .x_label_area_size(40)
             .y_label_area_size(55)
-            .build_cartesian_2d(0.0..panel.x_max, panel.surface_range())
+            .build_cartesian_2d(
+                RoundTicks::new(0.0, panel.x_max, AxisScale::Linear),
+                RoundTicks::new(surface.start, surface.end, AxisScale::Linear),
+            )
             .map_err(e)?;
         profile
             .configure_mesh()
             .light_line_style(WHITE.mix(0.0))
+            .x_label_formatter(&linear)
+            .y_label_formatter(&linear)
             .label_style((FONT, 12))
             .x_desc("current x / H")
             .y_desc("current y / H")
@@ -314,18 +326,28 @@ fn draw<DB: DrawingBackend>(
         profile
             .draw_series(LineSeries::new(panel.surface.iter().copied(), BLACK.stroke_width(1)))
             .map_err(e)?;
-        let mut map = ChartBuilder::on(&pair[1])
+        let (width, _) = pair[1].dim_in_pixel();
+        let (map_area, bar_area) = pair[1].split_horizontally(width.saturating_sub(95));
+        let mut map = ChartBuilder::on(&map_area)
             .caption(
-                format!("von Mises stress (0 to {scale:.2} mu_s), d = {:.3}", panel.d),
+                format!(
+                    "von Mises stress (top of the scale: 99th percentile), d = {:.3}",
+                    panel.d
+                ),
                 (FONT, 18),
             )
             .margin(8)
             .x_label_area_size(40)
             .y_label_area_size(55)
-            .build_cartesian_2d(0.0..panel.x_max, panel.y_range.0..panel.y_range.1)
+            .build_cartesian_2d(
+                RoundTicks::new(0.0, panel.x_max, AxisScale::Linear),
+                RoundTicks::new(panel.y_range.0, panel.y_range.1, AxisScale::Linear),
+            )
             .map_err(e)?;
         map.configure_mesh()
             .light_line_style(WHITE.mix(0.0))
+            .x_label_formatter(&linear)
+            .y_label_formatter(&linear)
             .label_style((FONT, 12))
             .x_desc("current x / H")
             .y_desc("current y / H")
@@ -339,6 +361,36 @@ fn draw<DB: DrawingBackend>(
                 .map(|(polygon, s)| Polygon::new(polygon.clone(), colour(s / scale).filled())),
         )
         .map_err(e)?;
+        colour_bar(&bar_area, scale).map_err(e)?;
     }
     root.present().map_err(e)
+}
+
+/// The colour scale of the stress maps in units of `mu_s`, `0` to `scale` (the 99th percentile:
+/// stresses above it take its colour), beside them.
+fn colour_bar<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    scale: f64,
+) -> std::result::Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let mut bar = ChartBuilder::on(area)
+        .caption("/ mu_s", (FONT, 13))
+        .margin_top(14)
+        .margin_bottom(48)
+        .margin_left(10)
+        .set_label_area_size(LabelAreaPosition::Right, 45)
+        .build_cartesian_2d(0.0..1.0, RoundTicks::new(0.0, scale, AxisScale::Linear))?;
+    bar.configure_mesh()
+        .disable_x_mesh()
+        .disable_x_axis()
+        .light_line_style(WHITE.mix(0.0))
+        .bold_line_style(WHITE.mix(0.0))
+        .y_label_formatter(&|v| tick_label(*v, AxisScale::Linear))
+        .label_style((FONT, 12))
+        .draw()?;
+    const STEPS: usize = 100;
+    bar.draw_series((0..STEPS).map(|i| {
+        let (lo, hi) = (i as f64 / STEPS as f64, (i + 1) as f64 / STEPS as f64);
+        Rectangle::new([(0.0, lo * scale), (1.0, hi * scale)], colour(0.5 * (lo + hi)).filled())
+    }))?;
+    Ok(())
 }

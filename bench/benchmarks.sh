@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# Writes the guide's benchmarks page, docs/guide/src/benchmarks.md, from what this machine
+# measures now: `fiberfold bench stability`, `fiberfold bench fe` and, where FEniCSx is installed
+# (bench/fenicsx/install.sh), the side-by-side comparison bench/fenicsx/compare.sh on the coarse
+# mesh. The page names the machine, the date and the commit, and is replaced on each run.
+#
+#   bench/benchmarks.sh            (after cargo build --release; about 10 minutes on 2 cores)
+#
+# Run it on a quiet machine: the FEniCSx ratios are only meaningful side by side, in one run.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+binary=${FIBERFOLD:-$root/target/release/fiberfold}
+page=$root/docs/guide/src/benchmarks.md
+[ -x "$binary" ] || { echo "no $binary: run cargo build --release first (or set FIBERFOLD)" >&2; exit 1; }
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+echo "bench stability" >&2
+"$binary" bench stability --orientation-map 31 --out "$work/stability" >"$work/stability.log"
+echo "bench fe" >&2
+"$binary" bench fe --out "$work/fe" >"$work/fe.log"
+compared=no
+if [ -x "${FENICSX_DIR:-$HOME/.cache/fiberfold-fenicsx-bench}/venv/bin/python" ]; then
+  echo "side by side with FEniCSx" >&2
+  FIBERFOLD=$binary "$root/bench/fenicsx/compare.sh" coarse 0.25 >"$work/compare.log"
+  compared=yes
+fi
+
+# A page's own headings one level down, under this page's sections.
+demote() { sed 's/^#/##/' "$1"; }
+commit=$(git -C "$root" rev-parse --short HEAD)
+git -C "$root" diff --quiet HEAD -- src Cargo.toml Cargo.lock || commit="$commit with local changes"
+{
+  echo "<!-- Written by bench/benchmarks.sh, replaced on each run: do not edit by hand. -->"
+  echo "# Benchmarks"
+  echo
+  echo "Measured by \`bench/benchmarks.sh\` on $(date -u +%Y-%m-%d), fiberfold $commit, on"
+  echo "$(lscpu | sed -n 's/^Model name: *//p' | head -1) ($(nproc) cores),"
+  echo "$(free -g | awk '/^Mem:/ {print $2}') GiB of memory, $(uname -sr)."
+  echo "Absolute times differ between machines; the FEniCSx ratio is measured side by side in one"
+  echo "run. To measure on your machine, run the script, or the commands of"
+  echo "[\`bench\`](reference/bench.md)."
+  echo
+  echo "## Side by side with FEniCSx"
+  echo
+  if [ $compared = yes ]; then
+    echo "\`bench/fenicsx/compare.sh coarse 0.25\`: the same model on the same mesh (Table 1,"
+    echo "beta = 45 deg, 4.5 waves, displacement element, no contact, to d = 0.25), FEniCSx 0.11"
+    echo "with plain Newton and MUMPS on one core."
+    echo
+    echo '```text'
+    cat "$work/compare.log"
+    echo '```'
+  else
+    echo "Not measured on this run: FEniCSx is not installed (\`bench/fenicsx/install.sh\`)."
+  fi
+  echo
+  echo "## Linear stability"
+  echo
+  demote "$work/stability/bench_stability.md"
+  echo
+  echo "## Finite elements"
+  echo
+  demote "$work/fe/bench_fe.md"
+} >"$page.new"
+mv "$page.new" "$page"
+echo "wrote $page" >&2
