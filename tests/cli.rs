@@ -208,6 +208,12 @@ fn dispersion_writes_its_curve() {
     for f in ["dispersion.png", "dispersion.svg", "dispersion.json"] {
         assert!(dir.join(f).exists(), "{f}");
     }
+    // A short title, with the fibre angle in degrees.
+    let svg = std::fs::read_to_string(dir.join("dispersion.svg")).unwrap();
+    assert!(
+        svg.contains("d_c(k), beta = 90.0 deg, plane strain"),
+        "dispersion title"
+    );
     rejected(
         &["dispersion", "--k-min", "-1", "--out", dir.to_str().unwrap()],
         &["k-min"],
@@ -402,6 +408,9 @@ fn crease_writes_its_onset_and_refuses_bad_folds() {
     for file in ["crease_energy.csv", "crease.png", "crease.svg"] {
         assert!(dir.join(file).is_file(), "{file}");
     }
+    // One mesh: no panel of the mesh sequence.
+    let svg = std::fs::read_to_string(dir.join("crease.svg")).unwrap();
+    assert!(svg.contains("Energy of a seeded crease") && !svg.contains("against the mesh size"));
     // The creased states' strong-ellipticity margins, per layer.
     assert!(
         report["ellipticity"]["smallest_substrate"].is_f64(),

@@ -139,6 +139,9 @@ fn a_run_to_a_crease_writes_contact_secondary_and_pressure() {
     assert!(summary.files.iter().any(|f| f == &png.display().to_string()));
     let (width, height) = png_size(&png);
     assert_eq!((width, height), (1400, 350));
+    // The stress map has its colour bar, in units of mu_s.
+    let svg = std::fs::read_to_string(dir.join("fig7.svg")).unwrap();
+    assert!(svg.contains("/ mu_s") && svg.contains("99th percentile"));
 }
 
 #[test]

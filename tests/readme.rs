@@ -269,6 +269,12 @@ fn every_documented_example_runs_and_gives_an_independently_known_number() {
                 );
                 assert!((fe / theory - 1.0).abs() < 0.02, "FE {fe} vs theory {theory}");
                 assert!(dir.join("amplitude.csv").exists() && dir.join("simulate.pvd").exists());
+                // Fig. 3 marks the steepest point's onset beside the paper's rule.
+                let fig3 = std::fs::read_to_string(dir.join("fig3.svg")).unwrap();
+                assert!(
+                    fig3.contains(&format!("d_c = {fe:.4} (steepest A)")),
+                    "fig3 without the steepest point"
+                );
             }
             "bifurcation" => {
                 // The inertia of the FE tangent against the linear theory over admissible k.

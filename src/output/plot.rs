@@ -141,17 +141,33 @@ impl Figure {
 
     /// The corner of the plot `[x0, x1] x [y0, y1]` whose box of 45 % of the width by 35 % of the
     /// height holds the fewest points of the series (upper right first among equals): where a
-    /// legend covers the least data.
+    /// legend covers the least data. A line counts by points along it, 20 to a segment, so that
+    /// a straight line of two points weighs as much as a curve.
     fn emptiest_corner(&self, (x0, x1): (f64, f64), (y0, y1): (f64, f64)) -> SeriesLabelPosition {
         let (w, h) = (0.45 * (x1 - x0), 0.35 * (y1 - y0));
+        let along: Vec<(f64, f64)> = self
+            .series
+            .iter()
+            .flat_map(|s| match s.style {
+                LineStyle::Circles | LineStyle::Crosses => s.points.clone(),
+                _ => s
+                    .points
+                    .windows(2)
+                    .flat_map(|pair| {
+                        let ((ax, ay), (bx, by)) = (pair[0], pair[1]);
+                        (0..20).map(move |i| {
+                            let t = i as f64 / 20.0;
+                            (ax + t * (bx - ax), ay + t * (by - ay))
+                        })
+                    })
+                    .chain(s.points.last().copied())
+                    .collect(),
+            })
+            .collect();
         let inside = |right: bool, upper: bool| {
             let xs = if right { (x1 - w)..=x1 } else { x0..=(x0 + w) };
             let ys = if upper { (y1 - h)..=y1 } else { y0..=(y0 + h) };
-            self.series
-                .iter()
-                .flat_map(|s| &s.points)
-                .filter(|(x, y)| xs.contains(x) && ys.contains(y))
-                .count()
+            along.iter().filter(|(x, y)| xs.contains(x) && ys.contains(y)).count()
         };
         [
             (SeriesLabelPosition::UpperRight, inside(true, true)),
@@ -481,6 +497,13 @@ mod tests {
         // A diagonal from lower left to upper right leaves the other two corners empty.
         assert_eq!(
             figure.emptiest_corner((0.0, 10.0), (0.0, 10.0)),
+            SeriesLabelPosition::UpperLeft
+        );
+        // A vertical line of two points through the upper right keeps the legend out of it.
+        let line = Series::new("", vec![(8.0, 0.0), (8.0, 10.0)], LineStyle::Dashed, 2);
+        let sparse = Figure::new("", "", "").with(Series::new("", vec![(1.0, 1.0)], LineStyle::Circles, 0));
+        assert_eq!(
+            sparse.with(line).emptiest_corner((0.0, 10.0), (0.0, 10.0)),
             SeriesLabelPosition::UpperLeft
         );
         let high = Series::new("", (0..=10).map(|i| (i as f64, 9.5)).collect(), LineStyle::Solid, 1);

@@ -121,11 +121,11 @@ pub fn orientation_figure(
     }
     let lowest = curve.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
     let title = format!(
-        "k0 = {:.3}, d_3 = {} d, beta = {:.3}, psi = {:.3}",
+        "k0 = {:.3}, d_3 = {} d, beta = {:.1} deg, psi = {:.1} deg",
         onset.k0,
         modes.surface().map_or(0.0, |s| s.biaxial),
-        params.beta,
-        params.psi
+        params.beta.to_degrees(),
+        params.psi.to_degrees()
     );
     let degrees = |theta: f64| theta.to_degrees();
     let (d_lo, d_hi) = (lowest, curve.iter().map(|p| p.1).fold(0.0, f64::max));
