@@ -104,7 +104,10 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             let (table, json) = (args.out.join("bench_fe.md"), args.out.join("bench_fe.json"));
             write_file(
                 &table,
-                format!("{bench}\n{heading}\n\n{kernels}\n{law_heading}\n\n{laws}\n{snap_heading}\n\n{snaps}"),
+                format!(
+                    "```text\n{}\n```\n\n{heading}\n\n{kernels}\n{law_heading}\n\n{laws}\n{snap_heading}\n\n{snaps}",
+                    bench.to_string().trim_end()
+                ),
             )?;
             write_json(
                 &json,
