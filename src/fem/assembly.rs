@@ -9,7 +9,7 @@
 //! in parallel (rayon) straight into their own slices of a reused buffer, and then sums each
 //! stored entry from that list, in parallel too (no scatter, so no races and no sorting).
 //! Groups of an [`AddedEnergy`] (contact pairs) are assembled like extra elements and added into
-//! their stored entries ([`pattern`]): a change of the groups re-analyses the factorisation only
+//! their stored entries (`pattern`): a change of the groups re-analyses the factorisation only
 //! when a group couples unknowns that no stored entry coupled before.
 
 use super::added::{AddedEnergy, Block, NoAddedEnergy};

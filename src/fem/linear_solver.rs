@@ -1,7 +1,7 @@
 //! Sparse symmetric direct solver: faer's supernodal `L D L^T` with the symbolic analysis (AMD
 //! ordering) done once per sparsity pattern, sequential (`Par::Seq`: on a two-core machine
 //! faer on two threads was 2-3x slower); a large pattern is instead split in two halves
-//! factorised at once on two cores ([`split`]). The inertia comes for free from `D`: by Sylvester's law
+//! factorised at once on two cores (`split`). The inertia comes for free from `D`: by Sylvester's law
 //! the number of negative pivots is the number of negative eigenvalues of `K`. When `L D L^T`
 //! meets a zero pivot, the intranode Bunch-Kaufman `L B L^T` takes over. An iteration that
 //! checks its own residual (modified Newton) may solve with the factor rounded to single

@@ -74,7 +74,7 @@ pub struct Figure {
 /// Legend corner.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub enum Legend {
-    /// The corner whose part of the plot holds the fewest points ([`Figure::emptiest_corner`]).
+    /// The corner whose part of the plot holds the fewest points (`Figure::emptiest_corner`).
     #[default]
     Emptiest,
     UpperRight,

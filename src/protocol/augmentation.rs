@@ -106,7 +106,7 @@ impl Augmentation {
     /// step is damped, see [`Stabilisation::damper`]) and Newton's `policy`; redone with a
     /// smaller `eta` while the step would exceed the dissipation budget. On failure `u` is the
     /// predictor again and nothing is booked. The inertia, when the policy asks for it, is that
-    /// of the undamped tangent ([`Augmentation::count_inertia`]).
+    /// of the undamped tangent (`Augmentation::count_inertia`).
     #[allow(clippy::too_many_arguments)]
     pub fn solve(
         &mut self,

@@ -9,12 +9,12 @@
 //! and cuts `h` by `cut`. A failure at the minimum step stops the continuation.
 //!
 //! Where a step of at most [`SnapSettings::below`] (or the minimum step) fails, the
-//! continuation instead minimises the energy at that `d` ([`Continuation::snap`],
+//! continuation instead minimises the energy at that `d` (`Continuation::snap`,
 //! [`super::snap`]): the stable state the structure snaps to, from which the path goes on (its
 //! predictor restarts from that state).
 //!
-//! [`Continuation::advance_to`] reads as the algorithm: [`Continuation::attempt`] (predict,
-//! correct), then [`Continuation::accept`] (record, grow), or a snap, or [`Continuation::cut`].
+//! [`Continuation::advance_to`] reads as the algorithm: `Continuation::attempt` (predict,
+//! correct), then `Continuation::accept` (record, grow), or a snap, or `Continuation::cut`.
 
 use super::augmentation::AugmentedRecord;
 use super::measures::{measure_all, Measure};
@@ -226,7 +226,7 @@ impl<S: Followed> Continuation<S> {
 
     /// The same continuation retrying failed short steps as snaps, and counting the inertia
     /// of every accepted state: a failed step is corrected by minimisation only from a state
-    /// known to be stable ([`Continuation::attempt_by_minimisation`]). Without the count every
+    /// known to be stable (`Continuation::attempt_by_minimisation`). Without the count every
     /// contact pair that closed or opened within a step was cut down to a snap of its own:
     /// measured on the small mesh of `tests/sweep.rs` (beta = pi/4, mu_l / mu_s = 3), 716
     /// snaps and 2987 states to d = 0.48 in 108 s at K/mu = 100, and no end in 18 minutes at

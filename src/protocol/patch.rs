@@ -107,7 +107,7 @@ fn homogeneous_pressure(tissue: Tissue, stretches: [f64; 3], incompressible: boo
 
 /// The eigenvector of the tangent at the state `u` (with `bc` prescribed) whose eigenvalue is
 /// nearest zero, and that eigenvalue, by `solves` inverse-Lanczos steps: where the state has
-/// just turned unstable, its unstable direction. Scaled as [`full_mode`].
+/// just turned unstable, its unstable direction. Scaled as `full_mode`.
 pub fn nearest_singular_mode(
     system: &mut PatchSystem,
     u: &[f64],

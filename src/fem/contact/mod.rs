@@ -273,7 +273,7 @@ impl AddedEnergy for Contact {
         &self.groups
     }
 
-    /// A trough closes from its bottom up: the slaves within [`LIKELY_REACH`] surface nodes of
+    /// A trough closes from its bottom up: the slaves within `LIKELY_REACH` surface nodes of
     /// a node-to-segment pair's slave soon face the segments within as many nodes of its
     /// segment.
     fn likely_groups(&self) -> Vec<Vec<usize>> {

@@ -75,11 +75,11 @@ fn spectrum_of(mesh: &Mesh<3, 27>, height: impl Fn(usize) -> f64) -> Vec<WaveVec
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SurfacePattern {
-    /// No wave above [`FLAT_AMPLITUDE`].
+    /// No wave above `FLAT_AMPLITUDE`.
     Flat,
     /// One direction of wave vectors (a wave and its harmonics) holds the surface.
     Stripes,
-    /// Two directions hold it, the weaker with at least [`SECOND_DIRECTION`] of the surface's
+    /// Two directions hold it, the weaker with at least `SECOND_DIRECTION` of the surface's
     /// spectral energy: the superposed waves of a checkerboard (rhombic where the two are not
     /// perpendicular).
     Checkerboard,

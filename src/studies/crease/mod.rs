@@ -15,7 +15,7 @@
 //!
 //! The fold held on the plane over its whole length is not an equilibrium crease: the plane
 //! pulls on some of its nodes. Under the released criterion ([`Criterion::Released`],
-//! [`released`]) the state compared is the crease the fold closes to once let go to
+//! `released`) the state compared is the crease the fold closes to once let go to
 //! frictionless contact, an equilibrium.
 
 pub mod convergence;

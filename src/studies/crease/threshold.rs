@@ -3,7 +3,7 @@
 //! values the scan already has. Past the threshold the seeded fold may snap to a deeper crease
 //! (no quasi-static path): a failed fold halves the interval from the last good `d` up to three
 //! times, and otherwise ends the scan of that `a`, saying where. Under the released criterion
-//! the search goes on from the held fold's threshold ([`super::released`]).
+//! the search goes on from the held fold's threshold (`super::released`).
 
 use super::fold::FoldThreshold;
 use super::{released::released_threshold, Criterion, Scan};

@@ -10,7 +10,7 @@
 //! `inertia.csv` (negative pivots along the homogeneous path), `mode_spectrum.csv` and
 //! `mode.vtu` (the patch, cut open along its periodic sides, with the mode), and on periodic
 //! sides `mode_top.png/svg` (the mode's surface seen from above, with the fibres' projection).
-//! Asked to, it follows the path past the onset ([`path`]): `pattern.csv`, `state.vtu`,
+//! Asked to, it follows the path past the onset (`path`): `pattern.csv`, `state.vtu`,
 //! `state_top.png/svg`.
 
 mod figure;
