@@ -15,10 +15,12 @@ use std::path::{Path, PathBuf};
 /// The solver of the linear stability problem, by name.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
 pub enum Solver {
-    /// Stroh formalism: surface impedance of the half-space and transfer matrix of the layer.
+    /// Stroh formalism: each layer's solutions growing and decaying through its thickness (any
+    /// k, any K/mu).
     #[default]
     Exact,
-    /// Quadratic finite elements in Y on a truncated graded depth (cross-check; slower).
+    /// Quadratic finite elements in Y on a truncated graded depth (cross-check; slower; locks as
+    /// K/mu grows, and its error grows with k).
     Discrete,
 }
 
