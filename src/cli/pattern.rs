@@ -3,10 +3,8 @@
 
 use super::common::{report_files, ParamArgs};
 use clap::Args;
-use fiberfold::mesh::{ElementKind, Sides};
-use fiberfold::protocol::BifurcationSettings;
-use fiberfold::studies::pattern::{self, PathStudy, PatternStudy, Progress};
-use fiberfold::{Error, Result};
+use fiberfold::studies::pattern::{self, PatternOptions, Progress};
+use fiberfold::Result;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -15,73 +13,8 @@ pub struct PatternArgs {
     #[command(flatten)]
     pub params: ParamArgs,
 
-    /// R = d_3 / d in [0, 1]: the compression along Z relative to X's (1 equibiaxial).
-    #[arg(long, default_value_t = 1.0)]
-    pub biaxial: f64,
-
-    /// Periods of the theory's onset mode along each side of the patch (an integer >= 1).
-    #[arg(long, default_value_t = 1)]
-    pub periods: usize,
-
-    /// Hexahedra per onset wavelength along X and Z (an integer >= 2; more give an onset closer
-    /// to the continuum's, at a cost growing as their cube; the guide's "Patterns in three dimensions" shows the convergence).
-    #[arg(long, default_value_t = 6)]
-    pub elements_per_wavelength: usize,
-
-    /// Hexahedra through the layer (an integer >= 1).
-    #[arg(long, default_value_t = 2)]
-    pub layer_elements: usize,
-
-    /// Hexahedra through the substrate, graded from --h0 at the interface (an integer >= 1).
-    #[arg(long, default_value_t = 12)]
-    pub substrate_elements: usize,
-
-    /// Thickness of the top substrate element, in layer thicknesses H, in (0, depth).
-    #[arg(long, default_value_t = 0.35)]
-    pub h0: f64,
-
-    /// Depth of the substrate in onset wavelengths, > 0 (the modes decay as exp(-k |Y|)).
-    #[arg(long, default_value_t = 2.0)]
-    pub depth: f64,
-
-    /// How the sides hold the patch.
-    #[arg(long, value_enum, default_value_t = Sides::Periodic)]
-    pub sides: Sides,
-
-    /// The hexahedra's element (27 nodes; mixed: with a linear pressure per element). The
-    /// mixed one is the more accurate on a layer stiffer than the substrate, but finds a
-    /// spurious mode at the element scale on a nearly incompressible half-space.
-    #[arg(long, value_enum, default_value_t = ElementKind::Displacement)]
-    pub element: ElementKind,
-
-    /// Largest d scanned for the bifurcation, in (0, 0.95].
-    #[arg(long, default_value_t = 0.9)]
-    pub d_max: f64,
-
-    /// Width in d of the final bisection bracket, in [1e-12, 1e-2].
-    #[arg(long, default_value_t = 1e-6)]
-    pub tolerance: f64,
-
-    /// Follow the path past the onset to this d, in (d-start, 0.95) (periodic sides only): the
-    /// patch seeded with every wave vector critical at the onset, one row of pattern.csv per
-    /// state. Not followed if absent.
-    #[arg(long, value_name = "D")]
-    pub follow_to: Option<f64>,
-
-    /// Amplitude A_init of the first seeded wave of the path's imperfection, in layer
-    /// thicknesses H, in (0, 1).
-    #[arg(long, default_value_t = PathStudy::default().imperfection)]
-    pub imperfection: f64,
-
-    /// Amplitude of every further critical wave seeded, relative to the first's, in [0, 1]: 1
-    /// seeds their equal superposition (a checkerboard, which the path then keeps by symmetry
-    /// even where the tissue would leave it), less lets the path choose.
-    #[arg(long, default_value_t = PathStudy::default().seed_ratio)]
-    pub seed_ratio: f64,
-
-    /// Where the followed path starts, in (0, --follow-to).
-    #[arg(long, default_value_t = PathStudy::default().d_start)]
-    pub d_start: f64,
+    #[command(flatten)]
+    pub options: PatternOptions,
 
     /// Output folder.
     #[arg(long, value_name = "DIR", default_value = "results/pattern")]
@@ -90,37 +23,10 @@ pub struct PatternArgs {
 
 pub fn run(args: &PatternArgs) -> Result<()> {
     let params = args.params.resolve()?;
-    if !(1e-12..=1e-2).contains(&args.tolerance) {
-        return Err(Error::invalid("tolerance", args.tolerance, "[1e-12, 1e-2]"));
-    }
-    if !(args.d_max > 0.0 && args.d_max <= 0.95) {
-        return Err(Error::invalid("d-max", args.d_max, "(0, 0.95]"));
-    }
-    let study = PatternStudy {
-        biaxial: args.biaxial,
-        periods: args.periods,
-        elements_per_wavelength: args.elements_per_wavelength,
-        layer_elements: args.layer_elements,
-        substrate_elements: args.substrate_elements,
-        top_substrate_thickness: args.h0,
-        depth_wavelengths: args.depth,
-        sides: args.sides,
-        element: args.element,
-        settings: BifurcationSettings {
-            d_end: args.d_max,
-            tolerance: args.tolerance,
-            ..PatternStudy::default().settings
-        },
-        path: args.follow_to.map(|d_end| PathStudy {
-            imperfection: args.imperfection,
-            seed_ratio: args.seed_ratio,
-            d_start: args.d_start,
-            d_end,
-        }),
-    };
+    let study = args.options.study()?;
     println!(
         "pattern: a patch of tissue under d_3 = {} d, sized by the exact 3D theory; its first bifurcation from the inertia of the tangent along the homogeneous path",
-        args.biaxial
+        study.biaxial
     );
     let start = Instant::now();
     let r = pattern::run(&params, &study, &args.out, &mut |progress| match progress {

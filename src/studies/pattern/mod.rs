@@ -14,8 +14,10 @@
 //! `state_top.png/svg`.
 
 mod figure;
+mod options;
 mod path;
 
+pub use options::PatternOptions;
 pub use path::{PathStudy, PathSummary, PatternState};
 
 use crate::error::{Error, Result};
