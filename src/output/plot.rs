@@ -217,8 +217,7 @@ impl Figure {
                 .split(|(x, y)| !(x.is_finite() && y.is_finite()))
                 .flat_map(|run| clip_polyline(run, x_box, y_box))
                 .collect();
-            let inside = |&&(x, y): &&(f64, f64)| x >= x0 && x <= x1 && y >= y0 && y <= y1;
-            let marks = || s.points.iter().filter(inside).copied();
+            let marks = || s.points.iter().copied().filter(|&p| in_box(p, x_box, y_box));
             match s.style {
                 // Cut at sharp turns: a wide polyline's mitred corners spike there.
                 LineStyle::Solid | LineStyle::DotsAndLine => {
@@ -236,15 +235,25 @@ impl Figure {
                 }
                 LineStyle::Circles | LineStyle::Crosses => {}
             }
-            let marked = match s.style {
-                LineStyle::Circles => chart.draw_series(marks().map(|p| Circle::new(p, 5, color.stroke_width(2)))),
-                LineStyle::Crosses => chart.draw_series(marks().map(|p| Cross::new(p, 7, color.stroke_width(3)))),
-                LineStyle::DotsAndLine => chart.draw_series(marks().map(|p| Circle::new(p, 3, color.filled()))),
-                LineStyle::Solid | LineStyle::Dashed => {
-                    chart.draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())
+            let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+            match s.style {
+                LineStyle::Circles => {
+                    chart
+                        .draw_series(marks().map(|p| Circle::new(p, 5, color.stroke_width(2))))
+                        .map_err(e)?;
                 }
-            };
-            marked.map_err(|e| e.to_string())?;
+                LineStyle::Crosses => {
+                    chart
+                        .draw_series(marks().map(|p| Cross::new(p, 7, color.stroke_width(3))))
+                        .map_err(e)?;
+                }
+                LineStyle::DotsAndLine => {
+                    chart
+                        .draw_series(marks().map(|p| Circle::new(p, 3, color.filled())))
+                        .map_err(e)?;
+                }
+                LineStyle::Solid | LineStyle::Dashed => {}
+            }
             if !s.label.is_empty() {
                 // The legend shows exactly the mark and line the series is drawn with.
                 let style = s.style;
@@ -282,6 +291,11 @@ impl Figure {
     }
 }
 
+/// Whether `(x, y)` lies in the box `[x0, x1] x [y0, y1]`.
+fn in_box((x, y): (f64, f64), (x0, x1): (f64, f64), (y0, y1): (f64, f64)) -> bool {
+    (x0..=x1).contains(&x) && (y0..=y1).contains(&y)
+}
+
 /// The parts of the polyline `points` inside the box `[x0, x1] x [y0, y1]`, each a polyline cut
 /// where it leaves the box (Liang and Barsky's clipping of each segment).
 fn clip_polyline(points: &[(f64, f64)], (x0, x1): (f64, f64), (y0, y1): (f64, f64)) -> Vec<Vec<(f64, f64)>> {
@@ -304,8 +318,10 @@ fn clip_polyline(points: &[(f64, f64)], (x0, x1): (f64, f64), (y0, y1): (f64, f6
         (t0 <= t1).then_some(((ax + t0 * dx, ay + t0 * dy), (ax + t1 * dx, ay + t1 * dy)))
     };
     if let [only] = points {
-        let inside = only.0 >= x0 && only.0 <= x1 && only.1 >= y0 && only.1 <= y1;
-        return if inside { vec![vec![*only]] } else { Vec::new() };
+        return match in_box(*only, (x0, x1), (y0, y1)) {
+            true => vec![vec![*only]],
+            false => Vec::new(),
+        };
     }
     for pair in points.windows(2) {
         match clip(pair[0], pair[1]) {

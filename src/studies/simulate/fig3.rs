@@ -31,6 +31,8 @@ pub fn fig3(curve: &Curve, onset: &OnsetReport, load: Load) -> [Figure; 2] {
         LineStyle::DotsAndLine,
         0,
     ));
+    let kappa = curvature(&d, &a);
+    let top = kappa.iter().fold(0.0f64, |m, &(_, k)| m.max(k));
     let mut kappa_panel = Figure::new(
         format!("curvature of A({name}): the paper's onset rule"),
         axis,
@@ -38,21 +40,28 @@ pub fn fig3(curve: &Curve, onset: &OnsetReport, load: Load) -> [Figure; 2] {
     )
     .with(Series::new(
         format!("kappa({name})"),
-        curvature(&d, &a).into_iter().map(|(d, k)| (x(d), k)).collect(),
+        kappa.into_iter().map(|(d, k)| (x(d), k)).collect(),
         LineStyle::Solid,
         1,
     ));
-    if let Some(dc) = onset.estimates.d_max_curvature {
-        amplitude = amplitude
+    // An onset estimate: a circle on A(d) and a vertical line through it.
+    let mark = |figure: Figure, estimate: f64, rule: &str, line: LineStyle, colour: usize| {
+        figure
             .with(Series::new(
-                format!("{name}_c = {:.4} (max curvature)", x(dc)),
-                vec![(x(dc), interpolate(&d, &a, dc))],
+                format!("{name}_c = {:.4} ({rule})", x(estimate)),
+                vec![(x(estimate), interpolate(&d, &a, estimate))],
                 LineStyle::Circles,
-                5,
+                colour,
             ))
-            .with(Series::new("", vec![(x(dc), 0.0), (x(dc), a_max)], LineStyle::Solid, 5));
-        let peak = curvature(&d, &a);
-        let top = peak.iter().fold(0.0f64, |m, &(_, k)| m.max(k));
+            .with(Series::new(
+                "",
+                vec![(x(estimate), 0.0), (x(estimate), a_max)],
+                line,
+                colour,
+            ))
+    };
+    if let Some(dc) = onset.estimates.d_max_curvature {
+        amplitude = mark(amplitude, dc, "max curvature", LineStyle::Solid, 5);
         kappa_panel = kappa_panel.with(Series::new(
             format!("first peak, {name} = {:.4}", x(dc)),
             vec![(x(dc), 0.0), (x(dc), top)],
@@ -61,19 +70,7 @@ pub fn fig3(curve: &Curve, onset: &OnsetReport, load: Load) -> [Figure; 2] {
         ));
     }
     if let Some(ds) = onset.estimates.d_steepest {
-        amplitude = amplitude
-            .with(Series::new(
-                format!("{name}_c = {:.4} (steepest A)", x(ds)),
-                vec![(x(ds), interpolate(&d, &a, ds))],
-                LineStyle::Circles,
-                2,
-            ))
-            .with(Series::new(
-                "",
-                vec![(x(ds), 0.0), (x(ds), a_max)],
-                LineStyle::Dashed,
-                2,
-            ));
+        amplitude = mark(amplitude, ds, "steepest A", LineStyle::Dashed, 2);
     }
     let theory = onset.d_linear_theory;
     amplitude = amplitude.with(Series::new(
