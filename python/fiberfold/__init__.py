@@ -198,7 +198,10 @@ def simulate(
     and exactly incompressible tissue) or ``"displacement"`` (the paper's). ``stabilisation`` is how a snap is crossed: ``"viscous"`` (damped
     steps, with ``eta``), ``"snap"`` (the energy is minimised at that d and the stable
     equilibrium reached is recorded, see ``summary["snaps"]``; the inertia of every state is then
-    counted, whatever ``inertia`` says) or ``"none"``. ``progress`` is
+    counted, whatever ``inertia`` says) or ``"none"``. ``continuation`` is how the path is
+    followed: ``"displacement"`` control (the default) or ``"arc-length"``, which goes round a
+    limit point in d along the unstable branch (with ``contact=False, stabilisation="none"``;
+    ``d`` then falls and rises again). ``progress`` is
     called with a dict (``event``: ``"stage"``, ``"step"`` or ``"cut"``; ``d``, ``A``,
     ``message``...) after every stage, accepted state and cut. An unknown option raises
     ``ValueError``, a value of the wrong type ``TypeError``. Raises :class:`SolverError` (with

@@ -144,6 +144,18 @@ def without_times_and_files(value):
     return value
 
 
+def test_arc_length_reaches_displacement_controls_state():
+    # Where d rises along the path, both methods reach the same equilibrium at d_max.
+    plain = dict(d_max=0.05, contact=False, stabilisation="none", **TINY)
+    control = fiberfold.simulate(fiberfold.Parameters(), 4.5, **plain)
+    arc = fiberfold.simulate(fiberfold.Parameters(), 4.5, continuation="arc-length", **plain)
+    assert arc.amplitude["d"][-1] == 0.05
+    assert np.all(np.diff(arc.amplitude["d"]) > 0)
+    assert abs(arc.amplitude["A"][-1] - control.amplitude["A"][-1]) <= 1e-10
+    with pytest.raises(ValueError, match="continuation"):
+        fiberfold.simulate(fiberfold.Parameters(), 4.5, continuation="arc-length", d_max=0.05, **TINY)
+
+
 def test_simulate_arrays_have_the_documented_shapes():
     events = []
     result = fiberfold.simulate(fiberfold.Parameters(), 4.5, d_max=0.02, progress=events.append, **TINY)

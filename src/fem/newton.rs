@@ -298,8 +298,6 @@ impl Newton {
 
     /// `du_f = -K_ff^-1 r_f` (with the held factorisation if it is `current`'s, `factorised`),
     /// retried with `L B L^T` if the `L D L^T` solve's relative residual is above `tolerance`.
-    /// A positive definite `L D L^T` (no negative pivot) is backward stable without pivoting,
-    /// as Cholesky's is, so its solve is not checked (the check is a product with `K`).
     fn newton_step(
         &mut self,
         current: &Assembled,
@@ -307,30 +305,48 @@ impl Newton {
         tolerance: f64,
         timings: &mut Timings,
     ) -> Result<Vec<f64>, NewtonError> {
+        let minus_residual = current.residual.iter().map(|r| -r).collect();
+        let [du] = self.solve_tangent(current, [minus_residual], factorised, tolerance, timings)?;
+        Ok(du)
+    }
+
+    /// `K_ff^-1 b` for each right-hand side `b`, with `current`'s tangent `K_ff`: with the held
+    /// factorisation if it is `current`'s (`factorised`), otherwise factorised now (its inertia
+    /// is then [`Newton::linear_solver`]'s). An indefinite `L D L^T` whose solve leaves a
+    /// relative residual above `tolerance` is replaced by `L B L^T` and every `b` solved again.
+    /// A positive definite `L D L^T` (no negative pivot) is backward stable without pivoting,
+    /// as Cholesky's is, so its solve is not checked (the check is a product with `K`).
+    pub fn solve_tangent<const M: usize>(
+        &mut self,
+        current: &Assembled,
+        right_hand_sides: [Vec<f64>; M],
+        factorised: bool,
+        tolerance: f64,
+        timings: &mut Timings,
+    ) -> Result<[Vec<f64>; M], NewtonError> {
         let k = current.tangent.as_ref().expect("assembled with the tangent").as_ref();
         if !factorised || self.solver.is_none() {
             self.factorize(current, timings);
         }
         let solver = &mut self.solver.as_mut().expect("factorised").solver;
-        loop {
-            let mut du: Vec<f64> = current.residual.iter().map(|r| -r).collect();
-            solver.solve_in_place(&mut du)?;
-            timings.solve += solver.solve_time();
-            timings.solves += 1;
-            if solver.factorisation() == Some(Factorisation::Lblt) || solver.negative_pivots() == Some(0) {
-                return Ok(du);
+        'factorisation: loop {
+            let mut solutions = right_hand_sides.clone();
+            for (x, b) in solutions.iter_mut().zip(&right_hand_sides) {
+                solver.solve_in_place(x)?;
+                timings.solve += solver.solve_time();
+                timings.solves += 1;
+                if solver.factorisation() == Some(Factorisation::Lblt) || solver.negative_pivots() == Some(0) {
+                    continue;
+                }
+                let mismatch: Vec<f64> = multiply(k, x).iter().zip(b).map(|(a, b)| a - b).collect();
+                if norm(&mismatch) > tolerance * norm(b) {
+                    solver.factorize_pivoted(k);
+                    timings.factorisation += solver.factorisation_time();
+                    timings.factorisations += 1;
+                    continue 'factorisation;
+                }
             }
-            let mismatch: Vec<f64> = multiply(k, &du)
-                .iter()
-                .zip(&current.residual)
-                .map(|(a, r)| a + r)
-                .collect();
-            if norm(&mismatch) <= tolerance * current.residual_norm() {
-                return Ok(du);
-            }
-            solver.factorize_pivoted(k);
-            timings.factorisation += solver.factorisation_time();
-            timings.factorisations += 1;
+            return Ok(solutions);
         }
     }
 

@@ -27,9 +27,14 @@ use serde::Serialize;
 use std::collections::VecDeque;
 use std::time::Instant;
 
+mod arc_length;
 mod followed;
+mod method;
 mod minimised;
+pub use arc_length::ArcLength;
+pub(crate) use followed::plain_linearised;
 pub use followed::{Augmenting, Followed, NoAugmentation};
+pub use method::{ContinuationMethod, PathFollowing};
 
 /// Step-size control.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]

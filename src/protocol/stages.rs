@@ -5,7 +5,7 @@
 
 use super::augmentation::Augmentation;
 use super::basic_state::homogeneous_unknowns;
-use super::continuation::{Continuation, Event, StepControl};
+use super::continuation::{ArcLength, Continuation, ContinuationMethod, Event, PathFollowing, StepControl};
 use super::imperfection::{mode_number, wavenumber_of_waves, Imperfection};
 use super::measures::{bilayer_measures, measure_all};
 use super::record::StepRecord;
@@ -48,6 +48,9 @@ pub struct Protocol {
     /// `N_2`, the waves of the long-wave imperfection across the domain (`2 N_2` a positive
     /// integer; `1/2` by default: one half wave). `N / 2` seeds a period doubling.
     pub imperfection2_waves: f64,
+    /// How stage 3 follows the path: displacement control, or arc length (which goes round a
+    /// limit point in `d` instead of crossing it, and so has neither contact nor a crossing).
+    pub method: ContinuationMethod,
 }
 
 impl Protocol {
@@ -63,6 +66,7 @@ impl Protocol {
             crossing: SnapCrossing::None,
             imperfection2: 0.0,
             imperfection2_waves: 0.5,
+            method: ContinuationMethod::Displacement,
         }
     }
 
@@ -105,6 +109,13 @@ impl Protocol {
                 "d-max",
                 self.d_max,
                 "(0.005, 1): beyond stage 1's d = 0.005",
+            ));
+        }
+        if self.method == ContinuationMethod::ArcLength && (self.contact || self.crossing != SnapCrossing::None) {
+            return Err(Error::invalid(
+                "continuation",
+                "arc-length",
+                "displacement, or arc-length without contact or a way across a snap (--no-contact --stabilisation none)",
             ));
         }
         self.control.validate()
@@ -165,7 +176,7 @@ pub fn simulation_newton() -> NewtonPolicy {
 
 /// The end of a protocol: the path so far, and why it stopped early, if it did.
 pub struct Outcome {
-    pub continuation: Continuation,
+    pub continuation: Box<dyn PathFollowing<System>>,
     pub stopped: Option<Error>,
 }
 
@@ -246,9 +257,22 @@ pub fn run(
         u: &u,
     })?;
     observer(Event::Stage(&format!(
-        "stage 3: displacement control to d = {}",
+        "stage 3: {} to d = {}",
+        match protocol.method {
+            ContinuationMethod::Displacement => "displacement control",
+            ContinuationMethod::ArcLength => "arc-length continuation",
+        },
         protocol.d_max
     )))?;
+    if protocol.method == ContinuationMethod::ArcLength {
+        let mut continuation = ArcLength::new((system, newton, protocol.newton), protocol.control, d0, u)?
+            .with_measures(bilayer_measures());
+        let stopped = continuation.advance_to(protocol.d_max, observer).err();
+        return Ok(Outcome {
+            continuation: Box::new(continuation),
+            stopped,
+        });
+    }
     let damping = protocol.crossing.damping();
     let augmentation = (protocol.contact || damping.is_some())
         .then(|| Augmentation::new(&system, materials, protocol.contact, damping))
@@ -269,7 +293,10 @@ pub fn run(
         continuation = continuation.with_snaps(snaps);
     }
     let stopped = continuation.advance_to(protocol.d_max, observer).err();
-    Ok(Outcome { continuation, stopped })
+    Ok(Outcome {
+        continuation: Box::new(continuation),
+        stopped,
+    })
 }
 
 /// A failure of stage 1 or 2, named.

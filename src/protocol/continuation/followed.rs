@@ -3,11 +3,13 @@
 //! energy), and its energy. The bilayer strip follows with contact and stabilisation
 //! ([`Augmentation`]); the three-dimensional patch ([`crate::protocol::patch::BiaxialPatch`]) without.
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::fem::added::NoAddedEnergy;
 use crate::fem::contact::Contact;
+use crate::fem::element::Registry;
 use crate::fem::equilibrium;
-use crate::fem::{Dirichlet, Newton, NewtonPolicy, NewtonReport, System};
+use crate::fem::{Assembled, Dirichlet, Newton, NewtonPolicy, NewtonReport, System};
+use crate::mesh::ElementKind;
 use crate::protocol::augmentation::{Augmentation, AugmentedRecord};
 use crate::protocol::surface::amplitude;
 use crate::protocol::Loading;
@@ -58,6 +60,32 @@ pub trait Followed {
     /// The total energy at `u` with `bc` prescribed: the strain energy plus the augmentation's
     /// contact terms.
     fn energy(&mut self, u: &[f64], bc: &Dirichlet, augmentation: Option<&Self::Augmentation>) -> Result<f64>;
+
+    /// The residual of plain equilibrium (no augmentation) on the free unknowns at `u` with
+    /// `bc` prescribed, and its tangent `K_ff` if `with_tangent`: what a continuation that moves
+    /// `d` with the unknowns corrects with ([`super::ArcLength`]).
+    fn linearised(&mut self, u: &[f64], bc: &Dirichlet, with_tangent: bool) -> Result<Assembled>;
+}
+
+/// [`Followed::linearised`] of a finite-element system: its assembly, refused for the mixed
+/// element's multipliers, whose outer loop only [`equilibrium::solve`] runs.
+pub(crate) fn plain_linearised<const D: usize, const N: usize, const Q: usize, const U: usize>(
+    system: &mut crate::fem::System<D, N, Q, U>,
+    u: &[f64],
+    bc: &Dirichlet,
+    with_tangent: bool,
+) -> Result<Assembled>
+where
+    ElementKind: Registry<D, N, Q, U>,
+{
+    if system.has_multipliers() {
+        return Err(Error::invalid(
+            "continuation",
+            "arc-length",
+            "displacement (arc length follows nearly incompressible tissue, not exactly incompressible)",
+        ));
+    }
+    system.assemble(u, bc, None, with_tangent)
 }
 
 /// What a continuation asks of its augmentation besides the solves.
@@ -181,5 +209,9 @@ impl Followed for System {
             Some(augmentation) => augmentation.energy(self, u, bc),
             None => Ok(self.assemble(u, bc, None, false)?.energy),
         }
+    }
+
+    fn linearised(&mut self, u: &[f64], bc: &Dirichlet, with_tangent: bool) -> Result<Assembled> {
+        plain_linearised(self, u, bc, with_tangent)
     }
 }

@@ -7,9 +7,9 @@ use super::patch_conditions;
 use crate::error::Result;
 use crate::fem::added::NoAddedEnergy;
 use crate::fem::equilibrium;
-use crate::fem::{Dirichlet, Newton, NewtonPolicy, NewtonReport, PatchSystem};
+use crate::fem::{Assembled, Dirichlet, Newton, NewtonPolicy, NewtonReport, PatchSystem};
 use crate::protocol::augmentation::AugmentedRecord;
-use crate::protocol::continuation::{Followed, NoAugmentation};
+use crate::protocol::continuation::{plain_linearised, Followed, NoAugmentation};
 use crate::protocol::surface::amplitude;
 
 /// A patch whose in-plane compressions are `d` along X and `d_3 = biaxiality d` along Z.
@@ -119,5 +119,9 @@ impl Followed for BiaxialPatch {
             match *never {}
         }
         Ok(self.system.assemble(u, bc, None, false)?.energy)
+    }
+
+    fn linearised(&mut self, u: &[f64], bc: &Dirichlet, with_tangent: bool) -> Result<Assembled> {
+        plain_linearised(&mut self.system, u, bc, with_tangent)
     }
 }

@@ -7,8 +7,10 @@
 //! same folder is refused.
 
 mod figure;
+mod options;
 mod point;
 
+pub use options::MapOptions;
 pub use point::{compute as compute_point, doubling, first_instability, post_buckling, First, MapPoint, PostBuckling};
 
 use super::crease::{CreaseMesh, CreaseStudy, Criterion, Refinement, Scan};

@@ -35,7 +35,9 @@ use crate::mesh::MeshSpec;
 use crate::output::{write_json, CsvWriter};
 use crate::parameters::{Load, Parameters};
 use crate::protocol::onset::A2_FIT_WINDOW;
-use crate::protocol::{mode_number, stages, Cut, Event, OnsetEstimates, Protocol, SnapRecord, StepRecord};
+use crate::protocol::{
+    mode_number, stages, ContinuationMethod, Cut, Event, OnsetEstimates, Protocol, SnapRecord, StepRecord,
+};
 use crate::stability::{Method, StabilityAnalysis};
 use serde::Serialize;
 use snapshots::Snapshots;
@@ -104,11 +106,20 @@ impl Curve {
     }
 
     /// `(d_i, A_i)` of the states of the first branch, up to its last equilibrium before the
-    /// first snap: a snap's jump of `A` within a step of `1e-6` makes its slope millions, which
-    /// would drown the onset's peaks of `A'` and of the curvature ([`OnsetEstimates`]).
+    /// first snap or the first limit point in `d` (where an arc-length path turns back): a
+    /// snap's jump of `A` within a step of `1e-6`, or a vertical tangent, makes the slope
+    /// millions, which would drown the onset's peaks of `A'` and of the curvature
+    /// ([`OnsetEstimates`]).
     pub fn first_branch(&self) -> (Vec<f64>, Vec<f64>) {
+        let rising = self
+            .records
+            .windows(2)
+            .take_while(|pair| pair[1].d >= pair[0].d)
+            .count()
+            + 1;
         self.records
             .iter()
+            .take(rising)
             .take_while(|r| r.snap.is_none())
             .map(|r| (r.d, r.amplitude))
             .unzip()
@@ -260,6 +271,9 @@ pub struct SimulationSummary {
     pub k: f64,
     pub imperfection: f64,
     pub d_max: f64,
+    /// How the path was followed: displacement control, or arc length (`d` then falls and
+    /// rises again along `amplitude.csv`, and `d_reached` is the last state's).
+    pub continuation: ContinuationMethod,
     pub d_reached: f64,
     pub completed: bool,
     pub stopped: Option<String>,
@@ -316,6 +330,7 @@ impl SimulationSummary {
             k: study.protocol.k,
             imperfection: study.protocol.imperfection,
             d_max: study.protocol.d_max,
+            continuation: study.protocol.method,
             d_reached: solution.d_reached,
             completed: curve.stopped.is_none(),
             stopped: curve.stopped.as_ref().map(|e| e.to_string()),

@@ -9,7 +9,8 @@ use crate::fem::memory::{available_bytes, MemoryEstimate};
 use crate::fem::ElementKind;
 use crate::mesh::{MeshPreset, MeshSpec, XRefinement};
 use crate::protocol::{
-    mode_number, wavenumber_of_waves, Protocol, SnapCrossing, SnapSettings, StabilisationSettings, StepControl,
+    mode_number, wavenumber_of_waves, ContinuationMethod, Protocol, SnapCrossing, SnapSettings, StabilisationSettings,
+    StepControl,
 };
 use crate::studies::keywords::{default_keywords, from_keywords};
 use serde::{Deserialize, Serialize};
@@ -160,6 +161,13 @@ pub struct SimulateOptions {
           default_value_t = defaults().crossing)]
     pub crossing: Crossing,
 
+    /// How stage 3 follows the path: `displacement` control raises d step by step and crosses a
+    /// snap as --stabilisation says; `arc-length` makes d an unknown and goes round a limit
+    /// point in d along the unstable branch (amplitude.csv then has d falling and rising, and
+    /// the inertia of every state; needs --no-contact --stabilisation none).
+    #[arg(long, value_name = "METHOD", value_enum, default_value_t = defaults().continuation)]
+    pub continuation: ContinuationMethod,
+
     /// Viscous stabilisation's damping eta / h relative to the reference stiffness on a step h
     /// in d, in (0, inf) (with --stabilisation viscous).
     #[arg(long, default_value_t = defaults().eta, allow_negative_numbers = true)]
@@ -237,6 +245,7 @@ impl Default for SimulateOptions {
             imperfection2_waves: 0.5,
             contact: true,
             crossing: Crossing::Viscous,
+            continuation: ContinuationMethod::Displacement,
             eta: 1e-6,
             inertia: true,
             vtu_every: 0.01,
@@ -295,6 +304,7 @@ impl SimulateOptions {
         protocol.imperfection2 = self.imperfection2;
         protocol.imperfection2_waves = self.imperfection2_waves;
         protocol.contact = self.contact;
+        protocol.method = self.continuation;
         if !(self.eta.is_finite() && self.eta > 0.0) {
             return Err(Error::invalid("eta", self.eta, "(0, inf)"));
         }
