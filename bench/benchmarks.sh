@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Writes the guide's benchmarks page, docs/guide/src/benchmarks.md, from what this machine
-# measures now: `fiberfold bench stability`, `fiberfold bench fe` and, where FEniCSx is installed
+# measures now: `fiberfold bench stability`, `fiberfold bench fe`, `fiberfold bench patch` and,
+# where FEniCSx is installed
 # (bench/fenicsx/install.sh), the side-by-side comparison bench/fenicsx/compare.sh on the coarse
 # mesh. The page names the machine, the date and the commit, and is replaced on each run.
 #
-#   bench/benchmarks.sh            (after cargo build --release; about 10 minutes on 2 cores)
+#   bench/benchmarks.sh            (after cargo build --release; about 15 minutes on 2 cores and
+#                                   12 GB of memory for the largest patch)
 #
 # Run it on a quiet machine: the FEniCSx ratios are only meaningful side by side, in one run.
 set -euo pipefail
@@ -19,6 +21,8 @@ echo "bench stability" >&2
 "$binary" bench stability --orientation-map 31 --out "$work/stability" >"$work/stability.log"
 echo "bench fe" >&2
 "$binary" bench fe --out "$work/fe" >"$work/fe.log"
+echo "bench patch" >&2
+"$binary" bench patch --periods 3 --out "$work/patch" >"$work/patch.log"
 compared=no
 if [ -x "${FENICSX_DIR:-$HOME/.cache/fiberfold-fenicsx-bench}/venv/bin/python" ]; then
   echo "side by side with FEniCSx" >&2
@@ -62,6 +66,14 @@ git -C "$root" diff --quiet HEAD -- src Cargo.toml Cargo.lock || commit="$commit
   echo "## Finite elements"
   echo
   demote "$work/fe/bench_fe.md"
+  echo
+  echo "## Three dimensions"
+  echo
+  echo "\`bench patch --periods 3\`: one Newton iteration of \`pattern\`'s periodic patch (Table 1,"
+  echo "equibiaxial; 6 elements per wavelength, 2 + 12 through the thickness) of 1 x 1 to 3 x 3"
+  echo "onset periods, at the homogeneous state of d = 0.05."
+  echo
+  cat "$work/patch/bench_patch.md"
 } >"$page.new"
 mv "$page.new" "$page"
 echo "wrote $page" >&2

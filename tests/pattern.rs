@@ -132,6 +132,8 @@ fn bad_input_is_refused_with_exit_code_2_naming_the_flag() {
         (&["--follow-to", "0.2", "--imperfection", "0"][..], "`imperfection`"),
         (&["--follow-to", "0.2", "--d-start", "0.3"][..], "`d-start`"),
         (&["--follow-to", "0.2", "--sides", "symmetry"][..], "`sides`"),
+        // Some 190 million unknowns: refused by its memory estimate before anything is built.
+        (&["--periods", "60"][..], "`patch`"),
     ] {
         let out = scratch("pattern-bad");
         let output = fiberfold(&[&["pattern"][..], args, &["--out", out.to_str().unwrap()]].concat());

@@ -235,6 +235,14 @@ fn every_documented_example_runs_and_gives_an_independently_known_number() {
                 let (_, stdout) = run(command, &[("--orientation-map", "3")]);
                 assert!(stdout.contains("Fig. 4b sweep") && stdout.contains("orientation map"));
             }
+            "bench" if command.contains("patch") => {
+                // Table 1's 1 x 1 box: 8 x 14 x 11 hexahedra, nodes 16 x 29 x 22 on periodic
+                // sides; free: all their unknowns but u_Y at the 16 x 22 bottom nodes and the
+                // anchor's u_X, u_Z.
+                let (_, stdout) = run(command, &[("--periods", "1")]);
+                let free = 3 * 16 * 29 * 22 - 16 * 22 - 2;
+                assert!(stdout.contains(&format!("| 1 x 1 | {free} |")), "{stdout}");
+            }
             "bench" => {
                 let (_, stdout) = run(command, &[("--coarse-only", "")]);
                 assert!(stdout.contains("coarse") && stdout.contains("22110"), "{stdout}");

@@ -1,4 +1,4 @@
-//! `fiberfold bench stability | fe`: timings printed as Markdown tables (never timed tests),
+//! `fiberfold bench stability | fe | patch`: timings printed as Markdown tables (never timed tests),
 //! and written to the output folder (the tables, and the FE timings as JSON).
 
 use super::common::{report_files, ParamArgs};
@@ -20,6 +20,10 @@ pub enum BenchTarget {
     /// per-call kernel times (tangent and residual assembly, LDLT, solve); then one Newton
     /// iteration with each tissue law (neo-Hookean, Mooney-Rivlin, Ogden, Gent, HGO) side by side.
     Fe,
+    /// Three-dimensional patch: one Newton iteration (tangent assembly, ordering and analysis,
+    /// LDLT, one solve), the factor's entries and peak memory on periodic boxes of 1 x 1 up to
+    /// --periods onset periods (pattern's default mesh, equibiaxial), and how they grow.
+    Patch,
 }
 
 #[derive(Args)]
@@ -39,7 +43,12 @@ pub struct BenchArgs {
     /// over k and theta, about 2 minutes at 91 on 2 cores; 0 skips it).
     #[arg(long, value_name = "N", default_value_t = 91)]
     pub orientation_map: usize,
-    /// Output folder: `bench_stability.md`, or `bench_fe.md` and `bench_fe.json`.
+    /// patch: the largest box, in onset periods along each side (at Table 1, 2: 108,358
+    /// unknowns and 3 GB; 3: 245,270 unknowns, 12 GB and about 3 minutes on 2 cores).
+    #[arg(long, value_name = "N", default_value_t = 3)]
+    pub periods: usize,
+    /// Output folder: `bench_stability.md`, `bench_fe.md` and `bench_fe.json`, or
+    /// `bench_patch.md` and `bench_patch.json`.
     #[arg(long, value_name = "DIR", default_value = "results/bench")]
     pub out: PathBuf,
 }
@@ -120,7 +129,25 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             )?;
             vec![table, json]
         }
+        BenchTarget::Patch => patch(&params, args)?,
     };
     report_files(&files);
     Ok(())
+}
+
+/// `bench patch`: the boxes' table, printed and written.
+fn patch(params: &fiberfold::Parameters, args: &BenchArgs) -> Result<Vec<PathBuf>> {
+    if args.periods < 1 {
+        return Err(fiberfold::Error::invalid("periods", args.periods, "an integer >= 1"));
+    }
+    println!(
+        "timing one Newton iteration of periodic patches of 1 x 1 to {0} x {0} onset periods...",
+        args.periods
+    );
+    let bench = fiberfold::studies::bench_patch::run(params, 1.0, args.periods)?;
+    print!("{bench}");
+    let (table, json) = (args.out.join("bench_patch.md"), args.out.join("bench_patch.json"));
+    write_file(&table, bench.to_string())?;
+    write_json(&json, &bench)?;
+    Ok(vec![table, json])
 }

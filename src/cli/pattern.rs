@@ -30,9 +30,14 @@ pub fn run(args: &PatternArgs) -> Result<()> {
     );
     let start = Instant::now();
     let r = pattern::run(&params, &study, &args.out, &mut |progress| match progress {
-        Progress::Patch { spec, unknowns, modes } => {
+        Progress::Patch {
+            spec,
+            unknowns,
+            modes,
+            memory: (memory, available),
+        } => {
             println!(
-                "patch {:.4} x {:.4} (X x Z), depth {:.2}, {} sides: {} x {} x {} {} hexahedra (27 nodes), {} unknowns",
+                "patch {:.4} x {:.4} (X x Z), depth {:.2}, {} sides: {} x {} x {} {} hexahedra (27 nodes), {} unknowns; factor {:.3e} entries, estimated {:.0} MB{}",
                 spec.length_x,
                 spec.length_z,
                 spec.depth,
@@ -41,7 +46,10 @@ pub fn run(args: &PatternArgs) -> Result<()> {
                 spec.ny(),
                 spec.nz,
                 spec.element.name(),
-                unknowns
+                unknowns,
+                memory.factor_entries,
+                memory.bytes / 1e6,
+                available.map_or(String::new(), |a| format!(" of {:.0} MB available", a / 1e6))
             );
             println!("admissible wave vectors nearest the onset (k = 2 pi (m / Lx, n / Lz)):");
             for mode in modes.iter().take(4) {

@@ -1,7 +1,9 @@
 //! Sparse symmetric direct solver: faer's supernodal `L D L^T` with the symbolic analysis (AMD
-//! ordering) done once per sparsity pattern, sequential (`Par::Seq`: on a two-core machine
-//! faer on two threads was 2-3x slower); a large pattern is instead split in two halves
-//! factorised at once on two cores (`split`). The inertia comes for free from `D`: by Sylvester's law
+//! ordering) done once per sparsity pattern, sequential on plane meshes (`Par::Seq`: on a
+//! two-core machine faer on two threads was 2-3x slower), where a large pattern is instead split
+//! in two halves factorised at once on two cores (`split`); on all cores where the fronts are
+//! as dense as a three-dimensional mesh's, which does not split ([`PARALLEL_ENTRIES_PER_UNKNOWN`]).
+//! The inertia comes for free from `D`: by Sylvester's law
 //! the number of negative pivots is the number of negative eigenvalues of `K`. When `L D L^T`
 //! meets a zero pivot, the intranode Bunch-Kaufman `L B L^T` takes over. An iteration that
 //! checks its own residual (modified Newton) may solve with the factor rounded to single
@@ -182,7 +184,7 @@ impl SparseLdlt {
             order.gather(a, &mut self.permuted),
             LdltRegularization::default(),
             supernodal,
-            Par::Seq,
+            whole_parallelism(&self.analysis.symbolic),
             whole_workspace(&mut self.scratch, &self.analysis.symbolic),
             Default::default(),
         );
@@ -384,6 +386,23 @@ impl SparseLdlt {
     }
 }
 
+/// Factor entries per unknown from which faer's `L D L^T` of the whole runs on all cores: the
+/// dense fronts of three-dimensional meshes. Measured on periodic patches of 27-node hexahedra
+/// on two cores: 1.24x faster at 29,598 unknowns (1,552 entries per unknown), 1.72x at 76,830
+/// (2,041); slower at 15,870 (982), as on the plane meshes (about 100 per unknown), where two
+/// threads were 2-3x slower.
+const PARALLEL_ENTRIES_PER_UNKNOWN: usize = 1_200;
+
+/// How the whole factor's `L D L^T` runs: on all cores for [`PARALLEL_ENTRIES_PER_UNKNOWN`], except
+/// on a rayon pool's thread (a caller that already runs in parallel).
+fn whole_parallelism(symbolic: &SymbolicCholesky<usize>) -> Par {
+    let large_fronts = symbolic.len_val() >= PARALLEL_ENTRIES_PER_UNKNOWN * symbolic.nrows();
+    match large_fronts && rayon::current_thread_index().is_none() {
+        true => Par::rayon(rayon::current_num_threads()),
+        false => Par::Seq,
+    }
+}
+
 /// The workspace of the whole factor's `L D L^T` and its solves (double and single
 /// precision), made in `scratch` on first use.
 fn whole_workspace<'a>(scratch: &'a mut Option<MemBuffer>, symbolic: &SymbolicCholesky<usize>) -> &'a mut MemStack {
@@ -393,6 +412,11 @@ fn whole_workspace<'a>(scratch: &'a mut Option<MemBuffer>, symbolic: &SymbolicCh
         };
         MemBuffer::new(StackReq::any_of(&[
             factorize_supernodal_numeric_ldlt_scratch::<usize, f64>(supernodal, Par::Seq, Default::default()),
+            factorize_supernodal_numeric_ldlt_scratch::<usize, f64>(
+                supernodal,
+                whole_parallelism(symbolic),
+                Default::default(),
+            ),
             symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
             symbolic.solve_in_place_scratch::<f32>(1, Par::Seq),
         ]))

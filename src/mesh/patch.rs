@@ -93,6 +93,20 @@ impl PatchSpec {
     pub fn ny(&self) -> usize {
         self.layer_elements + self.substrate_elements
     }
+
+    /// Number of hexahedra.
+    pub fn num_elements(&self) -> usize {
+        self.nx * self.ny() * self.nz
+    }
+
+    /// Number of unknowns (three per node; a periodic side's nodes are those of one side).
+    pub fn num_dofs(&self) -> usize {
+        let columns = |n: usize| match self.sides {
+            Sides::Periodic => 2 * n,
+            Sides::Symmetry => 2 * n + 1,
+        };
+        3 * columns(self.nx) * (2 * self.ny() + 1) * columns(self.nz)
+    }
 }
 
 impl Mesh<3, 27> {

@@ -19,6 +19,7 @@ use crate::error::{Error, Result};
 use crate::fem::added::NoAddedEnergy;
 use crate::fem::assembly::norm;
 use crate::fem::lanczos::inverse_lanczos;
+use crate::fem::memory::MemoryEstimate;
 use crate::fem::{Assembled, Dirichlet, PatchSystem, SparseLdlt, Tangent};
 use crate::homogeneous::{biaxial_state, normal_stress, BiaxialState};
 use crate::material::{Bilayer, Tissue};
@@ -240,6 +241,23 @@ impl<'a> PatchPath<'a> {
         let solver = self.solver.get_or_insert_with(|| SparseLdlt::new(k.symbolic()));
         solver.factorize(k.as_ref());
         Ok((solver.negative_pivots().expect("just factorised"), k, bc))
+    }
+
+    /// What the path's factorisations will need in memory: the tangent's pattern (at the
+    /// unloaded state) and its symbolic factor, analysed here and kept for the path, before any
+    /// factor is allocated.
+    pub fn memory_estimate(&mut self) -> Result<MemoryEstimate> {
+        let (_, bc, u) = self.homogeneous(0.0)?;
+        let assembled = self.patch.system_mut().assemble(&u, &bc, None, true)?;
+        let k = assembled.tangent.expect("assembled with the tangent");
+        let solver = self.solver.get_or_insert_with(|| SparseLdlt::new(k.symbolic()));
+        let elements = self.patch.system().mesh().elements().len();
+        Ok(MemoryEstimate::of_factor(
+            k.nrows(),
+            elements,
+            k.compute_nnz(),
+            solver.factor_size(),
+        ))
     }
 
     /// The first bifurcation along the path (the scan and bisection of `settings`), telling

@@ -2,6 +2,7 @@
 //! command line and `reproduce` call these; they take a progress callback and an output folder.
 
 pub mod bench_fe;
+pub mod bench_patch;
 pub mod bench_stability;
 pub mod bifurcation;
 pub mod crease;

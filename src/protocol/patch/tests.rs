@@ -332,3 +332,23 @@ fn a_slab_in_plane_strain_follows_the_strips_post_buckling_path() {
     let &(_, last) = plane.last().unwrap();
     assert!(last > 20.0 * amplitude, "past the onset the wrinkle grew: A = {last}");
 }
+
+/// The memory estimate counts the factor of the path's own tangents (from their pattern,
+/// before any factor), and the patch's unknowns as its mesh has them.
+#[test]
+fn the_memory_estimate_counts_the_factor_of_the_paths_tangents() {
+    let materials = Bilayer::new(&Parameters::default());
+    let spec = patch(Sides::Periodic, 4);
+    let mut path = PatchPath::new(&materials, spec, 1.0).unwrap();
+    assert_eq!(spec.num_dofs(), path.system().mesh().num_dofs());
+    assert_eq!(spec.num_elements(), path.system().mesh().elements().len());
+    let estimate = path.memory_estimate().unwrap();
+    let (_, k, _) = path.factorise(0.05).unwrap();
+    assert_eq!(estimate.unknowns, k.nrows());
+    assert_eq!(estimate.tangent_entries, k.compute_nnz() as f64);
+    assert_eq!(
+        estimate.factor_entries,
+        SparseLdlt::new(k.symbolic()).factor_size() as f64
+    );
+    assert!(estimate.bytes > 8.0 * estimate.factor_entries);
+}

@@ -22,6 +22,7 @@ pub use path::{PathStudy, PathSummary, PatternState};
 
 use crate::error::{Error, Result};
 use crate::fem::element::{Hex27, ReferenceElement};
+use crate::fem::memory::{available_bytes, MemoryEstimate};
 use crate::mesh::{ElementKind, Mesh, PatchSpec, Sides, Y};
 use crate::output::lock::OutputLock;
 use crate::output::vtu::{write_vtu, CellType, DataArray};
@@ -60,6 +61,8 @@ pub struct PatternStudy {
     pub settings: BifurcationSettings,
     /// The path past the onset, if it is followed.
     pub path: Option<PathStudy>,
+    /// Run even when the memory estimate exceeds the memory available.
+    pub force: bool,
 }
 
 impl Default for PatternStudy {
@@ -82,9 +85,13 @@ impl Default for PatternStudy {
                 ..BifurcationSettings::default()
             },
             path: None,
+            force: false,
         }
     }
 }
+
+/// What a patch too large for the memory can lower.
+const TOO_LARGE: &str = "fewer --periods or --elements-per-wavelength; ";
 
 /// The patch of `study` for `params`: the theory's onset and the patch that holds it.
 pub fn size_patch(params: &Parameters, study: &PatternStudy) -> Result<(SurfaceOnset, PatchSpec)> {
@@ -234,6 +241,14 @@ pub fn run(
         }
     }
     let (onset, spec) = size_patch(params, study)?;
+    // The elements and the tangent alone, before anything is allocated for the exact estimate:
+    // about 97 stored entries per unknown in the lower triangle of 27-node hexahedra (64 nodes
+    // coupled to each on average).
+    let available = available_bytes();
+    if !study.force {
+        let n = spec.num_dofs();
+        MemoryEstimate::of_factor(n, spec.num_elements(), 95 * n, 0).check_named(available, "patch", TOO_LARGE)?;
+    }
     let _lock = OutputLock::acquire(out)?;
     let k_max = 3.0 * onset.onset.k0;
     // Symmetry sides admit the waves `cos(m pi X / Lx) cos(n pi Z / Lz)`: the wave vectors of
@@ -253,11 +268,16 @@ pub fn run(
     let materials = crate::material::Bilayer::new(params);
     let mut path = PatchPath::new(&materials, spec, study.biaxial)?;
     let mesh = path.system().mesh().clone();
+    let memory = path.memory_estimate()?;
     progress(Progress::Patch {
         spec: &spec,
         unknowns: mesh.num_dofs(),
         modes: &modes,
+        memory: (&memory, available),
     });
+    if !study.force {
+        memory.check_named(available, "patch", TOO_LARGE)?;
+    }
     let found = path.bifurcation(&study.settings, &mut |d, negative| {
         progress(Progress::Inertia { d, negative })
     })?;
@@ -339,6 +359,8 @@ pub enum Progress<'a> {
         spec: &'a PatchSpec,
         unknowns: usize,
         modes: &'a [BoxMode],
+        /// What its factorisations will need, and the memory available (bytes), if known.
+        memory: (&'a MemoryEstimate, Option<f64>),
     },
     /// The tangent's negative pivots at the homogeneous state `d`.
     Inertia { d: f64, negative: usize },

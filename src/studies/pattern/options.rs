@@ -77,6 +77,11 @@ pub struct PatternOptions {
     /// Where the followed path starts, in (0, --follow-to).
     #[arg(long, default_value_t = PathStudy::default().d_start)]
     pub d_start: f64,
+
+    /// Run even when the memory estimate (printed with the patch: its factor's exact size)
+    /// exceeds the memory available.
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// The defaults the flags show.
@@ -115,6 +120,7 @@ impl PatternOptions {
                 d_start: self.d_start,
                 d_end,
             }),
+            force: self.force,
         })
     }
 }
