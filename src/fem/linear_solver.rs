@@ -2,7 +2,7 @@
 //! ordering) done once per sparsity pattern, sequential on plane meshes (`Par::Seq`: on a
 //! two-core machine faer on two threads was 2-3x slower), where a large pattern is instead split
 //! in two halves factorised at once on two cores (`split`); on all cores where the fronts are
-//! as dense as a three-dimensional mesh's, which does not split ([`PARALLEL_ENTRIES_PER_UNKNOWN`]).
+//! as dense as a three-dimensional mesh's, which does not split (`PARALLEL_ENTRIES_PER_UNKNOWN`).
 //! The inertia comes for free from `D`: by Sylvester's law
 //! the number of negative pivots is the number of negative eigenvalues of `K`. When `L D L^T`
 //! meets a zero pivot, the intranode Bunch-Kaufman `L B L^T` takes over. An iteration that

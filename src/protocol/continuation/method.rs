@@ -15,7 +15,7 @@ pub enum ContinuationMethod {
     #[default]
     #[value(help = "displacement control: d rises step by step, a snap is crossed")]
     Displacement,
-    /// Pseudo-arc length ([`ArcLength`]): `d` is an unknown, and the path goes round a limit
+    /// Pseudo-arc length ([`super::ArcLength`]): `d` is an unknown, and the path goes round a limit
     /// point in `d`, along the unstable branch (no contact, no stabilisation).
     #[value(help = "pseudo-arc length: round the limit points in d, along unstable branches")]
     ArcLength,
