@@ -264,15 +264,28 @@ pub fn run(
         },
         protocol.d_max
     )))?;
-    if protocol.method == ContinuationMethod::ArcLength {
-        let mut continuation = ArcLength::new((system, newton, protocol.newton), protocol.control, d0, u)?
-            .with_measures(bilayer_measures());
-        let stopped = continuation.advance_to(protocol.d_max, observer).err();
-        return Ok(Outcome {
-            continuation: Box::new(continuation),
-            stopped,
-        });
-    }
+    let mut continuation: Box<dyn PathFollowing<System>> = match protocol.method {
+        ContinuationMethod::ArcLength => Box::new(
+            ArcLength::new((system, newton, protocol.newton), protocol.control, d0, u)?
+                .with_measures(bilayer_measures()),
+        ),
+        ContinuationMethod::Displacement => {
+            Box::new(displacement_control(system, newton, (d0, u), materials, protocol)?)
+        }
+    };
+    let stopped = continuation.advance_to(protocol.d_max, observer).err();
+    Ok(Outcome { continuation, stopped })
+}
+
+/// Stage 3's displacement control from the state `u` at `d0`, with contact and the way across
+/// a snap the protocol asks for.
+fn displacement_control(
+    system: System,
+    newton: Newton,
+    (d0, u): (f64, Vec<f64>),
+    materials: &Bilayer,
+    protocol: &Protocol,
+) -> Result<Continuation> {
     let damping = protocol.crossing.damping();
     let augmentation = (protocol.contact || damping.is_some())
         .then(|| Augmentation::new(&system, materials, protocol.contact, damping))
@@ -292,11 +305,7 @@ pub fn run(
     if let Some(snaps) = protocol.crossing.minimisation() {
         continuation = continuation.with_snaps(snaps);
     }
-    let stopped = continuation.advance_to(protocol.d_max, observer).err();
-    Ok(Outcome {
-        continuation: Box::new(continuation),
-        stopped,
-    })
+    Ok(continuation)
 }
 
 /// A failure of stage 1 or 2, named.

@@ -103,10 +103,11 @@ impl<S: Followed> ArcLength<S> {
     fn advance(&mut self, target: f64, observer: &mut dyn FnMut(Event<'_, S>) -> Result<()>) -> Result<()> {
         let start = self.d;
         if self.tangent.is_none() {
-            let mut timings = Timings::default();
             let bc = self.system.load_to(self.d)?;
-            let assembled = self.system.linearised(&self.u, &bc, true)?;
-            let (tangent, _) = self.tangent_at(&assembled, self.d, None, &mut timings)?;
+            let u = self.u.clone();
+            let assembled = self.system.linearised(&u, &bc, true)?;
+            let load_derivative = self.load_derivative(&u, self.d)?;
+            let (tangent, _) = self.tangent_at(&assembled, load_derivative, &mut Timings::default())?;
             self.weight = 1.0 / dot(&tangent.free, &tangent.free).max(f64::MIN_POSITIVE);
             self.tangent = Some(self.normalised(tangent));
         }
@@ -143,9 +144,10 @@ impl<S: Followed> ArcLength<S> {
                     }
                 }
                 Err(reason) => {
+                    // The system stays at the last state's load, for what is written of it.
+                    self.system.load_to(self.d)?;
                     let c = self.control;
                     if self.step <= c.min * (1.0 + 1e-9) {
-                        self.system.load_to(self.d)?;
                         return Err(Error::Solver(format!(
                             "arc-length continuation stopped after d = {:.6} with the minimum step {:.3e}: {reason}",
                             self.d, self.step
@@ -186,12 +188,7 @@ impl<S: Followed> ArcLength<S> {
             let residual = assembled.residual_norm();
             history.push(residual);
             if residual <= self.policy.tolerance(assembled.force_norm(), 1.0) {
-                let (next, pivots) = self.tangent_at(&assembled, d, Some(load_derivative), &mut timings)?;
-                let next = self.normalised(next);
-                let next = match self.inner(&next, tangent) < 0.0 {
-                    true => negated(next),
-                    false => next,
-                };
+                let (next, pivots) = self.next_tangent(&assembled, load_derivative, tangent, &mut timings)?;
                 let report = report(&assembled, history, iteration, pivots, timings);
                 return Ok((report, d, u, next));
             }
@@ -207,20 +204,18 @@ impl<S: Followed> ArcLength<S> {
                 self.policy.solve_tolerance,
                 &mut timings,
             )?;
-            // The constraint is linear, so after the first correction it holds to round-off.
-            let moved = PathTangent {
-                free: self.free.iter().map(|&i| u[i] - u0[i]).collect(),
-                load: d - d0,
+            // `<t, (v, load)>`; the constraint is linear, so after the first correction it holds
+            // to round-off.
+            let along = |v: &mut dyn Iterator<Item = f64>, load: f64| {
+                0.5 * (self.weight * v.zip(&tangent.free).map(|(x, t)| x * t).sum::<f64>() + load * tangent.load)
             };
-            let constraint = self.inner(tangent, &moved) - h;
-            let along = |v: &[f64], load: f64| self.inner(tangent, &PathTangent { free: v.to_vec(), load });
-            let change = -(constraint + along(&a, 0.0)) / along(&b, 1.0);
+            let constraint = along(&mut self.free.iter().map(|&i| u[i] - u0[i]), d - d0) - h;
+            let change = -(constraint + along(&mut a.iter().copied(), 0.0)) / along(&mut b.iter().copied(), 1.0);
             for ((&i, a), b) in self.free.iter().zip(&a).zip(&b) {
                 u[i] += a + change * b;
             }
             d += change;
         }
-        self.system.load_to(self.d)?;
         Err(Error::Solver(format!(
             "Newton's correction did not converge in {} iterations (|r| = {:.3e})",
             self.policy.max_iterations,
@@ -245,18 +240,11 @@ impl<S: Followed> ArcLength<S> {
         let corrected = self
             .system
             .correct(&mut self.newton, &policy, &mut u, &bc, None, from, (target, along));
-        let (mut report, _) = match corrected {
-            Ok(solved) => solved,
-            Err(e) => {
-                self.system.load_to(self.d)?;
-                return Err(e);
-            }
-        };
+        let (mut report, _) = corrected?;
         let assembled = self.system.linearised(&u, &bc, true)?;
         let load_derivative = self.load_derivative(&u, target)?;
-        let (next, pivots) = self.tangent_at(&assembled, target, Some(load_derivative), &mut report.timings)?;
+        let (next, pivots) = self.next_tangent(&assembled, load_derivative, tangent, &mut report.timings)?;
         report.negative_pivots = pivots;
-        let next = self.normalised(next);
         Ok((report, target, u, next))
     }
 
@@ -279,22 +267,14 @@ impl<S: Followed> ArcLength<S> {
             .collect())
     }
 
-    /// The (unnormalised) tangent `(K^-1 (-dr/dd), 1)` at the state `assembled` is of, and the
-    /// inertia of its `K_ff`.
+    /// The (unnormalised) tangent `(K^-1 (-dr/dd), 1)` at the state `assembled` is of (whose
+    /// `dr/dd` is `load_derivative`), and the inertia of its `K_ff`.
     fn tangent_at(
         &mut self,
         assembled: &Assembled,
-        d: f64,
-        load_derivative: Option<Vec<f64>>,
+        load_derivative: Vec<f64>,
         timings: &mut Timings,
     ) -> Result<(PathTangent, Option<usize>)> {
-        let load_derivative = match load_derivative {
-            Some(derivative) => derivative,
-            None => {
-                let u = self.u.clone();
-                self.load_derivative(&u, d)?
-            }
-        };
         let minus_derivative = load_derivative.iter().map(|r| -r).collect();
         let [free] = self.newton.solve_tangent(
             assembled,
@@ -305,6 +285,22 @@ impl<S: Followed> ArcLength<S> {
         )?;
         let pivots = self.newton.linear_solver().and_then(SparseLdlt::negative_pivots);
         Ok((PathTangent { free, load: 1.0 }, pivots))
+    }
+
+    /// The unit tangent at a converged state, turned to continue `previous`, and the inertia.
+    fn next_tangent(
+        &mut self,
+        assembled: &Assembled,
+        load_derivative: Vec<f64>,
+        previous: &PathTangent,
+        timings: &mut Timings,
+    ) -> Result<(PathTangent, Option<usize>)> {
+        let (next, pivots) = self.tangent_at(assembled, load_derivative, timings)?;
+        let next = self.normalised(next);
+        Ok(match self.inner(&next, previous) < 0.0 {
+            true => (negated(next), pivots),
+            false => (next, pivots),
+        })
     }
 
     /// `<a, b> = (w a_f . b_f + a_d b_d) / 2`.
