@@ -125,47 +125,60 @@ pub fn homogeneous_state(materials: &Bilayer, d: f64) -> Result<HomogeneousState
 
 /// Both layers under in-plane compression `d` along X and `d_3` along Z: `F = diag(lambda_1,
 /// lambda_2, lambda_3)` with `lambda_1 = 1 - d`, `lambda_3 = 1 - d_3` and each layer's `lambda_2`
-/// such that `sigma_22 = 0` (`1 / (lambda_1 lambda_3)` if incompressible). `d_3 = 0` is plane
-/// strain, `d_3 = d` equibiaxial compression.
+/// such that `sigma_22 = 0` (`Jg / (lambda_1 lambda_3)` if incompressible). `d_3 = 0` is plane
+/// strain, `d_3 = d` equibiaxial compression. Under a growth load ([`Bilayer::at_biaxial_load`])
+/// the sides are held (`lambda_1 = lambda_3 = 1`) and `d`, `d_3` are the growth's strains
+/// `1 - 1/g`, `1 - 1/g3`.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct BiaxialState {
     pub d: f64,
     pub d3: f64,
+    pub lambda1: f64,
+    pub lambda3: f64,
     pub lambda2_layer: f64,
     pub lambda2_substrate: f64,
+    /// What loads the bilayer.
+    pub load: Load,
 }
 
 impl BiaxialState {
+    /// How far the sides have moved in along `X` and `Z`, as fractions of the lengths: `(d,
+    /// d_3)` under compression, 0 under growth (the sides are held).
+    pub fn end_shortening(&self) -> [f64; 2] {
+        if self.load.is_growth() {
+            [0.0, 0.0]
+        } else {
+            [self.d, self.d3]
+        }
+    }
+
     /// The principal stretches `(lambda_1, lambda_2, lambda_3)` of the layer.
     pub fn layer_stretches(&self) -> [f64; 3] {
-        [1.0 - self.d, self.lambda2_layer, 1.0 - self.d3]
+        [self.lambda1, self.lambda2_layer, self.lambda3]
     }
 
     /// The principal stretches of the substrate.
     pub fn substrate_stretches(&self) -> [f64; 3] {
-        [1.0 - self.d, self.lambda2_substrate, 1.0 - self.d3]
+        [self.lambda1, self.lambda2_substrate, self.lambda3]
     }
 }
 
-/// The biaxial homogeneous state at `(d, d_3)`, under compression (a fixed growth included).
+/// The biaxial homogeneous state at the load's strains `(d, d_3)`, under compression (a fixed
+/// growth included) or growth.
 pub fn biaxial_state(materials: &Bilayer, d: f64, d3: f64) -> Result<BiaxialState> {
     validate_compression("d", d)?;
     validate_compression("d_3", d3)?;
-    if materials.load.is_growth() {
-        return Err(crate::error::Error::invalid(
-            "load",
-            materials.load.name(),
-            "compression for modes oblique to the compression (a fixed growth_layer may prestress the layer)",
-        ));
-    }
-    let (lambda1, lambda3) = (1.0 - d, 1.0 - d3);
+    let (loaded, [lambda1, lambda3]) = materials.at_biaxial_load(d, d3);
     if materials.incompressible {
         let volume = |g: crate::material::Growth| g.jacobian() / (lambda1 * lambda3);
         return Ok(BiaxialState {
             d,
             d3,
-            lambda2_layer: volume(materials.layer.growth),
-            lambda2_substrate: volume(materials.substrate.growth),
+            lambda1,
+            lambda3,
+            lambda2_layer: volume(loaded.layer.growth),
+            lambda2_substrate: volume(loaded.substrate.growth),
+            load: materials.load,
         });
     }
     let solve = |material: &dyn Fn(f64) -> Result<f64>| {
@@ -177,8 +190,11 @@ pub fn biaxial_state(materials: &Bilayer, d: f64, d3: f64) -> Result<BiaxialStat
     Ok(BiaxialState {
         d,
         d3,
-        lambda2_layer: solve(&|l2| normal_stress(&materials.layer, [lambda1, l2, lambda3]))?,
-        lambda2_substrate: solve(&|l2| normal_stress(&materials.substrate, [lambda1, l2, lambda3]))?,
+        lambda1,
+        lambda3,
+        lambda2_layer: solve(&|l2| normal_stress(&loaded.layer, [lambda1, l2, lambda3]))?,
+        lambda2_substrate: solve(&|l2| normal_stress(&loaded.substrate, [lambda1, l2, lambda3]))?,
+        load: materials.load,
     })
 }
 

@@ -127,7 +127,6 @@ fn bad_input_is_refused_with_exit_code_2_naming_the_flag() {
         (&["--h0", "500"][..], "`h0`"),
         (&["--d-max", "2"][..], "`d-max`"),
         (&["--sides", "symmetry", "--set", "psi=0.3"][..], "`sides`"),
-        (&["--load", "growth"][..], "`load`"),
         (&["--follow-to", "0.99"][..], "`follow-to`"),
         (&["--follow-to", "0.2", "--imperfection", "0"][..], "`imperfection`"),
         (&["--follow-to", "0.2", "--d-start", "0.3"][..], "`d-start`"),

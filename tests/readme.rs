@@ -294,6 +294,27 @@ fn every_documented_example_runs_and_gives_an_independently_known_number() {
                 );
                 assert!((fe / theory - 1.0).abs() < 1e-3, "FE {fe} vs theory {theory}");
             }
+            "pattern" if command.contains("--load growth") => {
+                // The layer's growth in the surface (fibres along X): the exact theory's first
+                // wave vector is along Z (crests along the fibres), and so are the coarse
+                // patch's mode and the stripes the path makes past it.
+                let (dir, _) = run(command, &[("--elements-per-wavelength", "4"), ("--follow-to", "0.09")]);
+                let report = json(dir.join("pattern.json"));
+                let theta = report["onset_theory"]["theta0_degrees"].as_f64().unwrap();
+                assert!((theta - 90.0).abs() < 1e-9, "{theta}");
+                let mode = report["mode_wave_vectors"][0]["theta_degrees"].as_f64().unwrap();
+                assert!((mode - 90.0).abs() < 0.5, "{mode}");
+                let (d, g) = (
+                    report["d_bifurcation"].as_f64().unwrap(),
+                    report["g_bifurcation"].as_f64().unwrap(),
+                );
+                assert!((g * (1.0 - d) - 1.0).abs() < 1e-12, "g {g} at d {d}");
+                let difference = report["relative_difference"].as_f64().unwrap();
+                assert!(difference > 0.0 && difference < 0.03, "{difference}");
+                let last = &report["path"]["last"];
+                assert_eq!(last["pattern"], "stripes", "{last}");
+                assert!((last["directions"][0]["wave"]["theta_degrees"].as_f64().unwrap() - 90.0).abs() < 0.5);
+            }
             "pattern" if command.contains("--follow-to") => {
                 // Fibres in the surface: the seeded mirror pair's checkerboard turns unstable
                 // past the onset and the path leaves it for a stable state, releasing energy.

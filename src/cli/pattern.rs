@@ -3,6 +3,7 @@
 
 use super::common::{report_files, ParamArgs};
 use clap::Args;
+use fiberfold::parameters::Load;
 use fiberfold::studies::pattern::{self, PatternOptions, Progress};
 use fiberfold::Result;
 use std::path::PathBuf;
@@ -24,9 +25,19 @@ pub struct PatternArgs {
 pub fn run(args: &PatternArgs) -> Result<()> {
     let params = args.params.resolve()?;
     let study = args.options.study()?;
+    let load = match params.load {
+        Load::Compression => format!("compressed by d along X and d_3 = {} d along Z", study.biaxial),
+        Load::Growth => format!(
+            "whose layer grows by g = 1/(1 - d) along X and g3 = 1/(1 - R d) along Z (R = {}), the sides held",
+            study.biaxial
+        ),
+        Load::UniformGrowth => format!(
+            "whose layer and substrate grow by g = 1/(1 - d) along X and g3 = 1/(1 - R d) along Z (R = {}), the sides held",
+            study.biaxial
+        ),
+    };
     println!(
-        "pattern: a patch of tissue under d_3 = {} d, sized by the exact 3D theory; its first bifurcation from the inertia of the tangent along the homogeneous path",
-        study.biaxial
+        "pattern: a patch of tissue {load}, sized by the exact 3D theory; its first bifurcation from the inertia of the tangent along the homogeneous path"
     );
     let start = Instant::now();
     let r = pattern::run(&params, &study, &args.out, &mut |progress| match progress {
@@ -96,8 +107,14 @@ pub fn run(args: &PatternArgs) -> Result<()> {
         }
     })?;
     println!(
-        "d_bifurcation = {:.7} (bracket [{:.7}, {:.7}], {} negative pivot(s) past it); the theory's smallest d_c over the patch's wave vectors {:.7}: relative difference {:+.3e}",
-        r.d_bifurcation, r.bracket.0, r.bracket.1, r.negative_pivots, r.d_c_admissible, r.relative_difference
+        "d_bifurcation = {:.7}{} (bracket [{:.7}, {:.7}], {} negative pivot(s) past it); the theory's smallest d_c over the patch's wave vectors {:.7}: relative difference {:+.3e}",
+        r.d_bifurcation,
+        r.g_bifurcation.map_or(String::new(), |g| format!(" (g = {g:.7})")),
+        r.bracket.0,
+        r.bracket.1,
+        r.negative_pivots,
+        r.d_c_admissible,
+        r.relative_difference
     );
     if !r.mode_wave_vectors.is_empty() {
         println!("the mode's surface holds (amplitude of u_Y, largest 1):");

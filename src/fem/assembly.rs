@@ -88,6 +88,8 @@ pub struct System<const D: usize = 2, const N: usize = NODES, const Q: usize = G
     unloaded: Bilayer,
     /// The load's strain `d` the tissues are at.
     load: f64,
+    /// The load's strain `d_3` along `Z` (zero in plane strain).
+    load3: f64,
     materials: Vec<Tissue>,
     geometry: Vec<ElementGeometry<D, N, Q>>,
     /// The finite element of every element, of the kind the mesh names.
@@ -138,6 +140,7 @@ where
             mesh,
             unloaded: *materials,
             load: 0.0,
+            load3: 0.0,
             materials: Vec::new(),
             geometry,
             elements: Vec::new(),
@@ -174,11 +177,17 @@ where
     /// Puts the tissues at the load's strain `d`: under growth they grow to `g = 1/(1 - d)`
     /// (under compression they stay). The boundary conditions are the load path's.
     pub fn set_load(&mut self, d: f64) {
-        if self.unloaded.load.is_growth() && d != self.load {
-            let (materials, _) = self.unloaded.at_load(d);
+        self.set_biaxial_load(d, 0.0);
+    }
+
+    /// Puts the tissues at the load's strains `d` along `X` and `d_3` along `Z`: under growth
+    /// they grow to `g = 1/(1 - d)` and `g3 = 1/(1 - d_3)` ([`Bilayer::at_biaxial_load`]).
+    pub fn set_biaxial_load(&mut self, d: f64, d3: f64) {
+        if self.unloaded.load.is_growth() && (d, d3) != (self.load, self.load3) {
+            let (materials, _) = self.unloaded.at_biaxial_load(d, d3);
             self.set_materials(&materials);
         }
-        self.load = d;
+        (self.load, self.load3) = (d, d3);
     }
 
     /// The load's strain `d` the system is at.
@@ -198,7 +207,7 @@ where
         assert_eq!(mesh.elements(), self.mesh.elements(), "the same elements");
         let mut moved = Self::build(mesh, materials)?;
         moved.average_gradient = self.average_gradient;
-        moved.set_load(self.load);
+        moved.set_biaxial_load(self.load, self.load3);
         moved.pattern = self.pattern;
         Ok(moved)
     }

@@ -6,49 +6,64 @@
 //!
 //! [`Grown`] wraps any strain energy, so every analysis of a law (the homogeneous state, both
 //! linear-stability methods, the ellipticity check) gets growth from this one file. With
-//! `Fg = diag(g1, g2, 1)` the chain rule is a scaling: `P_iJ = Jg P^e_iJ(Fe) / g_J` and
-//! `A_iJkL = Jg A^e_iJkL(Fe) / (g_J g_L)`.
+//! `Fg = diag(g1, g2, g3)` the chain rule is a scaling: `P_iJ = Jg P^e_iJ(Fe) / g_J` and
+//! `A_iJkL = Jg A^e_iJkL(Fe) / (g_J g_L)`. Plane strain grows in its own plane (`g3 = 1`); the
+//! surface of a three-dimensional patch grows along `X` and `Z`.
 
 use super::{FullResponse, Response, StrainEnergy, Tensor2};
 use crate::error::Result;
 use num_dual::DualNum;
 
-/// An in-plane growth tensor `Fg = diag(g1, g2, 1)` (plane strain keeps `Z` ungrown).
+/// A principal growth tensor `Fg = diag(g1, g2, g3)` (`Y` through the thickness; plane strain
+/// keeps `g3 = 1`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Growth {
-    /// `(g1, g2)`: growth along `X` and along `Y`.
-    pub stretches: [f64; 2],
+    /// `(g1, g2, g3)`: growth along `X`, `Y` and `Z`.
+    pub stretches: [f64; 3],
 }
 
 impl Growth {
     /// No growth, `Fg = I`.
-    pub const NONE: Growth = Growth { stretches: [1.0, 1.0] };
+    pub const NONE: Growth = Growth {
+        stretches: [1.0, 1.0, 1.0],
+    };
 
     /// Growth `g` along the surface only, `Fg = diag(g, 1, 1)`.
     pub fn tangential(g: f64) -> Self {
-        Growth { stretches: [g, 1.0] }
+        Growth::in_surface(g, 1.0, false)
     }
 
     /// Growth `g` of the in-plane area, `Fg = diag(g, g, 1)`: a layer thickens as it lengthens.
     pub fn area(g: f64) -> Self {
-        Growth { stretches: [g, g] }
+        Growth::in_surface(g, 1.0, true)
+    }
+
+    /// Growth `g1` along `X` and `g3` along `Z` in the surface, `Fg = diag(g1, g2, g3)`, with
+    /// the thickness growing as the length does (`g2 = g1`) if `thickens`, else not
+    /// (`g2 = 1`): `diag(g, 1, g)` is the surface's area growth.
+    pub fn in_surface(g1: f64, g3: f64, thickens: bool) -> Self {
+        Growth {
+            stretches: [g1, if thickens { g1 } else { 1.0 }, g3],
+        }
     }
 
     /// `Jg = det Fg`.
     pub fn jacobian(&self) -> f64 {
-        self.stretches[0] * self.stretches[1]
+        self.stretches.iter().product()
     }
 
     pub fn is_identity(&self) -> bool {
         *self == Growth::NONE
     }
 
+    /// Whether `Z` is ungrown, so that plane strain (`F33 = 1`) is elastic plane strain too.
+    fn is_plane(&self) -> bool {
+        self.stretches[2] == 1.0
+    }
+
     /// `g_J` for the column `J` of a 3x3 gradient.
     fn along(&self, column: usize) -> f64 {
-        match column {
-            0 | 1 => self.stretches[column],
-            _ => 1.0,
-        }
+        self.stretches[column]
     }
 
     /// `Fe = F Fg^-1` of a full gradient (`Fe_iJ = F_iJ / g_J`).
@@ -56,7 +71,7 @@ impl Growth {
         std::array::from_fn(|a| f[a] * (1.0 / self.along(a % 3)))
     }
 
-    /// `Fe = F Fg^-1` of a plane gradient.
+    /// `Fe = F Fg^-1` of a plane gradient (the in-plane block; `Fe_33 = 1 / g3`).
     pub fn elastic_plane(&self, f: &Tensor2) -> Tensor2 {
         std::array::from_fn(|a| f[a] / self.stretches[a % 2])
     }
@@ -110,6 +125,9 @@ impl<M: StrainEnergy> StrainEnergy for Grown<M> {
         if self.growth.is_identity() {
             return self.energy.plane_response(f);
         }
+        if !self.growth.is_plane() {
+            return crate::material::differentiated_response(self, f);
+        }
         let g = self.growth;
         let elastic = self.energy.plane_response(&g.elastic_plane(f));
         scale_response(elastic, g.jacobian(), |a| g.stretches[a % 2])
@@ -118,6 +136,9 @@ impl<M: StrainEnergy> StrainEnergy for Grown<M> {
     fn plane_stress(&self, f: &Tensor2) -> (f64, Tensor2) {
         if self.growth.is_identity() {
             return self.energy.plane_stress(f);
+        }
+        if !self.growth.is_plane() {
+            return crate::material::differentiated_stress(self, f);
         }
         let g = self.growth;
         let (w, p) = self.energy.plane_stress(&g.elastic_plane(f));
@@ -250,6 +271,75 @@ mod tests {
             let f = [growth.stretches[0], 0.0, 0.0, growth.stretches[1]];
             let (w, p) = grown.plane_stress(&f);
             assert!(w.abs() < 1e-14 && p.iter().all(|x| x.abs() < 1e-13), "{w} {p:?}");
+        }
+        let surface = Growth::in_surface(1.3, 1.1, false);
+        let grown = Grown::ungrown(materials.substrate.energy).with_growth(surface);
+        let [g1, g2, g3] = surface.stretches;
+        let r = grown.response_3d(&[g1, 0.0, 0.0, 0.0, g2, 0.0, 0.0, 0.0, g3]);
+        assert!(
+            r.energy.abs() < 1e-14 && r.stress.iter().all(|x| x.abs() < 1e-13),
+            "{r:?}"
+        );
+    }
+
+    /// Growth in the surface (`g3 != 1`): the full response against central differences of
+    /// `Jg W(F Fg^-1)` written out here, with fibres out of every coordinate plane; and the plane
+    /// response (`F33 = 1`) is the in-plane block of the full one.
+    #[test]
+    fn surface_growth_stress_and_tangent_are_the_derivatives_of_the_grown_energy() {
+        let materials = Bilayer::new(&Parameters {
+            beta: 0.6,
+            psi: 0.4,
+            ..Parameters::default()
+        });
+        for growth in [Growth::in_surface(1.3, 1.2, false), Growth::in_surface(1.1, 0.9, true)] {
+            check_full_against_differences(materials.layer.energy, growth);
+            check_full_against_differences(materials.substrate.energy, growth);
+        }
+    }
+
+    fn check_full_against_differences<M: StrainEnergy + Copy>(plain: M, growth: Growth) {
+        let f = [0.83, 0.07, 0.02, -0.05, 1.12, 0.03, 0.01, -0.04, 0.91];
+        let difference = |w: &dyn Fn(&[f64; 9]) -> f64, x: &[f64; 9], a: usize, h: f64| {
+            let (mut plus, mut minus) = (*x, *x);
+            plus[a] += h;
+            minus[a] -= h;
+            (w(&plus) - w(&minus)) / (2.0 * h)
+        };
+        let w = |x: &[f64; 9]| {
+            let fe: [f64; 9] = std::array::from_fn(|a| x[a] / growth.stretches[a % 3]);
+            plain.density(&fe) * growth.jacobian()
+        };
+        let grown = Grown::ungrown(plain).with_growth(growth);
+        let r = crate::material::full_response(&grown, &f).unwrap();
+        assert!((r.energy - w(&f)).abs() < 1e-13 * r.energy.abs().max(1.0));
+        for a in 0..9 {
+            let fd = difference(&w, &f, a, 1e-5);
+            assert!(
+                (r.stress[a] - fd).abs() < 1e-7 * (1.0 + fd.abs()),
+                "P[{a}] {} vs {fd}",
+                r.stress[a]
+            );
+            let stress_a = |x: &[f64; 9]| difference(&w, x, a, 1e-5);
+            for b in 0..9 {
+                let fd = difference(&stress_a, &f, b, 1e-4);
+                let exact = r.tangent[a][b];
+                assert!(
+                    (exact - fd).abs() < 2e-4 * (1.0 + fd.abs()),
+                    "A[{a}][{b}] {exact} vs {fd}"
+                );
+            }
+        }
+        let full = grown.response_3d(&[0.83, 0.07, 0.0, -0.05, 1.12, 0.0, 0.0, 0.0, 1.0]);
+        let in_plane = grown.plane_response(&[0.83, 0.07, -0.05, 1.12]);
+        let (_, stress) = grown.plane_stress(&[0.83, 0.07, -0.05, 1.12]);
+        let index = [0, 1, 3, 4];
+        for a in 0..4 {
+            assert!((in_plane.stress[a] - full.stress[index[a]]).abs() < 1e-12);
+            assert!((stress[a] - full.stress[index[a]]).abs() < 1e-12);
+            for b in 0..4 {
+                assert!((in_plane.tangent[a][b] - full.tangent[index[a]][index[b]]).abs() < 1e-11);
+            }
         }
     }
 }

@@ -144,35 +144,43 @@ impl Bilayer {
             load: p.load,
             area_growth: p.area_growth,
         };
-        materials.layer.growth = materials.growth(p.growth_layer);
-        materials.substrate.growth = materials.growth(p.growth_substrate);
+        materials.layer.growth = materials.growth(p.growth_layer, 1.0);
+        materials.substrate.growth = materials.growth(p.growth_substrate, 1.0);
         materials
     }
 
-    /// The growth tensor of a growth factor `g`, of the kind the parameters chose.
-    fn growth(&self, g: f64) -> Growth {
-        if self.area_growth {
-            Growth::area(g)
-        } else {
-            Growth::tangential(g)
-        }
+    /// The growth tensor of a growth factor `g` along `X` (and `g3` along `Z`), of the kind the
+    /// parameters chose: the thickness grows with the length under area growth, else not.
+    fn growth(&self, g: f64, g3: f64) -> Growth {
+        Growth::in_surface(g, g3, self.area_growth)
     }
 
     /// The materials at the load's strain `d` and the stretch `lambda_1` of both layers along
     /// `X`: under compression the same materials at `lambda_1 = 1 - d`; under growth the growing
-    /// layers at `g = 1 / (1 - d)`, with the ends held (`lambda_1 = 1`).
+    /// layers at `g = 1 / (1 - d)`, with the ends held (`lambda_1 = 1`). Plane strain: nothing
+    /// grows along `Z`.
     pub fn at_load(&self, d: f64) -> (Bilayer, f64) {
-        let g = self.load.parameter(d);
+        let (loaded, [lambda1, _]) = self.at_biaxial_load(d, 0.0);
+        (loaded, lambda1)
+    }
+
+    /// The materials at the load's strains `d` along `X` and `d_3` along `Z`, and the in-plane
+    /// stretches `(lambda_1, lambda_3)` of both layers: under compression the same materials at
+    /// `(1 - d, 1 - d_3)`; under growth the growing layers at `g = 1 / (1 - d)` along `X` and
+    /// `g3 = 1 / (1 - d_3)` along `Z` (equal under equibiaxial growth, `Fg = diag(g, 1, g)`
+    /// without thickening), with the sides held (`lambda_1 = lambda_3 = 1`).
+    pub fn at_biaxial_load(&self, d: f64, d3: f64) -> (Bilayer, [f64; 2]) {
+        let (g, g3) = (self.load.parameter(d), self.load.parameter(d3));
         let mut loaded = *self;
         match self.load {
-            Load::Compression => return (loaded, 1.0 - d),
-            Load::Growth => loaded.layer.growth = self.growth(g),
+            Load::Compression => return (loaded, [1.0 - d, 1.0 - d3]),
+            Load::Growth => loaded.layer.growth = self.growth(g, g3),
             Load::UniformGrowth => {
-                loaded.layer.growth = self.growth(g);
-                loaded.substrate.growth = self.growth(g);
+                loaded.layer.growth = self.growth(g, g3);
+                loaded.substrate.growth = self.growth(g, g3);
             }
         }
-        (loaded, 1.0)
+        (loaded, [1.0, 1.0])
     }
 
     /// Whether either layer grows, or growth is the load.

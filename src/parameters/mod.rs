@@ -61,8 +61,9 @@ pub struct Parameters {
     pub growth_layer: f64,
     /// Growth of the substrate, fixed.
     pub growth_substrate: f64,
-    /// When true, growth is of the in-plane area, `Fg = diag(g, g)` (the layer thickens);
-    /// otherwise tangential, `Fg = diag(g, 1)`.
+    /// When true the thickness grows as the length does, `Fg = diag(g, g, g3)` (the layer
+    /// thickens); otherwise `Fg = diag(g, 1, g3)`. `g3 = 1` in plane strain; on a patch under
+    /// the biaxiality `R`, `g3 = 1/(1 - R d)` under a growth load.
     pub area_growth: bool,
     /// What loads the bilayer: the end-shortening `d` or the growth `g` (`load`).
     pub load: Load,

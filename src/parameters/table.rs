@@ -171,7 +171,7 @@ pub const TABLE: [Spec; 15] = [
         "area_growth",
         false,
         |p| &mut p.area_growth,
-        "growth of the in-plane area, Fg = diag(g, g) (the layer thickens); false: tangential, Fg = diag(g, 1)",
+        "the thickness grows as the length does, Fg = diag(g, g, g3); false: Fg = diag(g, 1, g3) (g3 = 1 in plane strain, 1/(1 - R d) on a patch under biaxiality R)",
     ),
 ];
 

@@ -26,8 +26,9 @@ use crate::material::{Bilayer, Tissue};
 use crate::mesh::{Mesh, PatchSpec, BACK, BOTTOM, FRONT, LEFT, RIGHT, TOP, X, Y, Z};
 use serde::Serialize;
 
-/// The boundary conditions of a patch at compressions `d` along X and `d3` along Z, and the
-/// average displacement gradient its periodic sides carry (zero for symmetry sides).
+/// The boundary conditions of a patch whose sides have moved in by `d` along X and `d3` along Z
+/// (fractions of its lengths; 0 under growth), and the average displacement gradient its
+/// periodic sides carry (zero for symmetry sides).
 pub fn patch_conditions(mesh: &Mesh<3, 27>, d: f64, d3: f64) -> Result<(Dirichlet, [[f64; 3]; 3])> {
     let dofs = mesh.dofs();
     let mut pairs: Vec<(usize, f64)> = mesh.node_set(BOTTOM).iter().map(|&n| (dofs.dof(n, Y), 0.0)).collect();
@@ -59,16 +60,18 @@ fn side_lengths(mesh: &Mesh<3, 27>) -> [f64; 3] {
 
 /// The unknowns of the homogeneous `state` on a patch: `u_Y = (lambda_2s - 1)(Y + D)` in the
 /// substrate and `(lambda_2s - 1) D + (lambda_2l - 1) Y` in the layer, and on symmetry sides
-/// `u_X = -d X`, `u_Z = -d_3 Z` (on periodic sides the average gradient carries those).
+/// `u_X = -d X`, `u_Z = -d_3 Z` under compression (on periodic sides the average gradient
+/// carries those; under growth the sides are held).
 pub fn homogeneous_patch_displacement(mesh: &Mesh<3, 27>, state: &BiaxialState) -> Vec<f64> {
     let depth = mesh.patch_spec().depth;
     let (mut u, dofs) = (vec![0.0; mesh.num_dofs()], mesh.dofs());
     let in_plane = if mesh.is_periodic() { 0.0 } else { 1.0 };
+    let [shortening_x, shortening_z] = state.end_shortening();
     for (n, &[x, y, z]) in mesh.coordinates().iter().enumerate() {
-        u[dofs.dof(n, X)] = -in_plane * state.d * x;
+        u[dofs.dof(n, X)] = -in_plane * shortening_x * x;
         u[dofs.dof(n, Y)] =
             (state.lambda2_substrate - 1.0) * (y.min(0.0) + depth) + (state.lambda2_layer - 1.0) * y.max(0.0);
-        u[dofs.dof(n, Z)] = -in_plane * state.d3 * z;
+        u[dofs.dof(n, Z)] = -in_plane * shortening_z * z;
     }
     u
 }

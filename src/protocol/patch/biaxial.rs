@@ -1,7 +1,8 @@
-//! The patch under biaxial compression as a system that a continuation in `d` follows: at `d`
-//! the conditions of [`patch_conditions`] at `(d, d_3 = R d)`, with the average gradient they
-//! carry across periodic sides, and plain equilibrium (no contact: the patch's surface wrinkles
-//! without touching itself).
+//! The patch under biaxial load as a system that a continuation in `d` follows: at `d` the
+//! tissues at the load's strains `(d, d_3 = R d)` (grown under a growth load), the conditions of
+//! [`patch_conditions`] (the sides moved in by `d` and `d_3` under compression, held under
+//! growth) with the average gradient they carry across periodic sides, and plain equilibrium
+//! (no contact: the patch's surface wrinkles without touching itself).
 
 use super::patch_conditions;
 use crate::error::Result;
@@ -12,7 +13,7 @@ use crate::protocol::augmentation::AugmentedRecord;
 use crate::protocol::continuation::{plain_linearised, Followed, NoAugmentation};
 use crate::protocol::surface::amplitude;
 
-/// A patch whose in-plane compressions are `d` along X and `d_3 = biaxiality d` along Z.
+/// A patch whose load's strains are `d` along X and `d_3 = biaxiality d` along Z.
 pub struct BiaxialPatch {
     system: PatchSystem,
     biaxiality: f64,
@@ -60,9 +61,14 @@ impl Followed for BiaxialPatch {
     type Augmentation = NoAugmentation;
 
     fn load_to(&mut self, d: f64) -> Result<Dirichlet> {
-        let (bc, h) = patch_conditions(self.system.mesh(), d, self.biaxiality * d)?;
+        let d3 = self.biaxiality * d;
+        let (shortening, shortening3) = match self.system.unloaded_materials().load.is_growth() {
+            true => (0.0, 0.0),
+            false => (d, d3),
+        };
+        let (bc, h) = patch_conditions(self.system.mesh(), shortening, shortening3)?;
         self.system.set_average_gradient(h);
-        self.system.set_load(d);
+        self.system.set_biaxial_load(d, d3);
         if self.held.is_empty() {
             return Ok(bc);
         }

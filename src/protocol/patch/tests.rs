@@ -1,6 +1,6 @@
 use super::*;
 use crate::mesh::{ElementKind, MeshSpec, Sides};
-use crate::parameters::Parameters;
+use crate::parameters::{Load, Parameters};
 use crate::protocol::find_bifurcation;
 
 fn patch(sides: Sides, nz: usize) -> PatchSpec {
@@ -23,16 +23,23 @@ fn patch(sides: Sides, nz: usize) -> PatchSpec {
 /// periodic sides carry) and on a symmetric one.
 #[test]
 fn the_homogeneous_biaxial_state_is_an_equilibrium_of_the_patch() {
-    for (sides, psi) in [(Sides::Periodic, 0.0), (Sides::Periodic, 0.5), (Sides::Symmetry, 0.0)] {
+    for (sides, psi, load) in [
+        (Sides::Periodic, 0.0, Load::Compression),
+        (Sides::Periodic, 0.5, Load::Compression),
+        (Sides::Symmetry, 0.0, Load::Compression),
+        (Sides::Periodic, 0.5, Load::Growth),
+        (Sides::Symmetry, 0.0, Load::UniformGrowth),
+    ] {
         let p = Parameters {
             beta: 0.6,
             psi,
+            load,
             ..Parameters::default()
         };
         let materials = Bilayer::new(&p);
         let mut path = PatchPath::new(&materials, patch(sides, 2), 0.5).unwrap();
         let (state, bc, u) = path.homogeneous(0.12).unwrap();
-        assert!(state.lambda2_layer > 1.0 && state.lambda2_substrate > 1.0);
+        assert!(state.lambda2_layer > 1.0 && state.lambda2_substrate >= 1.0);
         let assembled = path.patch.system_mut().assemble(&u, &bc, None, true).unwrap();
         let relative = relative_residual(&assembled, &u);
         assert!(relative < 1e-13, "{sides:?} {psi}: relative residual {relative:e}");
@@ -48,11 +55,19 @@ fn the_homogeneous_biaxial_state_is_an_equilibrium_of_the_patch() {
 }
 
 /// A slab one hexahedron thick with `u_Z = 0` is the plane-strain strip on the same X-Y mesh:
-/// the two codes (quadrilaterals, hexahedra) find the same first bifurcation.
+/// the two codes (quadrilaterals, hexahedra) find the same first bifurcation, under compression
+/// and under the layer's growth (in the plane: `R = 0` grows nothing along Z).
 #[test]
 fn a_slab_in_plane_strain_bifurcates_where_the_strip_does() {
+    for load in [Load::Compression, Load::Growth] {
+        slab_against_strip(load);
+    }
+}
+
+fn slab_against_strip(load: Load) {
     let p = Parameters {
         beta: std::f64::consts::FRAC_PI_4,
+        load,
         ..Parameters::default()
     };
     let materials = Bilayer::new(&p);
@@ -68,7 +83,12 @@ fn a_slab_in_plane_strain_bifurcates_where_the_strip_does() {
         .unwrap();
     let strip = MeshSpec::new(4, 1, 4, 1.0, 8.0, 10.0).with_element(ElementKind::Displacement);
     let plane = find_bifurcation(&materials, strip, &settings).unwrap();
-    assert!((slab.d - plane.d).abs() <= 2e-7, "slab {} strip {}", slab.d, plane.d);
+    assert!(
+        (slab.d - plane.d).abs() <= 2e-7,
+        "{load:?}: slab {} strip {}",
+        slab.d,
+        plane.d
+    );
     assert_eq!(slab.negative_pivots, plane.negative_pivots);
 }
 
@@ -168,6 +188,43 @@ fn a_periodic_patch_bifurcates_at_the_exact_theorys_onset_over_its_wave_vectors(
     assert_eq!(mixed.negative_pivots, 4);
     let error = mixed.d - modes[0].d_c;
     assert!(error.abs() < errors[1], "mixed {error:e}, displacement {:e}", errors[1]);
+}
+
+/// Under the layer's equibiaxial growth in the surface (`Fg = diag(g, 1, g)`, the sides held),
+/// the periodic patch one onset wavelength square bifurcates at the exact theory's smallest
+/// `d_c` over its wave vectors (in the strain `1 - 1/g`), the critical pair together.
+#[test]
+fn a_periodic_patch_under_surface_growth_bifurcates_at_the_exact_theorys_onset() {
+    use crate::stability::oblique::box_modes;
+    use crate::stability::{Method, StabilityAnalysis};
+    let p = Parameters {
+        beta: std::f64::consts::FRAC_PI_2,
+        load: Load::Growth,
+        ..Parameters::default()
+    };
+    let surface = Some(crate::stability::Surface {
+        biaxial: 1.0,
+        theta: 0.0,
+    });
+    let onset = StabilityAnalysis::with_surface(&p, Method::Exact, surface)
+        .unwrap()
+        .onset()
+        .unwrap();
+    let length = 2.0 * std::f64::consts::PI / onset.k0;
+    let modes = box_modes(&p, Method::Exact, 1.0, (length, length), 2.0).unwrap();
+    assert_eq!([(modes[0].m, modes[0].n), (modes[1].m, modes[1].n)], [(1, 0), (0, 1)]);
+    let settings = BifurcationSettings {
+        scan_step: 0.02,
+        tolerance: 1e-6,
+        ..BifurcationSettings::default()
+    };
+    let b = PatchPath::new(&Bilayer::new(&p), square_patch(length, 6), 1.0)
+        .unwrap()
+        .bifurcation(&settings, &mut |_, _| {})
+        .unwrap();
+    assert_eq!(b.negative_pivots, 4, "{b:?}");
+    let error = b.d - modes[0].d_c;
+    assert!(error > 0.0 && error < 1e-3, "patch {} theory {}", b.d, modes[0].d_c);
 }
 
 /// Measurement (`--ignored --nocapture`): the onset of periodic patches against the exact

@@ -41,12 +41,13 @@ pub struct SurfaceOnset {
 }
 
 impl StabilityAnalysis {
-    /// The moduli of both layers at the biaxial state of compression `d`.
+    /// The moduli of both layers at the biaxial state of the load's strain `d` (`d_3 = R d`).
     pub fn surface_moduli(&self, d: f64) -> Result<(SurfaceModuli, SurfaceModuli)> {
         let surface = self.surface.expect("a surface analysis");
         let state = biaxial_state(&self.materials, d, surface.biaxial * d)?;
         let (layer, substrate) = (state.layer_stretches(), state.substrate_stretches());
-        let (l, s) = (&self.materials.layer, &self.materials.substrate);
+        let (loaded, _) = self.materials.at_biaxial_load(d, surface.biaxial * d);
+        let (l, s) = (&loaded.layer, &loaded.substrate);
         if self.materials.incompressible {
             // p = -lambda_2 P_rest,22 makes P_22 = P_rest,22 + p / lambda_2 vanish.
             let pressure = |m: &dyn Fn([f64; 3]) -> Result<f64>, stretches: [f64; 3]| -> Result<f64> {

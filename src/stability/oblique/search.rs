@@ -18,6 +18,9 @@ use std::f64::consts::PI;
 const DIRECTIONS: usize = 12;
 /// The refinement ends when a Newton step is below this, relative in `k`, absolute in `theta`.
 const STEP_TOLERANCE: f64 = 1e-6;
+/// A direction this close to X or Z (in radians) is taken as the axis where `d_c` is no higher
+/// there.
+const SNAP: f64 = 1e-3;
 
 impl StabilityAnalysis {
     /// The onset over wavenumbers and directions.
@@ -69,7 +72,12 @@ impl StabilityAnalysis {
 
     /// The onset at the refined `(k0, theta0)`, with the spread over the sampled directions at
     /// `k0`; NaN `theta0` if one of them lies below it (the refinement found a local minimum).
+    /// A `theta0` within [`SNAP`] of X or Z, where `d_c` is no higher, is that axis: the
+    /// refinement resolves a direction to about 1e-4, and a mode along an axis (the mirror
+    /// symmetry of fibres with `psi = 0` makes both axes stationary) is one a box of any length
+    /// along the other axis admits.
     fn directed(&self, k0: f64, theta0: f64, d_c: f64) -> Result<SurfaceOnset> {
+        let (theta0, d_c) = self.snapped_to_axis(k0, theta0, d_c)?;
         let samples = self.sample_directions(k0, d_c)?;
         let (_, lowest) = lowest_sample(&samples);
         let highest = highest_sample(&samples, d_c);
@@ -82,6 +90,22 @@ impl StabilityAnalysis {
             },
             direction_spread: highest - d_c,
         })
+    }
+
+    /// `(theta0, d_c)`, or the axis within [`SNAP`] of `theta0` and its `d_c` at `k0` where that
+    /// is no higher (round-off aside).
+    fn snapped_to_axis(&self, k0: f64, theta0: f64, d_c: f64) -> Result<(f64, f64)> {
+        let Some(axis) = [0.0, PI / 2.0, PI]
+            .into_iter()
+            .find(|axis| (theta0 - axis).abs() < SNAP && *axis != theta0)
+        else {
+            return Ok((theta0, d_c));
+        };
+        match self.along(axis).critical_compression_near(k0, Some(d_c)) {
+            Ok(on_axis) if on_axis <= d_c + 1e-12 => Ok((axis, on_axis.min(d_c))),
+            Ok(_) | Err(Error::NoRoot { .. }) => Ok((theta0, d_c)),
+            Err(e) => Err(e),
+        }
     }
 
     /// `(theta, d_c(k, theta))` on the sampled directions, each continued from the last

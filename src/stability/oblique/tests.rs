@@ -1,7 +1,7 @@
 //! Independent facts for modes in any direction of the surface.
 
 use super::*;
-use crate::parameters::Parameters;
+use crate::parameters::{Load, Parameters};
 use crate::stability::discrete::DiscreteOptions;
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, FRAC_PI_6};
 
@@ -26,6 +26,72 @@ fn plane_strain_modes_along_x_are_the_plane_analysis() {
                 oblique.critical_compression(k).unwrap(),
             );
             assert!((a - b).abs() < 1e-11, "beta {beta}, k {k}: plane {a} vs oblique {b}");
+        }
+    }
+}
+
+/// Under a growth load the same holds: with `theta = 0` and `R = 0` the surface's growth is the
+/// plane one (`g3 = 1`), so `d_c(k)` is the plane-strain growth's, compressible or not, with
+/// the thickness growing or not.
+#[test]
+fn plane_growth_modes_along_x_are_the_plane_analysis() {
+    for (load, incompressible, area_growth) in [
+        (Load::Growth, false, false),
+        (Load::Growth, true, true),
+        (Load::UniformGrowth, false, true),
+    ] {
+        let p = Parameters {
+            beta: 0.5,
+            load,
+            incompressible,
+            area_growth,
+            ..Parameters::default()
+        };
+        let plane = StabilityAnalysis::new(&p, Method::Exact).unwrap();
+        let oblique = StabilityAnalysis::with_surface(&p, Method::Exact, surface(0.0, 0.0)).unwrap();
+        for k in [0.3, 1.2] {
+            let (a, b) = (
+                plane.critical_compression(k).unwrap(),
+                oblique.critical_compression(k).unwrap(),
+            );
+            assert!(
+                (a - b).abs() < 1e-11,
+                "{load:?} {incompressible}: k {k}: plane {a} vs oblique {b}"
+            );
+        }
+    }
+}
+
+/// Both layers growing in the surface by `diag(g, 1, g3)` with the sides held are elastically
+/// the bilayer compressed to `lambda_1 = 1/g`, `lambda_3 = 1/g3`: the same `Fe`, the same
+/// current configuration, only the reference differs (the grown body's is the current one in
+/// the surface). So `d_c` in the strain `1 - 1/g` is the compression's, for the wave whose
+/// current wave vector is the same: the compression's referential `k (cos theta, sin theta)`
+/// divided by `(lambda_1, lambda_3)` component by component.
+#[test]
+fn uniform_growth_in_the_surface_is_biaxial_compression_of_the_grown_body() {
+    for (biaxial, theta, incompressible) in [(1.0, 0.6, false), (0.5, 1.2, false), (1.0, 0.3, true)] {
+        let compression = Parameters {
+            beta: 0.4,
+            psi: 0.3,
+            incompressible,
+            ..Parameters::default()
+        };
+        let growth = Parameters {
+            load: Load::UniformGrowth,
+            ..compression.clone()
+        };
+        let compressed = StabilityAnalysis::with_surface(&compression, Method::Exact, surface(biaxial, theta)).unwrap();
+        for k in [0.4, 1.0] {
+            let d_c = compressed.critical_compression(k).unwrap();
+            let current = [k * theta.cos() / (1.0 - d_c), k * theta.sin() / (1.0 - biaxial * d_c)];
+            let theta_grown = current[1].atan2(current[0]);
+            let grown = StabilityAnalysis::with_surface(&growth, Method::Exact, surface(biaxial, theta_grown)).unwrap();
+            let d_grown = grown.critical_compression(current[0].hypot(current[1])).unwrap();
+            assert!(
+                (d_grown - d_c).abs() < 1e-9,
+                "R {biaxial} theta {theta}: compression {d_c}, growth {d_grown}"
+            );
         }
     }
 }

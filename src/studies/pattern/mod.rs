@@ -195,8 +195,12 @@ pub struct PatternReport {
     /// Free unknowns of the tangent.
     pub unknowns: usize,
     pub onset_theory: TheoryOnset,
-    /// The first change of the tangent's inertia along the homogeneous path.
+    /// The first change of the tangent's inertia along the homogeneous path (under a growth
+    /// load the strain `1 - 1/g`).
     pub d_bifurcation: f64,
+    /// The layer's growth `g = 1 / (1 - d_bifurcation)` along X there, under a growth load
+    /// (null under compression).
+    pub g_bifurcation: Option<f64>,
     pub bracket: (f64, f64),
     /// Negative pivots just past it: two per critical wave vector (a cosine and a sine mode).
     pub negative_pivots: usize,
@@ -326,6 +330,7 @@ pub fn run(
             d_c: onset.onset.d_c,
         },
         d_bifurcation: found.d,
+        g_bifurcation: params.load.is_growth().then(|| params.load.parameter(found.d)),
         bracket: found.bracket,
         negative_pivots: found.negative_pivots,
         smallest_eigenvalue_before: found.eigenvalue,
