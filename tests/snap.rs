@@ -341,3 +341,40 @@ fn a_run_through_a_snap_reads_its_onset_off_the_branch_before_the_snap() {
         "{steepest} against the linear theory's {theory}"
     );
 }
+
+/// A minimisation that no step can take further, at a definite tangent and a residual within
+/// ten times its tolerance, has reached the round-off floor of a minimum: it is accepted. Far
+/// above the floor's tolerance (a tolerance no arithmetic reaches) it is a failure that says
+/// why.
+#[test]
+fn a_minimisation_stalled_at_the_round_off_floor_of_its_residual_is_a_minimum() {
+    let k = 0.2;
+    let (mut system, added, x, g) = chain(k);
+    let bc = held(&system, (g, 0.0));
+    let strict = NewtonPolicy {
+        residual_tolerance: 0.0,
+        absolute_tolerance: 1e-300,
+        ..NewtonPolicy::default()
+    };
+    let mut u = vec![0.0; system.num_dofs()];
+    let message = equilibrium::minimise(&mut Newton::new(), (&mut system, &mut u, &bc), None, &added, &strict)
+        .expect_err("no arithmetic reaches 1e-300")
+        .to_string();
+    assert!(message.contains("no shift up to"), "{message}");
+    let floor: f64 = message
+        .split("residual at ")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|r| r.parse().ok())
+        .expect("the residual in the message");
+    // The same steps stall at the same residual, now within ten times the tolerance.
+    let policy = NewtonPolicy {
+        absolute_tolerance: floor / 5.0,
+        ..strict
+    };
+    let mut u = vec![0.0; system.num_dofs()];
+    let report = equilibrium::minimise(&mut Newton::new(), (&mut system, &mut u, &bc), None, &added, &policy)
+        .expect("a minimum at the round-off floor");
+    assert_eq!(report.negative_pivots, Some(0));
+    assert!((u[x].abs() - (1.0 - k).sqrt()).abs() < 1e-6, "x = {}", u[x]);
+}

@@ -99,6 +99,10 @@ const CURVATURE_STEP: f64 = 0.02;
 /// where negative curvature is at hand.
 const NEGLIGIBLE_PROGRESS: f64 = 1e-7;
 
+/// A residual within this factor of the tolerance, where no step lowers the energy at a
+/// definite tangent, is the round-off floor of a converged minimum.
+const ROUND_OFF_FLOOR: f64 = 10.0;
+
 /// Steps of the inverse iteration for the lowest mode.
 const MODE_ITERATIONS: usize = 200;
 
@@ -287,6 +291,32 @@ impl Newton {
             if shift.sigma > SIGMA_MAX {
                 stalled = true;
                 break;
+            }
+        }
+        // Where no step lowers the energy any more, at a definite tangent and a residual within
+        // ROUND_OFF_FLOOR of the tolerance, the minimum is reached as far as round-off lets a
+        // step tell: the tolerance sits at the residual's floor there.
+        if stalled && current.residual_norm() <= ROUND_OFF_FLOOR * tolerance_at(&current) {
+            factorisations += 1;
+            let negative = self.factorize(&current, &mut land.problem.timings).negative_pivots();
+            self.forget_factorisation();
+            if negative == Some(0) {
+                return Ok(NewtonReport {
+                    iterations: history.len() - 1,
+                    tangent_steps: factorisations,
+                    residual_history: history,
+                    force_norm: current.force_norm(),
+                    energy: current.energy,
+                    min_jacobian: current.min_jacobian,
+                    reactions: current.reactions,
+                    negative_pivots: negative,
+                    start_negative_pivots: None,
+                    backtracks: rejected,
+                    updates: Updates::default(),
+                    timings: land.problem.timings,
+                    unfinished: false,
+                    final_shift: shift.sigma,
+                });
             }
         }
         // Said as what it is: a snap's failure read "Newton did not converge" before.

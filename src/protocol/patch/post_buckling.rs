@@ -21,16 +21,19 @@ use crate::protocol::measures::{Measure, SurfaceAmplitude};
 use crate::protocol::record::StepRecord;
 use crate::protocol::stages::simulation_newton;
 
-/// The reference-geometry imperfection `Delta Y = sum_j A_j cos(k_j . X) s_j(Y)` of a patch:
-/// one cosine of amplitude `A_j` per seeded wave vector `k_j = (k_x, k_z)`, each decaying into
-/// the substrate as the strip's ([`Imperfection::shape`] at `|k_j|`). Nodes move vertically
-/// only.
+/// The reference-geometry imperfection `Delta Y = sum_j A_j c_j(X, Z) s_j(Y)` of a patch: one
+/// wave of amplitude `A_j` per seeded wave vector `k_j = (k_x, k_z)`, `c_j = cos(k_j . X)` on
+/// periodic sides and `cos(k_x X) cos(k_z Z)` on symmetry sides (the waves those sides admit),
+/// each decaying into the substrate as the strip's ([`Imperfection::shape`] at `|k_j|`). Nodes
+/// move vertically only.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PatchImperfection {
     /// The seeded waves: `(k_x, k_z)` and the amplitude `A_j`.
     pub waves: Vec<([f64; 2], f64)>,
     /// Substrate depth `D`.
     pub depth: f64,
+    /// Whether the sides are symmetry planes (the waves are products of cosines).
+    pub symmetric: bool,
 }
 
 impl PatchImperfection {
@@ -45,7 +48,11 @@ impl PatchImperfection {
                     k: kx.hypot(kz),
                     depth: self.depth,
                 };
-                amplitude * (kx * x + kz * z).cos() * shape.shape(y)
+                let surface = match self.symmetric {
+                    true => (kx * x).cos() * (kz * z).cos(),
+                    false => (kx * x + kz * z).cos(),
+                };
+                amplitude * surface * shape.shape(y)
             })
             .sum();
         [0.0, height, 0.0]

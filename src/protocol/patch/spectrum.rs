@@ -1,10 +1,13 @@
-//! The two-dimensional Fourier spectrum of a periodic patch's surface height: how much of each
+//! The two-dimensional Fourier spectrum of a patch's surface height: how much of each
 //! admissible wave vector `k = 2 pi (m / Lx, n / Lz)` a field of the top surface holds.
 //!
 //! The top nodes of a periodic patch lie on a uniform grid of `2 nx x 2 nz` points, so the
 //! discrete Fourier coefficient `c_mn = (1 / M) sum_j h_j exp(-i k . X_j)` is exact for every
 //! trigonometric content below the grid's Nyquist limit; a wave `A cos(k . X + phi)` has
-//! `|c_mn| = A / 2`, so `2 |c_mn|` is its amplitude.
+//! `|c_mn| = A / 2`, so `2 |c_mn|` is its amplitude. A patch with symmetry sides holds the
+//! waves `cos(m pi X / Lx) cos(n pi Z / Lz)` of the periodic surface its reflections across
+//! `X = 0` and `Z = 0` make, `2 Lx` by `2 Lz`: its wave vectors are `pi (m / Lx, n / Lz)`, and
+//! an oblique one comes with its mirror image `(m, -n)`, each at half the product's amplitude.
 
 use crate::mesh::{Mesh, X, Y, Z};
 use serde::Serialize;
@@ -24,29 +27,59 @@ pub struct WaveVector {
     pub amplitude: f64,
 }
 
-/// The spectrum of the top surface's `u_Y` of the full vector `u` on a periodic patch, for the
-/// wave vectors below the grid's Nyquist limit, by decreasing amplitude.
+/// The spectrum of the top surface's `u_Y` of the full vector `u` on a patch, for the wave
+/// vectors below the grid's Nyquist limit, by decreasing amplitude.
 pub fn surface_spectrum(mesh: &Mesh<3, 27>, u: &[f64]) -> Vec<WaveVector> {
     spectrum_of(mesh, |node| u[mesh.dofs().dof(node, Y)])
 }
 
 /// The spectrum of the deformed top surface's height `Y + u_Y` (the reference surface's own
-/// imperfection included) of the state `u` of a periodic patch, by decreasing amplitude.
+/// imperfection included) of the state `u` of a patch, by decreasing amplitude.
 pub fn height_spectrum(mesh: &Mesh<3, 27>, u: &[f64]) -> Vec<WaveVector> {
     spectrum_of(mesh, |node| mesh.coordinates()[node][Y] + u[mesh.dofs().dof(node, Y)])
 }
 
-/// The spectrum of `height` over the top nodes of a periodic patch (module docs).
+/// The spectrum of `height` over the top nodes of a patch (module docs); a symmetric patch's
+/// surface is first reflected across its sides `X = 0` and `Z = 0` (the symmetry its sides
+/// impose), into a periodic surface twice as long each way.
 fn spectrum_of(mesh: &Mesh<3, 27>, height: impl Fn(usize) -> f64) -> Vec<WaveVector> {
-    assert!(mesh.is_periodic(), "the spectrum of a periodic patch");
-    let [length_x, _, length_z] = *mesh.periods();
     let spec = mesh.patch_spec();
-    let (m_max, n_max) = (spec.nx as i64, spec.nz as i64);
     let top = mesh.node_set(crate::mesh::TOP);
-    let samples: Vec<([f64; 3], f64)> = top
-        .iter()
-        .map(|&node| (mesh.coordinates()[node], height(node)))
-        .collect();
+    let (samples, length_x, length_z, m_max, n_max) = if mesh.is_periodic() {
+        let [length_x, _, length_z] = *mesh.periods();
+        let samples: Vec<([f64; 2], f64)> = top
+            .iter()
+            .map(|&node| {
+                let x = mesh.coordinates()[node];
+                ([x[X], x[Z]], height(node))
+            })
+            .collect();
+        (samples, length_x, length_z, spec.nx as i64, spec.nz as i64)
+    } else {
+        let (length_x, length_z) = (spec.length_x, spec.length_z);
+        // A node strictly inside a side's span has a mirror image; one on `X = 0` or `X = Lx`
+        // (`-Lx` is `Lx` a period on) is its own.
+        let images = |x: f64, length: f64| match x > 1e-9 * length && x < length * (1.0 - 1e-9) {
+            true => vec![x, -x],
+            false => vec![x],
+        };
+        let mut samples = Vec::with_capacity(4 * top.len());
+        for &node in top {
+            let x = mesh.coordinates()[node];
+            for &a in &images(x[X], length_x) {
+                for &b in &images(x[Z], length_z) {
+                    samples.push(([a, b], height(node)));
+                }
+            }
+        }
+        (
+            samples,
+            2.0 * length_x,
+            2.0 * length_z,
+            2 * spec.nx as i64,
+            2 * spec.nz as i64,
+        )
+    };
     let mut waves = Vec::new();
     for m in 0..m_max {
         for n in -(n_max - 1)..n_max {
@@ -55,7 +88,7 @@ fn spectrum_of(mesh: &Mesh<3, 27>, height: impl Fn(usize) -> f64) -> Vec<WaveVec
             }
             let (kx, kz) = (2.0 * PI * m as f64 / length_x, 2.0 * PI * n as f64 / length_z);
             let (re, im) = samples.iter().fold((0.0, 0.0), |(re, im), (x, h)| {
-                let phase = kx * x[X] + kz * x[Z];
+                let phase = kx * x[0] + kz * x[1];
                 (re + h * phase.cos(), im - h * phase.sin())
             });
             waves.push(WaveVector {
@@ -157,6 +190,40 @@ fn direction_of(m: i64, n: i64) -> (i64, i64) {
 mod tests {
     use super::*;
     use crate::mesh::{ElementKind, PatchSpec, Sides};
+
+    /// On symmetry sides the cosine products `cos(m pi X / Lx) cos(n pi Z / Lz)` are found as
+    /// the wave vectors `pi (m / Lx, +-n / Lz)`, each at half the product's amplitude.
+    #[test]
+    fn a_symmetric_patchs_cosines_are_its_reflected_surfaces_waves() {
+        let mesh = Mesh::patch(PatchSpec {
+            nx: 4,
+            nz: 3,
+            length_x: 8.0,
+            length_z: 6.0,
+            layer_elements: 1,
+            substrate_elements: 1,
+            top_substrate_thickness: 3.0,
+            depth: 3.0,
+            sides: Sides::Symmetry,
+            element: ElementKind::Displacement,
+        })
+        .unwrap();
+        let dofs = mesh.dofs();
+        let mut u = vec![0.0; mesh.num_dofs()];
+        for (node, x) in mesh.coordinates().iter().enumerate() {
+            let (a, b) = (PI * x[X] / 8.0, PI * x[Z] / 6.0);
+            u[dofs.dof(node, Y)] = 0.3 * a.cos() * (2.0 * b).cos() + 0.1 * (3.0 * a).cos();
+        }
+        let waves = surface_spectrum(&mesh, &u);
+        let mut pair = [(waves[0].m, waves[0].n), (waves[1].m, waves[1].n)];
+        pair.sort();
+        assert_eq!(pair, [(1, -2), (1, 2)]);
+        assert!((waves[0].amplitude - 0.15).abs() < 1e-12 && (waves[1].amplitude - 0.15).abs() < 1e-12);
+        assert_eq!((waves[2].m, waves[2].n), (3, 0));
+        assert!((waves[2].amplitude - 0.1).abs() < 1e-12, "{:?}", waves[2]);
+        assert!(waves[3].amplitude < 1e-12);
+        assert!((waves[2].k - 3.0 * PI / 8.0).abs() < 1e-12);
+    }
 
     #[test]
     fn an_oblique_wave_and_a_weaker_one_are_found_with_their_amplitudes() {

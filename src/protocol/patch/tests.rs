@@ -367,6 +367,7 @@ fn a_slab_in_plane_strain_follows_the_strips_post_buckling_path() {
     let imperfection = PatchImperfection {
         waves: vec![([k, 0.0], amplitude)],
         depth: 10.0,
+        symmetric: true,
     };
     let mut solid = Vec::new();
     let (_, stopped) = slab
@@ -388,6 +389,61 @@ fn a_slab_in_plane_strain_follows_the_strips_post_buckling_path() {
     }
     let &(_, last) = plane.last().unwrap();
     assert!(last > 20.0 * amplitude, "past the onset the wrinkle grew: A = {last}");
+}
+
+/// A patch with symmetry sides is the quarter of a periodic patch twice as long each way: seeded
+/// with the same product of cosines (which has the sides' symmetry), both follow the same path
+/// `A(d)` up to the onset, where the wrinkle has grown sixfold, to the solver's tolerance. (Just
+/// past it both turn unstable and leave for states the periodic patch's four times as many
+/// unknowns let differ.)
+#[test]
+fn a_symmetric_patch_follows_the_path_of_the_periodic_patch_it_is_a_quarter_of() {
+    use crate::protocol::Event;
+    use std::f64::consts::PI;
+    let p = Parameters {
+        beta: std::f64::consts::FRAC_PI_2,
+        ..Parameters::default()
+    };
+    let materials = Bilayer::new(&p);
+    let symmetric = patch(Sides::Symmetry, 3);
+    let periodic = PatchSpec {
+        nx: 2 * symmetric.nx,
+        nz: 2 * symmetric.nz,
+        length_x: 2.0 * symmetric.length_x,
+        length_z: 2.0 * symmetric.length_z,
+        sides: Sides::Periodic,
+        ..symmetric
+    };
+    let imperfection = PatchImperfection {
+        waves: vec![([2.0 * PI / 8.0, PI / 6.0], 0.01)],
+        depth: 10.0,
+        symmetric: true,
+    };
+    let follow = |spec: PatchSpec| {
+        let mut states = Vec::new();
+        let (_, stopped) = PatchPath::new(&materials, spec, 1.0)
+            .unwrap()
+            .follow(&imperfection, &PatchProtocol::new(0.005, 0.125), &mut |event| {
+                if let Event::Step { record, .. } = event {
+                    states.push((record.d, record.amplitude, record.snap.is_some()));
+                }
+                Ok(())
+            })
+            .unwrap();
+        assert!(stopped.is_none(), "{spec:?}: {stopped:?}");
+        states
+    };
+    let (quarter, whole) = (follow(symmetric), follow(periodic));
+    assert_eq!(quarter.len(), whole.len(), "{quarter:?}\n{whole:?}");
+    for ((d, a, left), (d2, a2, left2)) in quarter.iter().zip(&whole) {
+        assert!((d - d2).abs() < 1e-12 && !left && !left2, "d {d} vs {d2}");
+        assert!(
+            (a - a2).abs() <= 1e-8 * a,
+            "d = {d}: A {a} on the quarter, {a2} on the whole"
+        );
+    }
+    let &(_, last, _) = quarter.last().unwrap();
+    assert!(last > 5.0 * 0.01, "the wrinkle grew: A = {last}");
 }
 
 /// The memory estimate counts the factor of the path's own tangents (from their pattern,

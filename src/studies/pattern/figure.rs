@@ -1,5 +1,5 @@
-//! `mode_top.png/svg`: a periodic patch's surface seen from above, each cell of its top node
-//! grid coloured by the mean `u_Y` of its corners (blue down, red up), with the fibres'
+//! `mode_top.png/svg`: a patch's surface seen from above, each cell of its top node grid
+//! coloured by the mean `u_Y` of its corners (blue down, red up), with the fibres'
 //! projection on the surface drawn as lines.
 
 use crate::error::Result;
@@ -9,7 +9,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
-/// A periodic patch's top-surface field and the fibres' direction in the surface.
+/// A patch's top-surface field and the fibres' direction in the surface.
 pub struct TopView<'a> {
     pub title: String,
     pub mesh: &'a Mesh<3, 27>,
@@ -22,7 +22,8 @@ pub struct TopView<'a> {
 
 /// Writes `dir/stem.png` and `dir/stem.svg`.
 pub fn top_view(view: &TopView, dir: &Path, stem: &str) -> Result<Vec<PathBuf>> {
-    let [length_x, _, length_z] = *view.mesh.periods();
+    let spec = view.mesh.patch_spec();
+    let (length_x, length_z) = (spec.length_x, spec.length_z);
     let width = 640u32;
     let height = ((width as f64 - 90.0) * length_z / length_x + 110.0).clamp(320.0, 1000.0) as u32;
     save_canvas(view, (width, height), dir, stem)
@@ -70,14 +71,20 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, view: &TopView) -> std
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(err)?;
     let mesh = view.mesh;
-    let [length_x, _, length_z] = *mesh.periods();
     let spec = mesh.patch_spec();
+    let (length_x, length_z) = (spec.length_x, spec.length_z);
+    // `cx x cz` cells between the top nodes; a periodic patch's last nodes are its first, a
+    // symmetric patch has one more row of nodes each way.
     let (cx, cz) = (2 * spec.nx, 2 * spec.nz);
+    let (px, pz) = match mesh.is_periodic() {
+        true => (cx, cz),
+        false => (cx + 1, cz + 1),
+    };
     let (dx, dz) = (length_x / cx as f64, length_z / cz as f64);
-    let mut grid = vec![vec![0.0; cz]; cx];
+    let mut grid = vec![vec![0.0; pz]; px];
     for &node in mesh.node_set(TOP) {
         let x = mesh.coordinates()[node];
-        let (i, k) = ((x[X] / dx).round() as usize % cx, (x[Z] / dz).round() as usize % cz);
+        let (i, k) = ((x[X] / dx).round() as usize % px, (x[Z] / dz).round() as usize % pz);
         grid[i][k] = view.field[mesh.dofs().dof(node, Y)];
     }
     let largest = grid
@@ -102,7 +109,7 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, view: &TopView) -> std
         .draw()
         .map_err(err)?;
     let cells = (0..cx).flat_map(|i| (0..cz).map(move |k| (i, k))).map(|(i, k)| {
-        let corner = |a: usize, b: usize| grid[(i + a) % cx][(k + b) % cz];
+        let corner = |a: usize, b: usize| grid[(i + a) % px][(k + b) % pz];
         let mean = 0.25 * (corner(0, 0) + corner(1, 0) + corner(0, 1) + corner(1, 1)) / largest;
         let (x, z) = (i as f64 * dx, k as f64 * dz);
         Rectangle::new([(x, z), (x + dx, z + dz)], diverging(mean).filled())

@@ -7,9 +7,9 @@
 //! spectrum says which wave vectors it holds.
 //!
 //! Writes `pattern.json`, `wave_vectors.csv` (the admissible wave vectors and their `d_c`),
-//! `inertia.csv` (negative pivots along the homogeneous path), `mode_spectrum.csv` and
-//! `mode.vtu` (the patch, cut open along its periodic sides, with the mode), and on periodic
-//! sides `mode_top.png/svg` (the mode's surface seen from above, with the fibres' projection).
+//! `inertia.csv` (negative pivots along the homogeneous path), `mode_spectrum.csv`, `mode.vtu`
+//! (the patch, cut open along periodic sides, with the mode) and `mode_top.png/svg` (the mode's
+//! surface seen from above, with the fibres' projection).
 //! Asked to, it follows the path past the onset (`path`): `pattern.csv`, `state.vtu`,
 //! `state_top.png/svg`.
 
@@ -236,13 +236,6 @@ pub fn run(
     let start = Instant::now();
     if let Some(path) = &study.path {
         path.validate()?;
-        if study.sides != Sides::Periodic {
-            return Err(Error::invalid(
-                "sides",
-                "symmetry",
-                "periodic to follow the path past the onset (the pattern is read from a periodic surface)",
-            ));
-        }
     }
     let (onset, spec) = size_patch(params, study)?;
     // The elements and the tangent alone, before anything is allocated for the exact estimate:
@@ -285,26 +278,20 @@ pub fn run(
     let found = path.bifurcation(&study.settings, &mut |d, negative| {
         progress(Progress::Inertia { d, negative })
     })?;
-    // The spectrum is that of a periodic surface; symmetry sides have none.
-    let spectrum = match mesh.is_periodic() {
-        true => surface_spectrum(&mesh, &found.mode),
-        false => Vec::new(),
-    };
+    let spectrum = surface_spectrum(&mesh, &found.mode);
     let mut files = write_wave_vectors(out, &modes)?;
     files.extend(super::bifurcation::write_inertia(out, &found.path)?);
-    if mesh.is_periodic() {
-        files.extend(write_spectrum(out, &spectrum)?);
-        let view = figure::TopView {
-            title: format!(
-                "Bifurcation mode at d = {:.5}: surface u_Y from above; lines: the fibres",
-                found.d
-            ),
-            mesh: &mesh,
-            field: &found.mode,
-            fibres: (params.beta.cos() > 1e-6).then(|| [params.psi.cos(), params.psi.sin()]),
-        };
-        files.extend(figure::top_view(&view, out, "mode_top")?);
-    }
+    files.extend(write_spectrum(out, &spectrum)?);
+    let view = figure::TopView {
+        title: format!(
+            "Bifurcation mode at d = {:.5}: surface u_Y from above; lines: the fibres",
+            found.d
+        ),
+        mesh: &mesh,
+        field: &found.mode,
+        fibres: (params.beta.cos() > 1e-6).then(|| [params.psi.cos(), params.psi.sin()]),
+    };
+    files.extend(figure::top_view(&view, out, "mode_top")?);
     files.push(write_mode(out, &mesh, &found)?);
     let followed = match &study.path {
         Some(path_study) => {

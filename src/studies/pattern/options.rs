@@ -57,9 +57,9 @@ pub struct PatternOptions {
     #[arg(long, default_value_t = study().settings.tolerance)]
     pub tolerance: f64,
 
-    /// Follow the path past the onset to this d, in (d-start, 0.95) (periodic sides only): the
-    /// patch seeded with every wave vector critical at the onset, one row of pattern.csv per
-    /// state. Not followed if absent.
+    /// Follow the path past the onset to this d, in (d-start, 0.95): the patch seeded with every
+    /// wave vector critical at the onset (on symmetry sides the products of cosines they
+    /// admit), one row of pattern.csv per state. Not followed if absent.
     #[arg(long, value_name = "D")]
     pub follow_to: Option<f64>,
 

@@ -1,4 +1,4 @@
-//! The pattern past the onset: the periodic patch seeded with every wave vector critical at the
+//! The pattern past the onset: the patch seeded with every wave vector critical at the
 //! onset (an imperfection of the reference geometry, [`PatchImperfection`]: the first at
 //! `A_init`, the others at a fraction of it) and followed in `d`
 //! ([`PatchPath::follow`]), leaving for a stable state wherever the followed branch turns
@@ -6,7 +6,7 @@
 //! what they make ([`classify`]).
 //!
 //! Writes `pattern.csv` (one row per state, flushed as it is reached), and at the last state
-//! `state.vtu` (the patch cut open along its periodic sides, with the displacement) and
+//! `state.vtu` (the patch, cut open along periodic sides, with the displacement) and
 //! `state_top.png/svg` (its surface relief seen from above, with the fibres' projection).
 
 use super::figure;
@@ -153,23 +153,31 @@ pub fn follow(
 ) -> Result<(PathSummary, Vec<PathBuf>)> {
     study.validate()?;
     let mesh = path.system().mesh().clone();
-    assert!(mesh.is_periodic(), "the path is followed on periodic sides");
-    let [length_x, _, length_z] = *mesh.periods();
+    // Periodic sides admit `k = 2 pi (m / Lx, n / Lz)`; symmetry sides the products of cosines
+    // of `pi (m / Lx, n / Lz)`, one for a mirror pair `(m, +-n)`.
+    let spec = mesh.patch_spec();
+    let (symmetric, wave) = match mesh.is_periodic() {
+        true => (false, 2.0 * PI),
+        false => (true, PI),
+    };
     let first = modes.first().map_or(f64::NAN, |m| m.d_c);
-    let seeded: Vec<&BoxMode> = modes
-        .iter()
-        .filter(|m| m.d_c <= first * (1.0 + CRITICAL_TOGETHER))
-        .collect();
+    let mut seeded: Vec<&BoxMode> = Vec::new();
+    for mode in modes.iter().filter(|m| m.d_c <= first * (1.0 + CRITICAL_TOGETHER)) {
+        if !(symmetric && seeded.iter().any(|s| (s.m, s.n.abs()) == (mode.m, mode.n.abs()))) {
+            seeded.push(mode);
+        }
+    }
     let imperfection = PatchImperfection {
         waves: seeded
             .iter()
             .enumerate()
             .map(|(i, m)| {
-                let k = [2.0 * PI * m.m as f64 / length_x, 2.0 * PI * m.n as f64 / length_z];
+                let k = [wave * m.m as f64 / spec.length_x, wave * m.n as f64 / spec.length_z];
                 (k, study.imperfection * if i == 0 { 1.0 } else { study.seed_ratio })
             })
             .collect(),
-        depth: mesh.patch_spec().depth,
+        depth: spec.depth,
+        symmetric,
     };
     let csv = out.join("pattern.csv");
     let mut table = CsvWriter::create(&csv, &COLUMNS)?;
@@ -203,7 +211,7 @@ pub fn follow(
     let mut files = vec![csv];
     let patch = continuation.system();
     let d = states.last().map_or(study.d_start, |s| s.d);
-    let gradient = [[-d, 0.0, 0.0], [0.0; 3], [0.0, 0.0, -patch.biaxiality() * d]];
+    let gradient = *patch.system().average_gradient();
     files.push(write_state(out, patch.system().mesh(), &last_u, gradient)?);
     let relief = surface_relief(patch.system().mesh(), &last_u);
     let view = figure::TopView {
@@ -278,8 +286,9 @@ fn surface_relief(mesh: &Mesh<3, 27>, u: &[f64]) -> Vec<f64> {
     relief
 }
 
-/// `state.vtu`: the patch cut open along its periodic sides at the last state `u` (the periodic
-/// part of the displacement), with the displacement `H X + u` as point vectors.
+/// `state.vtu`: the patch (cut open along periodic sides) at the last state `u` (on periodic
+/// sides the periodic part of the displacement), with the displacement `H X + u` as point
+/// vectors (`H` the average gradient periodic sides carry, zero on symmetry sides).
 fn write_state(out: &Path, mesh: &Mesh<3, 27>, u: &[f64], gradient: [[f64; 3]; 3]) -> Result<PathBuf> {
     let (points, cells, source) = mesh.unwrapped();
     let dofs = mesh.dofs();

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# fiberfold against FEniCSx on a patch in three dimensions, side by side on this machine, in
+# one run:
+#
+#   bench/fenicsx/compare_patch.sh [ELEMENTS_PER_WAVELENGTH] [D_MAX]
+#                                  (after cargo build --release and bench/fenicsx/install.sh)
+#
+# The case: Table 1 with beta = 0.7853982 (psi = 0) under equibiaxial compression, the patch one
+# onset wavelength square with symmetry sides, ELEMENTS_PER_WAVELENGTH hexahedra along X and Z
+# (default 4), the path to D_MAX (default 0.12). fiberfold runs `pattern --sides symmetry
+# --follow-to D_MAX` (its first bifurcation by the inertia of the tangent, then the path with
+# its adaptive steps of at most 0.005 and the inertia of every state: more work than the
+# reference does); bench/fenicsx/patch.py then solves the same model on fiberfold's mesh (read
+# from the run's state.vtu) with plain Newton and MUMPS on one core, at steps of 0.005. Prints
+# both wall times, peak memory, their ratio, and the largest relative difference of A(d) over
+# the d both reached: the check that both solved one problem.
+set -euo pipefail
+epw=${1:-4}
+d_max=${2:-0.12}
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/../.." && pwd)
+binary=${FIBERFOLD:-$root/target/release/fiberfold}
+venv=${FENICSX_DIR:-$HOME/.cache/fiberfold-fenicsx-bench}/venv
+[ -x "$binary" ] || { echo "no $binary: run cargo build --release first (or set FIBERFOLD)" >&2; exit 1; }
+[ -x "$venv/bin/python" ] || { echo "FEniCSx is not installed: run $here/install.sh" >&2; exit 1; }
+[ -x /usr/bin/time ] || { echo "needs /usr/bin/time (Debian package time)" >&2; exit 1; }
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+/usr/bin/time -f "%e %M" -o "$work/fiberfold.time" \
+  "$binary" pattern --sides symmetry --set beta=0.7853982 --elements-per-wavelength "$epw" \
+  --follow-to "$d_max" --out "$work/fiberfold" >"$work/fiberfold.log" 2>&1
+unknowns=$(sed -n 's/.* \([0-9]*\) unknowns;.*/\1/p' "$work/fiberfold.log" | head -1)
+reference=("$venv/bin/python" "$here/patch.py" --mesh-vtu "$work/fiberfold/state.vtu" --beta 0.7853982 --quiet)
+# Form compilation is cached after a first call: warm it, so that the solve alone is timed.
+OMP_NUM_THREADS=1 "${reference[@]}" --d-max 0.005 --out "$work/warm.csv" >/dev/null 2>&1
+OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 /usr/bin/time -f "%e %M" -o "$work/fenicsx.time" \
+  "${reference[@]}" --d-max "$d_max" --out "$work/fenicsx.csv" >"$work/fenicsx.log" 2>&1 || true
+
+read -r ff_seconds ff_kb <"$work/fiberfold.time"
+read -r fx_seconds fx_kb <"$work/fenicsx.time"
+reached() { tail -1 "$1" | cut -d, -f1; }
+echo "patch with symmetry sides, $epw hexahedra per wavelength ($unknowns unknowns), displacement element, to d = $d_max"
+printf "fiberfold: %7.1f s  %5d MB  reached d = %s\n" "$ff_seconds" $((ff_kb / 1024)) "$(reached "$work/fiberfold/pattern.csv")"
+printf "FEniCSx:   %7.1f s  %5d MB  reached d = %s\n" "$fx_seconds" $((fx_kb / 1024)) "$(reached "$work/fenicsx.csv")"
+"$venv/bin/python" - "$work/fiberfold/pattern.csv" "$work/fenicsx.csv" "$ff_seconds" "$fx_seconds" <<'PY'
+import csv, sys
+curves = [{round(float(r["d"]), 6): float(r["A"]) for r in csv.DictReader(open(f))} for f in sys.argv[1:3]]
+common = sorted(d for d in curves[0] if d in curves[1])
+print("ratio (FEniCSx / fiberfold): %.2fx" % (float(sys.argv[4]) / float(sys.argv[3])))
+if common:
+    worst = max(abs(curves[0][d] - curves[1][d]) / abs(curves[0][d]) for d in common)
+    print("A(d): largest relative difference %.1e over %d common d up to %g" % (worst, len(common), common[-1]))
+else:
+    print("A(d): no common d (see the logs)")
+PY
