@@ -296,9 +296,11 @@ impl<'a> PatchPath<'a> {
 
 mod biaxial;
 mod post_buckling;
+mod self_contact;
 mod spectrum;
 pub use biaxial::BiaxialPatch;
 pub use post_buckling::{PatchImperfection, PatchProtocol};
+pub use self_contact::surface_crosses_itself;
 pub use spectrum::{classify, height_spectrum, surface_spectrum, Direction, SurfacePattern, WaveVector};
 
 #[cfg(test)]

@@ -18,7 +18,8 @@ use crate::output::vtu::{write_vtu, CellType, DataArray};
 use crate::output::CsvWriter;
 use crate::parameters::Parameters;
 use crate::protocol::patch::{
-    classify, height_spectrum, BiaxialPatch, Direction, PatchImperfection, PatchPath, PatchProtocol, SurfacePattern,
+    classify, height_spectrum, surface_crosses_itself, BiaxialPatch, Direction, PatchImperfection, PatchPath,
+    PatchProtocol, SurfacePattern,
 };
 use crate::protocol::Event;
 use crate::stability::oblique::BoxMode;
@@ -189,7 +190,15 @@ pub fn follow(
         let Event::Step { record, system, u } = event else {
             return Ok(());
         };
-        let (pattern, directions) = classify(&height_spectrum(system.system().mesh(), u));
+        let patch = system.system();
+        if surface_crosses_itself(patch.mesh(), u, patch.average_gradient()) {
+            let before = states.last().map_or(String::from("the start"), |s| format!("d = {:.6}", s.d));
+            return Err(Error::Solver(format!(
+                "the surface touches itself between {before} and d = {:.6} (self-contact is not modelled in three dimensions)",
+                record.d
+            )));
+        }
+        let (pattern, directions) = classify(&height_spectrum(patch.mesh(), u));
         let state = PatternState {
             d: record.d,
             amplitude: record.amplitude,
