@@ -115,7 +115,7 @@ fn a_path_that_stops_early_fails_and_keeps_what_it_computed() {
         .count()
         - 1;
     assert_eq!(rows, report["path"]["states"].as_u64().unwrap() as usize);
-    assert!(out.join("state.vtu").exists() && out.join("state_top.png").exists());
+    assert!(out.join("state.vtu").exists() && out.join("state_top.png").exists() && out.join("state_3d.png").exists());
 }
 
 #[test]

@@ -1,6 +1,7 @@
-//! `mode_top.png/svg`: a patch's surface seen from above, each cell of its top node grid
-//! coloured by the mean `u_Y` of its corners (blue down, red up), with the fibres'
-//! projection on the surface drawn as lines.
+//! `mode_top.png/svg` and `mode_3d.png/svg`: a patch's surface seen from above and in
+//! perspective. From above, each cell of its top node grid is coloured by the mean `u_Y` of its
+//! corners (blue down, red up), with the fibres' projection on the surface drawn as lines; in
+//! perspective, the same field is the height of a relief coloured alike.
 
 use crate::error::Result;
 use crate::mesh::{Mesh, TOP, X, Y, Z};
@@ -67,31 +68,131 @@ fn clipped(point: [f64; 2], direction: [f64; 2], (a, b): (f64, f64)) -> Option<[
     })
 }
 
+/// A patch's top-surface field on the grid of its top nodes.
+struct TopGrid {
+    /// `values[i][k]` at the node `(i dx, k dz)`.
+    values: Vec<Vec<f64>>,
+    /// `cx x cz` cells between the nodes.
+    cells: (usize, usize),
+    /// `px x pz` nodes: a periodic patch's last nodes are its first (`px = cx`), a symmetric
+    /// patch has one more row of nodes each way.
+    points: (usize, usize),
+    spacing: (f64, f64),
+    /// The largest magnitude of the values (at least the smallest positive number).
+    largest: f64,
+}
+
+impl TopGrid {
+    fn of(view: &TopView) -> Self {
+        let mesh = view.mesh;
+        let spec = mesh.patch_spec();
+        let (cx, cz) = (2 * spec.nx, 2 * spec.nz);
+        let (px, pz) = match mesh.is_periodic() {
+            true => (cx, cz),
+            false => (cx + 1, cz + 1),
+        };
+        let (dx, dz) = (spec.length_x / cx as f64, spec.length_z / cz as f64);
+        let mut values = vec![vec![0.0; pz]; px];
+        for &node in mesh.node_set(TOP) {
+            let x = mesh.coordinates()[node];
+            let (i, k) = ((x[X] / dx).round() as usize % px, (x[Z] / dz).round() as usize % pz);
+            values[i][k] = view.field[mesh.dofs().dof(node, Y)];
+        }
+        let largest = values
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, v| m.max(v.abs()))
+            .max(f64::MIN_POSITIVE);
+        TopGrid {
+            values,
+            cells: (cx, cz),
+            points: (px, pz),
+            spacing: (dx, dz),
+            largest,
+        }
+    }
+
+    /// The value at the node nearest `(x, z)`, a periodic patch's nodes repeated a period on.
+    fn at(&self, x: f64, z: f64) -> f64 {
+        let (i, k) = (
+            (x / self.spacing.0).round() as usize,
+            (z / self.spacing.1).round() as usize,
+        );
+        self.values[i % self.points.0][k % self.points.1]
+    }
+}
+
+/// Writes `dir/stem.png` and `dir/stem.svg`: the field as a relief in perspective under `title`,
+/// coloured as the view from above, its height exaggerated to fill the box drawn.
+pub fn perspective(view: &TopView, title: &str, dir: &Path, stem: &str) -> Result<Vec<PathBuf>> {
+    save_canvas(&Perspective(view, title), (720, 600), dir, stem)
+}
+
+struct Perspective<'a, 'b>(&'a TopView<'b>, &'a str);
+
+impl Canvas for Perspective<'_, '_> {
+    fn render<DB: DrawingBackend>(&self, root: DrawingArea<DB, Shift>) -> std::result::Result<(), String> {
+        draw_perspective(root, self.0, self.1)
+    }
+}
+
+fn draw_perspective<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    view: &TopView,
+    title: &str,
+) -> std::result::Result<(), String> {
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    root.fill(&WHITE).map_err(err)?;
+    let grid = TopGrid::of(view);
+    let spec = view.mesh.patch_spec();
+    let (length_x, length_z) = (spec.length_x, spec.length_z);
+    let largest = grid.largest;
+    let root = root.titled(title, (FONT, 15)).map_err(err)?;
+    let mut chart = ChartBuilder::on(&root)
+        .margin(24)
+        .margin_top(30)
+        .build_cartesian_3d(0.0..length_x, -largest..largest, 0.0..length_z)
+        .map_err(err)?;
+    chart.with_projection(|mut p| {
+        p.pitch = 0.55;
+        p.yaw = 0.6;
+        p.scale = 0.8;
+        p.into_matrix()
+    });
+    chart
+        .configure_axes()
+        .label_style((FONT, 11))
+        .max_light_lines(0)
+        .draw()
+        .map_err(err)?;
+    let (cx, cz) = grid.cells;
+    let (dx, dz) = grid.spacing;
+    let colour = |y: &f64| diverging(*y / largest).filled();
+    chart
+        .draw_series(
+            SurfaceSeries::xoz(
+                (0..=cx).map(|i| i as f64 * dx),
+                (0..=cz).map(|k| k as f64 * dz),
+                |x, z| grid.at(x, z),
+            )
+            .style_func(&colour),
+        )
+        .map_err(err)?;
+    Ok(())
+}
+
 fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, view: &TopView) -> std::result::Result<(), String> {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(err)?;
-    let mesh = view.mesh;
-    let spec = mesh.patch_spec();
+    let TopGrid {
+        values: grid,
+        cells: (cx, cz),
+        points: (px, pz),
+        spacing: (dx, dz),
+        largest,
+    } = TopGrid::of(view);
+    let spec = view.mesh.patch_spec();
     let (length_x, length_z) = (spec.length_x, spec.length_z);
-    // `cx x cz` cells between the top nodes; a periodic patch's last nodes are its first, a
-    // symmetric patch has one more row of nodes each way.
-    let (cx, cz) = (2 * spec.nx, 2 * spec.nz);
-    let (px, pz) = match mesh.is_periodic() {
-        true => (cx, cz),
-        false => (cx + 1, cz + 1),
-    };
-    let (dx, dz) = (length_x / cx as f64, length_z / cz as f64);
-    let mut grid = vec![vec![0.0; pz]; px];
-    for &node in mesh.node_set(TOP) {
-        let x = mesh.coordinates()[node];
-        let (i, k) = ((x[X] / dx).round() as usize % px, (x[Z] / dz).round() as usize % pz);
-        grid[i][k] = view.field[mesh.dofs().dof(node, Y)];
-    }
-    let largest = grid
-        .iter()
-        .flatten()
-        .fold(0.0f64, |m, v| m.max(v.abs()))
-        .max(f64::MIN_POSITIVE);
     let mut chart = ChartBuilder::on(&root)
         .caption(&view.title, (FONT, 16))
         .margin(12)

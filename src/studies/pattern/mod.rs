@@ -292,6 +292,8 @@ pub fn run(
         fibres: (params.beta.cos() > 1e-6).then(|| [params.psi.cos(), params.psi.sin()]),
     };
     files.extend(figure::top_view(&view, out, "mode_top")?);
+    let title = format!("Bifurcation mode at d = {:.5}: surface u_Y, X and Z in H", found.d);
+    files.extend(figure::perspective(&view, &title, out, "mode_3d")?);
     files.push(write_mode(out, &mesh, &found)?);
     let followed = match &study.path {
         Some(path_study) => {

@@ -230,6 +230,8 @@ pub fn follow(
         fibres: (params.beta.cos() > 1e-6).then(|| [params.psi.cos(), params.psi.sin()]),
     };
     files.extend(figure::top_view(&view, out, "state_top")?);
+    let title = format!("Surface relief at d = {d:.4} (height exaggerated), X and Z in H");
+    files.extend(figure::perspective(&view, &title, out, "state_3d")?);
     let mut changes: Vec<(f64, SurfacePattern)> = Vec::new();
     for state in &states {
         if changes.last().is_none_or(|&(_, p)| p != state.pattern) {
