@@ -41,14 +41,4 @@ reached() { tail -1 "$1" | cut -d, -f1; }
 echo "mesh $mesh, displacement element, to d = $d_max"
 printf "fiberfold: %7.1f s  %5d MB  reached d = %s\n" "$ff_seconds" $((ff_kb / 1024)) "$(reached "$work/fiberfold/amplitude.csv")"
 printf "FEniCSx:   %7.1f s  %5d MB  reached d = %s\n" "$fx_seconds" $((fx_kb / 1024)) "$(reached "$work/fenicsx.csv")"
-"$venv/bin/python" - "$work/fiberfold/amplitude.csv" "$work/fenicsx.csv" "$ff_seconds" "$fx_seconds" <<'EOF'
-import csv, sys
-curves = [{round(float(r["d"]), 6): float(r["A"]) for r in csv.DictReader(open(f))} for f in sys.argv[1:3]]
-common = sorted(d for d in curves[0] if d in curves[1])
-print("ratio (FEniCSx / fiberfold): %.2fx" % (float(sys.argv[4]) / float(sys.argv[3])))
-if common:
-    worst = max(abs(curves[0][d] - curves[1][d]) / abs(curves[0][d]) for d in common)
-    print("A(d): largest relative difference %.1e over %d common d up to %g" % (worst, len(common), common[-1]))
-else:
-    print("A(d): no common d (see the logs)")
-EOF
+"$venv/bin/python" "$here/reference.py" compare "$work/fiberfold/amplitude.csv" "$work/fenicsx.csv" "$ff_seconds" "$fx_seconds"

@@ -303,5 +303,24 @@ pub use post_buckling::{PatchImperfection, PatchProtocol};
 pub use self_contact::surface_crosses_itself;
 pub use spectrum::{classify, height_spectrum, surface_spectrum, Direction, SurfacePattern, WaveVector};
 
+/// A small patch of 4 x 3 elements over 8 x 6, one element through the layer and one through
+/// the substrate (the surface tests' mesh).
+#[cfg(test)]
+fn small_patch(sides: crate::mesh::Sides) -> Mesh<3, 27> {
+    Mesh::patch(PatchSpec {
+        nx: 4,
+        nz: 3,
+        length_x: 8.0,
+        length_z: 6.0,
+        layer_elements: 1,
+        substrate_elements: 1,
+        top_substrate_thickness: 3.0,
+        depth: 3.0,
+        sides,
+        element: crate::mesh::ElementKind::Displacement,
+    })
+    .unwrap()
+}
+
 #[cfg(test)]
 mod tests;

@@ -202,6 +202,34 @@ impl<'a, E: EnergyEquations + ?Sized> Landscape<'a, E> {
     }
 }
 
+/// The report of a minimisation ended at `current` after `(steps, factorisations, rejected)`.
+fn minimum(
+    current: Assembled,
+    history: Vec<f64>,
+    (steps, factorisations, rejected): (usize, usize, usize),
+    negative_pivots: Option<usize>,
+    timings: super::Timings,
+    unfinished: bool,
+    final_shift: f64,
+) -> NewtonReport {
+    NewtonReport {
+        iterations: steps,
+        tangent_steps: factorisations,
+        residual_history: history,
+        force_norm: current.force_norm(),
+        energy: current.energy,
+        min_jacobian: current.min_jacobian,
+        reactions: current.reactions,
+        negative_pivots,
+        start_negative_pivots: None,
+        backtracks: rejected,
+        updates: Updates::default(),
+        timings,
+        unfinished,
+        final_shift,
+    }
+}
+
 /// The total potential (strain plus added) of an assembly: the energy whose gradient its
 /// residual is (with the mixed element's multipliers held fixed).
 fn total(a: &Assembled) -> f64 {
@@ -244,22 +272,16 @@ impl Newton {
             }
             if unfinished || (negative == Some(Some(0)) && residual <= tolerance) {
                 self.forget_factorisation();
-                return Ok(NewtonReport {
-                    iterations: iteration,
-                    tangent_steps: factorisations,
-                    residual_history: history,
-                    force_norm: current.force_norm(),
-                    energy: current.energy,
-                    min_jacobian: current.min_jacobian,
-                    reactions: current.reactions,
-                    negative_pivots: negative.flatten(),
-                    start_negative_pivots: None,
-                    backtracks: rejected,
-                    updates: Updates::default(),
-                    timings: land.problem.timings,
+                let counts = (iteration, factorisations, rejected);
+                return Ok(minimum(
+                    current,
+                    history,
+                    counts,
+                    negative.flatten(),
+                    land.problem.timings,
                     unfinished,
-                    final_shift: shift.sigma,
-                });
+                    shift.sigma,
+                ));
             }
             let next = match negative.is_some_and(|n| n != Some(0)) && residual <= tolerance {
                 true => None,
@@ -301,22 +323,16 @@ impl Newton {
             let negative = self.factorize(&current, &mut land.problem.timings).negative_pivots();
             self.forget_factorisation();
             if negative == Some(0) {
-                return Ok(NewtonReport {
-                    iterations: history.len() - 1,
-                    tangent_steps: factorisations,
-                    residual_history: history,
-                    force_norm: current.force_norm(),
-                    energy: current.energy,
-                    min_jacobian: current.min_jacobian,
-                    reactions: current.reactions,
-                    negative_pivots: negative,
-                    start_negative_pivots: None,
-                    backtracks: rejected,
-                    updates: Updates::default(),
-                    timings: land.problem.timings,
-                    unfinished: false,
-                    final_shift: shift.sigma,
-                });
+                let counts = (history.len() - 1, factorisations, rejected);
+                return Ok(minimum(
+                    current,
+                    history,
+                    counts,
+                    negative,
+                    land.problem.timings,
+                    false,
+                    shift.sigma,
+                ));
             }
         }
         // Said as what it is: a snap's failure read "Newton did not converge" before.

@@ -165,22 +165,10 @@ fn segment_crosses(p: [f64; 3], q: [f64; 3], t: &[[f64; 3]; 3]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::{ElementKind, PatchSpec, Sides, Y};
+    use crate::mesh::{Sides, Y};
 
     fn mesh(sides: Sides) -> Mesh<3, 27> {
-        Mesh::patch(PatchSpec {
-            nx: 4,
-            nz: 3,
-            length_x: 8.0,
-            length_z: 6.0,
-            layer_elements: 1,
-            substrate_elements: 1,
-            top_substrate_thickness: 3.0,
-            depth: 3.0,
-            sides,
-            element: ElementKind::Displacement,
-        })
-        .unwrap()
+        super::super::small_patch(sides)
     }
 
     /// The top nodes of the rows `X = a, a + 1, a + 2` moved by `shift` along X, the middle row

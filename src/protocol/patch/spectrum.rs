@@ -189,25 +189,13 @@ fn direction_of(m: i64, n: i64) -> (i64, i64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::{ElementKind, PatchSpec, Sides};
+    use crate::mesh::Sides;
 
     /// On symmetry sides the cosine products `cos(m pi X / Lx) cos(n pi Z / Lz)` are found as
     /// the wave vectors `pi (m / Lx, +-n / Lz)`, each at half the product's amplitude.
     #[test]
     fn a_symmetric_patchs_cosines_are_its_reflected_surfaces_waves() {
-        let mesh = Mesh::patch(PatchSpec {
-            nx: 4,
-            nz: 3,
-            length_x: 8.0,
-            length_z: 6.0,
-            layer_elements: 1,
-            substrate_elements: 1,
-            top_substrate_thickness: 3.0,
-            depth: 3.0,
-            sides: Sides::Symmetry,
-            element: ElementKind::Displacement,
-        })
-        .unwrap();
+        let mesh = super::super::small_patch(Sides::Symmetry);
         let dofs = mesh.dofs();
         let mut u = vec![0.0; mesh.num_dofs()];
         for (node, x) in mesh.coordinates().iter().enumerate() {
@@ -227,19 +215,7 @@ mod tests {
 
     #[test]
     fn an_oblique_wave_and_a_weaker_one_are_found_with_their_amplitudes() {
-        let mesh = Mesh::patch(PatchSpec {
-            nx: 4,
-            nz: 3,
-            length_x: 8.0,
-            length_z: 6.0,
-            layer_elements: 1,
-            substrate_elements: 1,
-            top_substrate_thickness: 3.0,
-            depth: 3.0,
-            sides: Sides::Periodic,
-            element: ElementKind::Displacement,
-        })
-        .unwrap();
+        let mesh = super::super::small_patch(Sides::Periodic);
         let dofs = mesh.dofs();
         let mut u = vec![0.0; mesh.num_dofs()];
         for (node, x) in mesh.coordinates().iter().enumerate() {

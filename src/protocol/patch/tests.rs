@@ -336,6 +336,22 @@ fn measure_biots_equibiaxial_strain() {
     }
 }
 
+/// `(d, A, left an unstable state)` of every state of `path` followed with `imperfection` from
+/// d = 0.005 to `d_max`, which it must reach.
+fn follow_amplitudes(path: PatchPath<'_>, imperfection: &PatchImperfection, d_max: f64) -> Vec<(f64, f64, bool)> {
+    let mut states = Vec::new();
+    let (_, stopped) = path
+        .follow(imperfection, &PatchProtocol::new(0.005, d_max), &mut |event| {
+            if let crate::protocol::Event::Step { record, .. } = event {
+                states.push((record.d, record.amplitude, record.snap.is_some()));
+            }
+            Ok(())
+        })
+        .unwrap();
+    assert!(stopped.is_none(), "{stopped:?}");
+    states
+}
+
 /// Past its bifurcation, a slab one hexahedron thick with `u_Z = 0` follows the strip's path:
 /// the same imperfection, protocol and steps give the same wrinkle amplitude `A(d)` on the
 /// hexahedra as on the quadrilaterals, to the solver's tolerance, from before the onset to
@@ -369,18 +385,9 @@ fn a_slab_in_plane_strain_follows_the_strips_post_buckling_path() {
         depth: 10.0,
         symmetric: true,
     };
-    let mut solid = Vec::new();
-    let (_, stopped) = slab
-        .follow(&imperfection, &PatchProtocol::new(0.005, d_max), &mut |event| {
-            if let Event::Step { record, .. } = event {
-                solid.push((record.d, record.amplitude));
-            }
-            Ok(())
-        })
-        .unwrap();
-    assert!(stopped.is_none(), "{stopped:?}");
+    let solid = follow_amplitudes(slab, &imperfection, d_max);
     assert_eq!(plane.len(), solid.len(), "{plane:?}\n{solid:?}");
-    for ((d, a), (d3, a3)) in plane.iter().zip(&solid) {
+    for ((d, a), &(d3, a3, _)) in plane.iter().zip(&solid) {
         assert!((d - d3).abs() < 1e-12, "d {d} vs {d3}");
         assert!(
             (a - a3).abs() <= 1e-9 * a,
@@ -398,7 +405,6 @@ fn a_slab_in_plane_strain_follows_the_strips_post_buckling_path() {
 /// unknowns let differ.)
 #[test]
 fn a_symmetric_patch_follows_the_path_of_the_periodic_patch_it_is_a_quarter_of() {
-    use crate::protocol::Event;
     use std::f64::consts::PI;
     let p = Parameters {
         beta: std::f64::consts::FRAC_PI_2,
@@ -419,20 +425,8 @@ fn a_symmetric_patch_follows_the_path_of_the_periodic_patch_it_is_a_quarter_of()
         depth: 10.0,
         symmetric: true,
     };
-    let follow = |spec: PatchSpec| {
-        let mut states = Vec::new();
-        let (_, stopped) = PatchPath::new(&materials, spec, 1.0)
-            .unwrap()
-            .follow(&imperfection, &PatchProtocol::new(0.005, 0.125), &mut |event| {
-                if let Event::Step { record, .. } = event {
-                    states.push((record.d, record.amplitude, record.snap.is_some()));
-                }
-                Ok(())
-            })
-            .unwrap();
-        assert!(stopped.is_none(), "{spec:?}: {stopped:?}");
-        states
-    };
+    let follow =
+        |spec: PatchSpec| follow_amplitudes(PatchPath::new(&materials, spec, 1.0).unwrap(), &imperfection, 0.125);
     let (quarter, whole) = (follow(symmetric), follow(periodic));
     assert_eq!(quarter.len(), whole.len(), "{quarter:?}\n{whole:?}");
     for ((d, a, left), (d2, a2, left2)) in quarter.iter().zip(&whole) {
