@@ -19,6 +19,7 @@ use crate::protocol::continuation::{Continuation, Event, Followed, StepControl};
 use crate::protocol::imperfection::Imperfection;
 use crate::protocol::measures::{Measure, SurfaceAmplitude};
 use crate::protocol::record::StepRecord;
+use crate::protocol::snap::SnapSettings;
 use crate::protocol::stages::simulation_newton;
 
 /// The reference-geometry imperfection `Delta Y = sum_j A_j c_j(X, Z) s_j(Y)` of a patch: one
@@ -190,7 +191,8 @@ impl PatchPath<'_> {
         let mut continuation = Continuation::new((patch, newton, protocol.newton), protocol.control, d_start, u)?
             .with_first_slope(slope)
             .with_measures(measures)
-            .halting_where_unstable();
+            .halting_where_unstable()
+            .with_snaps(SnapSettings::default());
         let mut left = 0;
         loop {
             if let Err(stopped) = continuation.advance_to(d_max, observer) {
