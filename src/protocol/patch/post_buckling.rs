@@ -82,8 +82,8 @@ pub struct PatchProtocol {
 const ABSOLUTE_TOLERANCE: f64 = 1e-10;
 
 impl PatchProtocol {
-    /// From `d_start` to `d_max` with the strip's steps and Newton's policy, but for its
-    /// absolute tolerance ([`ABSOLUTE_TOLERANCE`]).
+    /// From `d_start` to `d_max` with the strip's steps and Newton's policy, but for an absolute
+    /// tolerance of 1e-10 (a periodic patch's residual has no reaction to scale it by).
     pub fn new(d_start: f64, d_max: f64) -> Self {
         PatchProtocol {
             d_start,
