@@ -376,20 +376,21 @@ def test_simulate_takes_the_cli_options_with_the_cli_defaults():
 
 
 def test_the_fenicsx_comparison_reads_the_imperfect_mesh_of_a_run(tmp_path):
-    # bench/fenicsx/wrinkle.py solves on fiberfold's mesh, read from a run's first snapshot: its
-    # points are the reference coordinates with the imperfection (docs/model.md 8.4).
+    # bench/fenicsx/wrinkle.py solves on fiberfold's mesh, read (by reference.py) from a run's
+    # first snapshot: its points are the reference coordinates with the imperfection
+    # (docs/model.md 8.4).
     import importlib.util
 
-    spec = importlib.util.spec_from_file_location("wrinkle", ROOT / "bench" / "fenicsx" / "wrinkle.py")
-    wrinkle = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(wrinkle)
+    spec = importlib.util.spec_from_file_location("reference", ROOT / "bench" / "fenicsx" / "reference.py")
+    reference = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(reference)
     out = tmp_path / "run"
     subprocess.run(
         [str(cli_binary()), "simulate", "--waves", "4.5", "--nx", "20", "--layer-elements", "1",
          "--substrate-elements", "6", "--d-max", "0.01", "--out", str(out)],
         check=True, capture_output=True,
     )
-    points, cells = wrinkle.read_vtu(out / "simulate_0000.vtu")
+    points, cells = reference.read_vtu(out / "simulate_0000.vtu", 9, 2)
     assert cells.shape == (20 * 7, 9) and points.shape == (41 * 15, 2)
     assert cells.max() == len(points) - 1
     k = 2 * np.pi * 4.5 / 50.0
