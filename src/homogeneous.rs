@@ -31,11 +31,7 @@ impl HomogeneousState {
     /// How far the right end has moved in, as a fraction of the length: `d` under
     /// compression, 0 under growth (the ends are held).
     pub fn end_shortening(&self) -> f64 {
-        if self.load.is_growth() {
-            0.0
-        } else {
-            self.d
-        }
+        self.load.end_shortening(self.d)
     }
 
     /// Deformation gradient of the layer, `diag(lambda_1, lambda_2l)`.
@@ -145,11 +141,7 @@ impl BiaxialState {
     /// How far the sides have moved in along `X` and `Z`, as fractions of the lengths: `(d,
     /// d_3)` under compression, 0 under growth (the sides are held).
     pub fn end_shortening(&self) -> [f64; 2] {
-        if self.load.is_growth() {
-            [0.0, 0.0]
-        } else {
-            [self.d, self.d3]
-        }
+        [self.load.end_shortening(self.d), self.load.end_shortening(self.d3)]
     }
 
     /// The principal stretches `(lambda_1, lambda_2, lambda_3)` of the layer.

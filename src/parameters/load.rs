@@ -50,6 +50,16 @@ impl Load {
         }
     }
 
+    /// How far the sides have moved in at the strain `d`, as a fraction of their distance: `d`
+    /// under compression, 0 under growth (the sides are held).
+    pub fn end_shortening(self, d: f64) -> f64 {
+        if self.is_growth() {
+            0.0
+        } else {
+            d
+        }
+    }
+
     /// The name of the load parameter, as in CSV and JSON columns.
     pub fn parameter_name(self) -> &'static str {
         if self.is_growth() {

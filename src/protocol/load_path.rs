@@ -44,11 +44,7 @@ impl LoadPath {
     /// How far the right end has moved in, as a fraction of the length: `d` under compression,
     /// 0 under growth.
     pub fn end_shortening(&self, d: f64) -> f64 {
-        if self.grows() {
-            0.0
-        } else {
-            d
-        }
+        self.load().end_shortening(d)
     }
 
     /// The model's boundary conditions at `d` ([`model_conditions`] at the end-shortening).

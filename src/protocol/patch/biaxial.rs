@@ -61,12 +61,8 @@ impl Followed for BiaxialPatch {
     type Augmentation = NoAugmentation;
 
     fn load_to(&mut self, d: f64) -> Result<Dirichlet> {
-        let d3 = self.biaxiality * d;
-        let (shortening, shortening3) = match self.system.unloaded_materials().load.is_growth() {
-            true => (0.0, 0.0),
-            false => (d, d3),
-        };
-        let (bc, h) = patch_conditions(self.system.mesh(), shortening, shortening3)?;
+        let (d3, load) = (self.biaxiality * d, self.system.unloaded_materials().load);
+        let (bc, h) = patch_conditions(self.system.mesh(), load.end_shortening(d), load.end_shortening(d3))?;
         self.system.set_average_gradient(h);
         self.system.set_biaxial_load(d, d3);
         if self.held.is_empty() {
