@@ -11,8 +11,9 @@ use fiberfold::fem::{equilibrium, Newton, NewtonPolicy, System};
 use fiberfold::homogeneous::constraint_pressure;
 use fiberfold::material::Bilayer;
 use fiberfold::mesh::{Mesh, MeshSpec, Y};
+use fiberfold::protocol::bifurcation::homogeneous_inertia;
 use fiberfold::protocol::model_conditions;
-use fiberfold::stability::biot_compression;
+use fiberfold::stability::{biot_compression, Method, StabilityAnalysis};
 use fiberfold::studies::crease::{crease, CreaseMesh, CreaseStudy, Scan};
 use fiberfold::Parameters;
 
@@ -284,5 +285,36 @@ fn incompressibility_with_a_contradictory_setting_is_refused() {
         assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
         assert!(stderr.contains(names), "{stderr}");
         assert!(!target.exists(), "{args:?} wrote {}", target.display());
+    }
+}
+
+/// The stability of the exactly incompressible mixed element is that of its displacements
+/// under the constraint: at the homogeneous states of a bilayer whose layer is a hundred times
+/// stiffer than its substrate, the tangent has one negative pivot per admissible wave
+/// (`k = n pi / L`, `n >= 1`) whose onset by the exact linear theory lies below `d`. The fine
+/// mesh puts the onsets within about 4e-7 in `d` of the theory's (1.4e-5 relative at the
+/// critical wave), so every state lies at least 1e-5 from an onset: `d = 0.025` is 1.4e-5 past
+/// the sixth wave's. Counted with the constraint's penalty scaled by the largest shear modulus
+/// (a hundred times the substrate's own), that wave was missed there.
+#[test]
+fn incompressible_inertia_at_high_contrast_counts_the_unstable_waves() {
+    let params = incompressible(100.0);
+    let spec = MeshSpec::fine().with_element(ElementKind::Mixed);
+    let theory = StabilityAnalysis::new(&params, Method::Exact).unwrap();
+    let onsets: Vec<f64> = (1..=20)
+        .map(|n| {
+            theory
+                .critical_compression(n as f64 * std::f64::consts::PI / spec.length)
+                .unwrap()
+        })
+        .collect();
+    assert!(onsets[19] > 0.1, "{onsets:?}");
+    let ds = [0.02, 0.025, 0.026, 0.03, 0.034, 0.039, 0.045];
+    let counts = homogeneous_inertia(&Bilayer::new(&params), spec, &ds).unwrap();
+    for (&d, count) in ds.iter().zip(counts) {
+        let margin = onsets.iter().map(|o| (o - d).abs()).fold(f64::INFINITY, f64::min);
+        assert!(margin > 1e-5, "d = {d} lies {margin:e} from an onset");
+        let unstable = onsets.iter().filter(|&&o| o < d).count();
+        assert_eq!(count, unstable, "d = {d}: onsets {onsets:?}");
     }
 }

@@ -21,7 +21,7 @@ use crate::protocol::Loading;
 use std::f64::consts::PI;
 
 /// Scan, bisection and inverse-iteration limits.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct BifurcationSettings {
     /// Spacing of the scan in `d` from 0.
     pub scan_step: f64,
@@ -144,6 +144,18 @@ pub fn find_bifurcation(materials: &Bilayer, spec: MeshSpec, settings: &Bifurcat
         eigenvalue,
         path: path.path,
     })
+}
+
+/// The negative pivots of the stability tangent at the homogeneous states `ds` of the perfect
+/// system of `spec`: past the onset, one per admissible mode whose onset lies below `d`.
+pub fn homogeneous_inertia(materials: &Bilayer, spec: MeshSpec, ds: &[f64]) -> Result<Vec<usize>> {
+    let mut path = HomogeneousPath {
+        materials,
+        system: System::new(Mesh::new(spec)?, materials)?,
+        solver: None,
+        path: Vec::new(),
+    };
+    ds.iter().map(|&d| path.negative_pivots(d)).collect()
 }
 
 /// The first `d` at which `negative_pivots(d)` is not zero, bracketed to `settings.tolerance`:

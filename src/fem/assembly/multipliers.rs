@@ -11,10 +11,10 @@ use crate::material::{Bilayer, Tissue};
 use crate::mesh::{ElementKind, Region};
 use rayon::prelude::*;
 
-/// Bulk moduli above this many times the largest shear modulus go through multipliers.
+/// Bulk moduli above this many times the tissue's shear modulus go through multipliers.
 const AUGMENTED_BULK: f64 = 1e3;
 
-/// The augmentation penalty of the multipliers, in units of the largest shear modulus.
+/// The augmentation penalty of the multipliers, in units of the tissue's shear modulus.
 const AUGMENTATION_PENALTY: f64 = 1e2;
 
 /// The factor on the augmentation penalty with which the tangent's inertia is counted (at most
@@ -24,14 +24,14 @@ const AUGMENTATION_PENALTY: f64 = 1e2;
 const STABILITY_PENALTY: f64 = 1e4;
 
 /// How `tissue`'s mixed element resists volume change: through multipliers for exact
-/// incompressibility and for bulk moduli above [`AUGMENTED_BULK`] times the largest shear
-/// modulus; `None` (condensed exactly) otherwise.
+/// incompressibility and for bulk moduli above [`AUGMENTED_BULK`] times its shear modulus (the
+/// matrix's in the substrate), with a penalty scaled by it; `None` (condensed exactly)
+/// otherwise.
 pub(super) fn augmentation(materials: &Bilayer, tissue: &Tissue) -> Option<Volumetric> {
-    let shear = materials
-        .layer
-        .energy
-        .shear_modulus()
-        .max(materials.substrate.energy.matrix.shear_modulus());
+    let shear = match tissue {
+        Tissue::Layer(_) => materials.layer.energy.shear_modulus(),
+        Tissue::Substrate(_) => materials.substrate.energy.matrix.shear_modulus(),
+    };
     let bulk = tissue.volumetric_split().bulk;
     let bulk = if materials.incompressible { f64::INFINITY } else { bulk };
     (bulk > AUGMENTED_BULK * shear).then_some(Volumetric::Augmented {

@@ -36,8 +36,8 @@
 //! `K |du|^2`), so a load step of a nearly incompressible solid fails where the multipliers'
 //! moderate penalty succeeds. For fixed `lambda`, the element's energy is
 //! `int W_rest dV + (1 - kappa/K) lambda . g + kappa/2 g^T M^-1 g` with a penalty `kappa` a
-//! hundred times the largest shear modulus (small enough for Newton's method to converge in a
-//! few steps), whose minimiser Newton's method finds; then
+//! hundred times the tissue's own shear modulus (small enough for Newton's method to converge in
+//! a few steps), whose minimiser Newton's method finds; then
 //! `lambda <- p = (1 - kappa/K) lambda + kappa M^-1 g`, whose fixed point `lambda = K M^-1 g` is
 //! the condensed element's pressure (`M^-1 g = 0` for `K = inf`)
 //! ([`crate::fem::equilibrium`] repeats both, with Aitken's relaxation and a tenfold penalty whenever
@@ -50,10 +50,12 @@
 //! than that matrix, which tends to the exact saddle point `[[K_uu, B^T], [B, 0]]` as `kappa`
 //! grows: its inertia is that of the constrained displacements once `kappa` exceeds the
 //! curvature of `K_uu` off the constraint (Finsler's lemma), of the order of the stresses. The
-//! inertia is therefore counted on the tangent with a penalty 10^6 times the largest shear
+//! inertia is therefore counted on the tangent with a penalty 10^6 times the tissue's shear
 //! modulus, or `K` where that is smaller (then the exact condensed tangent;
 //! [`crate::fem::System::assemble_for_stability`]); the coarse-mesh bifurcation no longer
-//! moves beyond 10^5 times.
+//! moves beyond 10^5 times. Each tissue's penalty is scaled by its own shear modulus: scaled by
+//! the stiffer layer's, a substrate a hundred times softer carries a penalty 10^8 times its
+//! stiffness, whose round-off in the factorisation misses or invents negative pivots.
 
 use super::displacement::{self, add_force, add_tangent, mirror_upper_triangle};
 use super::{determinant, ElementGeometry, ElementMatrix, ElementState, ElementVector, FiniteElement, GAUSS_POINTS};
