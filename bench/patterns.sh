@@ -4,11 +4,14 @@
 # from `fiberfold pattern` runs: Table 1 under equibiaxial compression and under the layer's area
 # growth in its surface, for fibres at beta = 0, pi/8, pi/4, pi/2 (psi = 0) and beta = pi/4,
 # psi = 30 deg, each followed from its onset to d_c + 0.1 on the periodic patch one onset period
-# square; then the box-size study of one case (1 x 1 against 2 x 2 periods).
+# square; then the box-size study of one case (1 x 1 against 2 x 2 periods); then the map of
+# patterns over the fibres' inclination beta and azimuth psi (docs/guide/src/results/patterns-map.md
+# and figures/pattern-map.png).
 #
-#   bench/patterns.sh            (after cargo build --release; about an hour on 2 cores)
+#   bench/patterns.sh            (after cargo build --release; about an hour and a half on 2 cores)
 #   bench/patterns.sh table      (the ten paths only)
 #   bench/patterns.sh boxes      (the box-size study only)
+#   bench/patterns.sh map        (the map of patterns only)
 #
 # Runs are kept in $PATTERNS_WORK (default results/patterns-study): a case whose pattern.json is
 # there is not run again, so the script resumes where it was stopped.
@@ -17,6 +20,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 binary=${FIBERFOLD:-$root/target/release/fiberfold}
 work=${PATTERNS_WORK:-$root/results/patterns-study}
 table=$root/docs/guide/src/results/patterns-table.md
+map_table=$root/docs/guide/src/results/patterns-map.md
 figures=$root/docs/guide/src/figures
 [ -x "$binary" ] || { echo "no $binary: run cargo build --release first (or set FIBERFOLD)" >&2; exit 1; }
 mkdir -p "$work"
@@ -73,6 +77,42 @@ if [ "$what" = all ] || [ "$what" = boxes ]; then
     follow "boxes-compression-beta0-p$periods" "$periods" 4 compression --set beta=0
   done
 fi
+if [ "$what" = all ] || [ "$what" = map ]; then
+  # Compression, equibiaxial; beta = 0, 30, 60, 90 deg against psi = 0, 22.5, 45 deg; each point
+  # followed to its own d_c + 0.04 (a finished map is only assembled again).
+  "$binary" pattern --x beta --x-from 0 --x-to 1.5707963 --x-points 4 --y psi --y-from 0 --y-to 0.7853982 \
+    --y-points 3 --elements-per-wavelength 4 --substrate-elements 8 --follow-past 0.04 \
+    --out "$work/beta-psi" >"$work/beta-psi.log" 2>&1
+  cp "$work/beta-psi/map.png" "$figures/pattern-map.png"
+  python3 - "$work/beta-psi/map.json" "$map_table" <<'MAP'
+import json, math, sys
+
+report = json.load(open(sys.argv[1]))
+header = ["beta", "psi", "d_c theory", "theta0", "d_bif box", "unknowns", "pattern at d_c + 0.04", "branches left at d"]
+lines = [
+    "<!-- Written by bench/patterns.sh from its map run, replaced on each run: do not edit by hand. -->",
+    "",
+    "| " + " | ".join(header) + " |",
+    "|" + "---|" * len(header),
+]
+for p in report["points"]:
+    degrees = lambda radians: f"{math.degrees(radians):.1f}°"
+    theta = "any" if p["theta0_degrees"] is None else f"{p['theta0_degrees']:.1f}°"
+    if p["failed"] is not None:
+        state = "failed: " + p["failed"]
+    else:
+        waves = ", ".join(f"{d['wave']['theta_degrees']:.0f}° {100 * d['share']:.0f} %" for d in p["directions"][:2])
+        state = f"{p['pattern']}: {waves}; A = {p['amplitude']:.2f}"
+        if p["stopped"] is not None:
+            state += f" (stopped at d = {p['d']:.3f})"
+    left = ", ".join(f"{d:.3f}" for d in p["branches_left"]) or "none"
+    cells = [degrees(p["x"]), degrees(p["y"]), f"{p['d_c']:.4f}", theta, f"{p['d_bifurcation']:.4f}", str(p["unknowns"]), state, left]
+    lines.append("| " + " | ".join(cells) + " |")
+open(sys.argv[2], "w").write("\n".join(lines) + "\n")
+print(f"wrote {sys.argv[2]}", file=sys.stderr)
+MAP
+fi
+[ "$what" = map ] && exit 0
 
 # The table, from the runs' pattern.json and pattern.csv.
 python3 - "$work" "$table" "$figures" "${AFTER[*]}" <<'EOF'

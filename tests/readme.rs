@@ -294,6 +294,29 @@ fn every_documented_example_runs_and_gives_an_independently_known_number() {
                 );
                 assert!((fe / theory - 1.0).abs() < 1e-3, "FE {fe} vs theory {theory}");
             }
+            "pattern" if command.contains("--x ") => {
+                // A map of patterns, shrunk to two points in the surface: each point's path ends
+                // as far past its own theory onset as asked, its patch's bifurcation near that
+                // onset.
+                let small = [
+                    ("--x-points", "2"),
+                    ("--y-points", "1"),
+                    ("--elements-per-wavelength", "3"),
+                    ("--substrate-elements", "4"),
+                    ("--follow-past", "0.02"),
+                ];
+                let (dir, _) = run(command, &small);
+                let report = json(dir.join("map.json"));
+                let points = report["points"].as_array().unwrap();
+                assert_eq!(points.len(), 2, "{report}");
+                for point in points {
+                    let past = point["d"].as_f64().unwrap() - point["d_c"].as_f64().unwrap();
+                    assert!((past - 0.02).abs() < 1e-9, "{point}");
+                    let difference = point["relative_difference"].as_f64().unwrap();
+                    assert!(difference > 0.0 && difference < 0.05, "{point}");
+                }
+                assert!(dir.join("map.png").exists());
+            }
             "pattern" if command.contains("--load growth") => {
                 // The layer's growth in the surface (fibres along X): the exact theory's first
                 // wave vector is along Z (crests along the fibres), and so are the coarse

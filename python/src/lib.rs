@@ -351,14 +351,14 @@ fn pattern_run(
     follow_to: Option<f64>,
     imperfection: f64,
 ) -> PyResult<String> {
-    use fiberfold::studies::pattern::{run, PathStudy, PatternStudy};
+    use fiberfold::studies::pattern::{run, PathEnd, PathStudy, PatternStudy};
     let study = PatternStudy {
         biaxial,
         periods,
         elements_per_wavelength,
         path: follow_to.map(|d_end| PathStudy {
             imperfection,
-            d_end,
+            end: PathEnd::At(d_end),
             ..PathStudy::default()
         }),
         ..PatternStudy::default()

@@ -1,6 +1,9 @@
 //! Arguments and helpers shared by every command.
 
 use clap::Args;
+use fiberfold::output::lock::OutputLock;
+use fiberfold::studies::grid::{Axis, Computed, Shard};
+use fiberfold::studies::Tick;
 use fiberfold::{Parameters, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
@@ -71,4 +74,54 @@ pub fn spinner(what: &str) -> ProgressBar {
     bar.set_message(what.to_string());
     bar.enable_steady_tick(std::time::Duration::from_millis(120));
     bar
+}
+
+/// The points of a grid (`map`, or `pattern` with `--x` and `--y`) this run computes: the
+/// folder locked (per shard with `--shard`), `what` announced with the grid's axes and the
+/// share (then `detail`, unless empty), a progress bar over the points, the count computed and reused. True where the run
+/// goes on to assemble the grid (not a shard's).
+pub fn compute_grid_share(
+    out: &std::path::Path,
+    (what, detail): (&str, &str),
+    (x, y): (&Axis, &Axis),
+    shard: Option<Shard>,
+    compute: impl FnOnce(Tick) -> Result<Computed>,
+) -> Result<bool> {
+    let _lock = match shard {
+        Some(s) => OutputLock::acquire_named(out, &format!(".fiberfold-shard-{}-of-{}.lock", s.index, s.count))?,
+        None => OutputLock::acquire(out)?,
+    };
+    let total = x.points * y.points;
+    let share = shard.map_or(total, |s| s.share(total));
+    println!(
+        "{what}: {} x {} points over {} in [{}, {}] and {} in [{}, {}]{}",
+        x.points,
+        y.points,
+        x.name,
+        x.from,
+        x.to,
+        y.name,
+        y.from,
+        y.to,
+        shard.map_or(String::new(), |s| format!(
+            ", shard {}/{}: {share} points",
+            s.index, s.count
+        )),
+    );
+    if !detail.is_empty() {
+        println!("  {detail}");
+    }
+    let bar = progress(share, "points");
+    let done = compute(&|| bar.inc(1))?;
+    bar.finish_and_clear();
+    println!(
+        "  {} points computed, {} reused from {}",
+        done.points - done.reused,
+        done.reused,
+        out.join("points").display()
+    );
+    if shard.is_some() {
+        println!("  assemble the shards with the same flags and --collect");
+    }
+    Ok(shard.is_none())
 }

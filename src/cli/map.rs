@@ -1,6 +1,6 @@
 //! `fiberfold map`: the instability map over two parameters, resumable and shardable.
 
-use super::common::{progress, report_files, ParamArgs};
+use super::common::{compute_grid_share, report_files, ParamArgs};
 use clap::Args;
 use fiberfold::output::lock::OutputLock;
 use fiberfold::studies::map::{self, MapOptions, Shard};
@@ -34,43 +34,16 @@ pub fn run(args: &MapArgs) -> Result<()> {
     let study = args.options.study(args.params.resolve()?)?;
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?;
     study.validate()?;
-    let total = study.x.points * study.y.points;
-    if !args.collect {
-        let _lock = match shard {
-            Some(s) => {
-                OutputLock::acquire_named(&args.out, &format!(".fiberfold-shard-{}-of-{}.lock", s.index, s.count))?
-            }
-            None => OutputLock::acquire(&args.out)?,
-        };
-        let share = shard.map_or(total, |s| (total + s.count - 1 - s.index) / s.count);
-        println!(
-            "instability map: {} x {} points over {} in [{}, {}] and {} in [{}, {}]{}",
-            study.x.points,
-            study.y.points,
-            study.x.name,
-            study.x.from,
-            study.x.to,
-            study.y.name,
-            study.y.from,
-            study.y.to,
-            shard.map_or(String::new(), |s| format!(
-                ", shard {}/{}: {share} points",
-                s.index, s.count
-            )),
-        );
-        let bar = progress(share, "points");
-        let done = map::compute(&study, &args.out, shard, &|| bar.inc(1))?;
-        bar.finish_and_clear();
-        println!(
-            "  {} points computed, {} reused from {}",
-            done.points - done.reused,
-            done.reused,
-            args.out.join("points").display()
-        );
-        if shard.is_some() {
-            println!("  assemble the shards with the same flags and --collect");
-            return Ok(());
-        }
+    let whole = args.collect
+        || compute_grid_share(
+            &args.out,
+            ("instability map", ""),
+            (&study.x, &study.y),
+            shard,
+            |tick| map::compute(&study, &args.out, shard, tick),
+        )?;
+    if !whole {
+        return Ok(());
     }
     let _lock = OutputLock::acquire(&args.out)?;
     let (report, files) = map::collect(&study, &args.out)?;

@@ -53,7 +53,8 @@ enum Command {
     Bifurcation(bifurcation::BifurcationArgs),
     /// A patch of tissue in three dimensions under biaxial compression (27-node hexahedra):
     /// its first bifurcation against the exact 3D theory, the wave vectors of its mode, and with
-    /// --follow-to the pattern the wrinkles make past the onset.
+    /// --follow-to the pattern the wrinkles make past the onset; with --x and --y, a map of
+    /// patterns over two parameters (e.g. the fibres' beta and psi), shardable as map is.
     Pattern(pattern::PatternArgs),
     /// Timings of the stability analysis or the finite-element solver.
     Bench(bench::BenchArgs),

@@ -1,10 +1,12 @@
 //! `fiberfold pattern`: a patch of tissue in three dimensions, its first bifurcation against
 //! the exact 3D theory, and the wave vectors of its mode.
 
-use super::common::{report_files, ParamArgs};
+use super::common::{compute_grid_share, report_files, ParamArgs};
 use clap::Args;
+use fiberfold::output::lock::OutputLock;
 use fiberfold::parameters::Load;
-use fiberfold::studies::pattern::{self, PatternOptions, Progress};
+use fiberfold::studies::grid::Shard;
+use fiberfold::studies::pattern::{self, PatternMap, PatternMapOptions, PatternOptions, Progress};
 use fiberfold::Result;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -17,7 +19,10 @@ pub struct PatternArgs {
     #[command(flatten)]
     pub options: PatternOptions,
 
-    /// Output folder.
+    #[command(flatten)]
+    pub map: PatternMapOptions,
+
+    /// Output folder (of a map: finished points in DIR/points are reused).
     #[arg(long, value_name = "DIR", default_value = "results/pattern")]
     pub out: PathBuf,
 }
@@ -25,6 +30,9 @@ pub struct PatternArgs {
 pub fn run(args: &PatternArgs) -> Result<()> {
     let params = args.params.resolve()?;
     let study = args.options.study()?;
+    if let Some(map) = args.map.map(params.clone(), study) {
+        return run_map(&map, args);
+    }
     let load = match params.load {
         Load::Compression => format!("compressed by d along X and d_3 = {} d along Z", study.biaxial),
         Load::Growth => format!(
@@ -143,5 +151,54 @@ pub fn run(args: &PatternArgs) -> Result<()> {
     }
     println!("{} inertia evaluations, {:.1} s", r.inertia_evaluations, r.wall_seconds);
     report_files(&r.files.iter().map(PathBuf::from).collect::<Vec<_>>());
+    Ok(())
+}
+
+/// A map of patterns: the points of this run (a shard's, or all), then, unless a shard,
+/// the map assembled.
+fn run_map(map: &PatternMap, args: &PatternArgs) -> Result<()> {
+    let shard = args.map.shard.as_deref().map(Shard::parse).transpose()?;
+    map.validate()?;
+    let detail = format!(
+        "at each point: the patch of tissue sized by the exact 3D theory, its first bifurcation{}",
+        if map.study.path.is_some() {
+            " and its path past the onset"
+        } else {
+            ""
+        }
+    );
+    let whole = args.map.collect
+        || compute_grid_share(
+            &args.out,
+            ("map of patterns", &detail),
+            (&map.x, &map.y),
+            shard,
+            |tick| pattern::compute_map(map, &args.out, shard, tick),
+        )?;
+    if !whole {
+        return Ok(());
+    }
+    let _lock = OutputLock::acquire(&args.out)?;
+    let (report, files) = pattern::collect_map(map, &args.out)?;
+    let mut counts: Vec<(String, usize)> = Vec::new();
+    for point in &report.points {
+        let name = point
+            .pattern
+            .map_or("no answer".to_string(), |p| fiberfold::output::table::variant_name(&p));
+        match counts.iter_mut().find(|(n, _)| *n == name) {
+            Some((_, count)) => *count += 1,
+            None => counts.push((name, 1)),
+        }
+    }
+    println!(
+        "  {}; point work {:.0} s",
+        counts
+            .iter()
+            .map(|(name, count)| format!("{name} at {count}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        report.point_seconds
+    );
+    report_files(&files);
     Ok(())
 }

@@ -404,8 +404,10 @@ impl<S: Followed> Continuation<S> {
         record.failed_seconds = clock.failed_seconds;
         let by_newton = matches!(reached, Reached::Newton);
         record.minimised = matches!(reached, Reached::Minimisation);
+        // After a snap the predictor restarts from the new state; the history is cleared only
+        // once the observer has taken it, so that a path the observer stops keeps its last state.
+        let snapped = matches!(reached, Reached::Snap(_));
         if let Reached::Snap(snap) = reached {
-            self.history.clear();
             self.slope = None;
             record.snap = Some(snap);
         }
@@ -417,6 +419,9 @@ impl<S: Followed> Continuation<S> {
                 system: &self.system,
                 u: &u,
             })?;
+        }
+        if snapped {
+            self.history.clear();
         }
         self.history.push_back((d, u));
         if self.history.len() > PREDICTOR_POINTS {

@@ -301,7 +301,9 @@ mod spectrum;
 pub use biaxial::BiaxialPatch;
 pub use post_buckling::{PatchImperfection, PatchProtocol};
 pub use self_contact::surface_crosses_itself;
-pub use spectrum::{classify, height_spectrum, surface_spectrum, Direction, SurfacePattern, WaveVector};
+pub use spectrum::{
+    classify, height_spectrum, surface_spectrum, Direction, SurfacePattern, WaveVector, SECOND_DIRECTION,
+};
 
 /// A small patch of 4 x 3 elements over 8 x 6, one element through the layer and one through
 /// the substrate (the surface tests' mesh).

@@ -7,6 +7,8 @@ pub mod bench_stability;
 pub mod bifurcation;
 pub mod crease;
 pub mod crease_threshold;
+pub mod grid;
+pub mod grid_chart;
 pub mod homogeneous;
 pub mod keywords;
 pub mod map;

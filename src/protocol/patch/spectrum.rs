@@ -10,11 +10,11 @@
 //! an oblique one comes with its mirror image `(m, -n)`, each at half the product's amplitude.
 
 use crate::mesh::{Mesh, X, Y, Z};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
 /// One wave vector of the surface and its amplitude.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct WaveVector {
     /// `k = 2 pi (m / Lx, n / Lz)`, `m > 0` or `m = 0, n > 0` (`k` and `-k` are one wave).
     pub m: i64,
@@ -105,7 +105,7 @@ fn spectrum_of(mesh: &Mesh<3, 27>, height: impl Fn(usize) -> f64) -> Vec<WaveVec
 }
 
 /// What a surface's spectrum shows.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SurfacePattern {
     /// No wave above `FLAT_AMPLITUDE`.
@@ -131,7 +131,7 @@ pub const PATTERN_SHARE: f64 = 0.95;
 pub const SECOND_DIRECTION: f64 = 0.2;
 
 /// A direction of wave vectors and the share of the surface's spectral energy its waves hold.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Direction {
     /// The direction's leading wave.
     pub wave: WaveVector,

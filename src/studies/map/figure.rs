@@ -6,10 +6,9 @@
 use super::{First, MapPoint, MapReport, PostBuckling};
 use crate::error::Result;
 use crate::output::plot::{save_canvas, Canvas, FONT};
-use crate::output::ticks::{tick_label, AxisScale, RoundTicks};
 use crate::parameters::Parameters;
 use crate::stability::Minimum;
-use crate::studies::stability::parameter_scale;
+use crate::studies::grid_chart::{grid_chart, plotted, plotted_edges};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
@@ -46,18 +45,6 @@ pub fn regime(point: &MapPoint) -> usize {
     }
 }
 
-/// Cell edges around `values` (plotted coordinates): midpoints, half a cell beyond the ends.
-fn edges(values: &[f64]) -> Vec<f64> {
-    if values.len() == 1 {
-        return vec![values[0] - 0.5, values[0] + 0.5];
-    }
-    let mut e = vec![values[0] - 0.5 * (values[1] - values[0])];
-    e.extend(values.windows(2).map(|w| 0.5 * (w[0] + w[1])));
-    let n = values.len();
-    e.push(values[n - 1] + 0.5 * (values[n - 1] - values[n - 2]));
-    e
-}
-
 /// Writes `map.png` and `map.svg`.
 pub fn phase_diagram(report: &MapReport, out: &Path) -> Result<Vec<PathBuf>> {
     save_canvas(&PhaseDiagram(report), (980, 620), out, "map")
@@ -75,46 +62,15 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, report: &MapReport) ->
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
     root.fill(&WHITE).map_err(err)?;
     let (xa, ya) = (&report.study.x, &report.study.y);
-    // Plotted coordinates: log10 of a log axis.
-    let plot_x = |v: f64| if xa.log { v.log10() } else { v };
-    let plot_y = |v: f64| if ya.log { v.log10() } else { v };
-    let xs: Vec<f64> = xa.values().into_iter().map(plot_x).collect();
-    let ys: Vec<f64> = ya.values().into_iter().map(plot_y).collect();
-    let (xe, ye) = (edges(&xs), edges(&ys));
+    let (xe, ye) = (plotted_edges(xa), plotted_edges(ya));
     let (x0, x1, y0, y1) = (xe[0], xe[xe.len() - 1], ye[0], ye[ye.len() - 1]);
-    let scale = |a: &super::Axis| match a.log {
-        true => AxisScale::Log10,
-        false => parameter_scale(&a.name),
-    };
-    let axis_name = |a: &super::Axis| match scale(a) {
-        AxisScale::Log10 => format!("{} (log scale)", a.name),
-        AxisScale::Degrees => format!("{} (deg)", a.name),
-        AxisScale::Linear => a.name.clone(),
-    };
-    let (x_scale, y_scale) = (scale(xa), scale(ya));
     let (plot_area, legend_area) = root.split_horizontally(640);
-    let mut chart = ChartBuilder::on(&plot_area)
-        .caption(
-            "Which instability comes first, and what the wrinkle becomes",
-            (FONT, 20),
-        )
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(65)
-        .build_cartesian_2d(RoundTicks::new(x0, x1, x_scale), RoundTicks::new(y0, y1, y_scale))
-        .map_err(err)?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc(axis_name(xa))
-        .y_desc(axis_name(ya))
-        .x_label_formatter(&|v| tick_label(*v, x_scale))
-        .y_label_formatter(&|v| tick_label(*v, y_scale))
-        .label_style((FONT, 14))
-        .axis_desc_style((FONT, 16))
-        .draw()
-        .map_err(err)?;
-    let nx = xs.len();
+    let mut chart = grid_chart(
+        &plot_area,
+        "Which instability comes first, and what the wrinkle becomes",
+        (xa, ya),
+    )?;
+    let nx = xa.points;
     let regimes: Vec<usize> = report.points.iter().map(regime).collect();
     let mut legend = Vec::new();
     for (r, &(name, color)) in REGIMES.iter().enumerate() {
@@ -137,7 +93,7 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, report: &MapReport) ->
         if p.ix + 1 < nx && regimes[p.index + 1] != here {
             lines.push(vec![(xe[p.ix + 1], ye[p.iy]), (xe[p.ix + 1], ye[p.iy + 1])]);
         }
-        if p.iy + 1 < ys.len() && regimes[p.index + nx] != here {
+        if p.iy + 1 < ya.points && regimes[p.index + nx] != here {
             lines.push(vec![(xe[p.ix], ye[p.iy + 1]), (xe[p.ix + 1], ye[p.iy + 1])]);
         }
     }
@@ -176,7 +132,7 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, report: &MapReport) ->
     let table1 = Parameters::default();
     let mut paper = false;
     if let (Ok(px), Ok(py)) = (table1.number(&xa.name), table1.number(&ya.name)) {
-        let at = (plot_x(px), plot_y(py));
+        let at = (plotted(xa, px), plotted(ya, py));
         if (x0..=x1).contains(&at.0) && (y0..=y1).contains(&at.1) {
             chart
                 .draw_series(std::iter::once(Cross::new(at, 9, BLACK.stroke_width(3))))
@@ -231,15 +187,4 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, report: &MapReport) ->
             .map_err(err)?;
     }
     root.present().map_err(err)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn cell_edges_lie_halfway_and_half_a_cell_beyond_the_ends() {
-        assert_eq!(edges(&[1.0, 2.0, 4.0]), vec![0.5, 1.5, 3.0, 5.0]);
-        assert_eq!(edges(&[3.0]), vec![2.5, 3.5]);
-    }
 }

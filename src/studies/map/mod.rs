@@ -1,10 +1,7 @@
 //! `fiberfold map`: which instability comes first, and what the wrinkle becomes, over a grid of
-//! two parameters (`point` computes one point). Every point is written to
-//! `points/point-<index>.json` as soon as it is done, so an interrupted map resumes where it
-//! stopped, and a map split into shards (`index % N == I`, one SLURM array task each) is
-//! assembled by [`collect`] into `map.csv`, `map.json` and the phase diagram `map.png/svg`.
-//! `map-spec.json` holds the map's settings; a run or a collection with other settings in the
-//! same folder is refused.
+//! two parameters (`point` computes one point), computed point by point into a folder that
+//! resumes and shards ([`super::grid`]), and assembled by [`collect`] into `map.csv`,
+//! `map.json` and the phase diagram `map.png/svg`.
 
 mod figure;
 mod options;
@@ -14,78 +11,16 @@ pub use options::MapOptions;
 pub use point::{compute as compute_point, doubling, first_instability, post_buckling, First, MapPoint, PostBuckling};
 
 use super::crease::{CreaseMesh, CreaseStudy, Criterion, Refinement, Scan};
+use super::grid::{self, At, GridStudy};
+pub use super::grid::{Axis, Computed, Shard};
 use super::orientation::Modes;
-use super::{validate_points, Tick};
+use super::Tick;
 use crate::error::{Error, Result};
 use crate::output::table::{variant_name, Cell};
-use crate::output::{ensure_dir, write_json, write_json_shared, CsvWriter};
+use crate::output::{write_json, CsvWriter};
 use crate::parameters::Parameters;
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
-
-/// One axis of the map: `points` values of a numeric parameter from `from` to `to`, equally
-/// spaced or (with `log`) geometrically.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Axis {
-    pub name: String,
-    pub from: f64,
-    pub to: f64,
-    pub points: usize,
-    pub log: bool,
-}
-
-impl Axis {
-    pub fn values(&self) -> Vec<f64> {
-        if self.points == 1 {
-            return vec![self.from];
-        }
-        (0..self.points)
-            .map(|i| {
-                let t = i as f64 / (self.points - 1) as f64;
-                if self.log {
-                    self.from * (self.to / self.from).powf(t)
-                } else {
-                    self.from + (self.to - self.from) * t
-                }
-            })
-            .collect()
-    }
-
-    /// Checks the name (a numeric parameter), the range and the number of points; `flag` is the
-    /// CLI's prefix (`x` or `y`).
-    fn validate(&self, flag: &str, base: &Parameters) -> Result<()> {
-        if base.number(&self.name).is_err() {
-            return Err(Error::invalid(
-                flag,
-                &self.name,
-                &format!(
-                    "a numeric parameter of the laws in use: {}",
-                    base.numeric_keys().join(", ")
-                ),
-            ));
-        }
-        validate_points(&format!("{flag}-points"), self.points, 1)?;
-        if !self.from.is_finite() {
-            return Err(Error::invalid(&format!("{flag}-from"), self.from, "a finite number"));
-        }
-        if !(self.to.is_finite() && (self.points == 1 || self.to > self.from)) {
-            return Err(Error::invalid(
-                &format!("{flag}-to"),
-                self.to,
-                &format!("a finite number above {flag}-from = {}", self.from),
-            ));
-        }
-        if self.log && self.from <= 0.0 {
-            return Err(Error::invalid(
-                &format!("{flag}-from"),
-                self.from,
-                &format!("(0, inf) with --{flag}-log"),
-            ));
-        }
-        Ok(())
-    }
-}
 
 /// How each point is computed (the CLI's flags of the same names).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -226,42 +161,9 @@ pub struct MapStudy {
     pub settings: MapSettings,
 }
 
-/// `--shard I/N`: the points with `index % count == shard`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Shard {
-    pub index: usize,
-    pub count: usize,
-}
-
-impl Shard {
-    /// Parses `I/N` with `0 <= I < N`.
-    pub fn parse(text: &str) -> Result<Self> {
-        let bad = || {
-            Error::invalid(
-                "shard",
-                text,
-                "I/N with 0 <= I < N, e.g. 0/4 (SLURM_ARRAY_TASK_ID/SLURM_ARRAY_TASK_COUNT)",
-            )
-        };
-        let (i, n) = text.split_once('/').ok_or_else(bad)?;
-        let (index, count) = (
-            i.trim().parse().map_err(|_| bad())?,
-            n.trim().parse().map_err(|_| bad())?,
-        );
-        if count == 0 || index >= count {
-            return Err(bad());
-        }
-        Ok(Shard { index, count })
-    }
-}
-
 impl MapStudy {
     pub fn validate(&self) -> Result<()> {
-        self.x.validate("x", &self.base)?;
-        self.y.validate("y", &self.base)?;
-        if self.x.name == self.y.name {
-            return Err(Error::invalid("y", &self.y.name, "a parameter other than --x"));
-        }
+        grid::validate_axes(&self.base, &self.x, &self.y)?;
         self.settings.validate()?;
         self.settings.crease_mesh.element.check_for(self.base.incompressible)?;
         for axis in [&self.x, &self.y] {
@@ -280,82 +182,21 @@ impl MapStudy {
     }
 
     /// Every point `(index, ix, iy, x, y)` with its parameter set, `index = iy * nx + ix`.
-    #[allow(clippy::type_complexity)]
-    pub fn grid(&self) -> Result<Vec<((usize, usize, usize, f64, f64), Parameters)>> {
-        let (xs, ys) = (self.x.values(), self.y.values());
-        let mut grid = Vec::with_capacity(xs.len() * ys.len());
-        for (iy, &y) in ys.iter().enumerate() {
-            for (ix, &x) in xs.iter().enumerate() {
-                let mut p = self.base.clone();
-                self.assign(&mut p, &self.x.name, x)?;
-                self.assign(&mut p, &self.y.name, y)?;
-                grid.push(((iy * xs.len() + ix, ix, iy, x, y), p));
-            }
-        }
-        Ok(grid)
-    }
-
-    fn assign(&self, p: &mut Parameters, name: &str, value: f64) -> Result<()> {
-        match self.settings.keep_poisson {
-            true => p.set_number_keeping_poisson(name, value, &[&self.x.name, &self.y.name]),
-            false => p.set_number(name, value),
-        }
+    pub fn grid(&self) -> Result<Vec<(At, Parameters)>> {
+        grid::points(&self.base, &self.x, &self.y, self.settings.keep_poisson)
     }
 }
 
-/// What one `compute` did.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Computed {
-    pub points: usize,
-    pub reused: usize,
-}
+impl GridStudy for MapStudy {
+    type Point = MapPoint;
+    const COMMAND: &'static str = "map";
 
-fn point_path(out: &Path, index: usize) -> PathBuf {
-    out.join("points").join(format!("point-{index:05}.json"))
-}
-
-/// A point file and the study it was computed for.
-#[derive(Serialize, Deserialize)]
-struct PointFile {
-    study: MapStudy,
-    point: MapPoint,
-}
-
-/// Reads a finished point of `study` (None if absent; an error if it belongs to another map).
-fn read_point(study: &MapStudy, out: &Path, index: usize) -> Result<Option<MapPoint>> {
-    let path = point_path(out, index);
-    let Ok(text) = std::fs::read_to_string(&path) else {
-        return Ok(None);
-    };
-    let file: PointFile = serde_json::from_str(&text)
-        .map_err(|e| Error::invalid("out", path.display(), &format!("a point file of fiberfold map ({e})")))?;
-    if file.study != study.clone() {
-        return Err(mismatch(out));
+    fn points(&self) -> Result<Vec<(At, Parameters)>> {
+        self.grid()
     }
-    Ok(Some(file.point))
-}
 
-fn mismatch(out: &Path) -> Error {
-    Error::invalid(
-        "out",
-        out.display(),
-        "a folder holding a map of the same parameters and settings (it holds another: use another --out, or delete it)",
-    )
-}
-
-/// Writes `map-spec.json`, or checks that the one in `out` is `study`'s.
-fn claim_folder(study: &MapStudy, out: &Path) -> Result<()> {
-    ensure_dir(&out.join("points"))?;
-    let spec = out.join("map-spec.json");
-    match std::fs::read_to_string(&spec) {
-        Ok(text) => {
-            let stored: MapStudy = serde_json::from_str(&text).map_err(|_| mismatch(out))?;
-            if stored != *study {
-                return Err(mismatch(out));
-            }
-            Ok(())
-        }
-        Err(_) => write_json_shared(&spec, study),
+    fn compute_point(&self, at: At, parameters: Parameters, _folder: &Path) -> Result<MapPoint> {
+        point::compute(&self.settings, &self.settings.crease_study(), at, parameters)
     }
 }
 
@@ -363,38 +204,7 @@ fn claim_folder(study: &MapStudy, out: &Path) -> Result<()> {
 /// written as soon as it is done; `tick` once per point of the share, reused ones first.
 pub fn compute(study: &MapStudy, out: &Path, shard: Option<Shard>, tick: Tick) -> Result<Computed> {
     study.validate()?;
-    claim_folder(study, out)?;
-    let crease_study = study.settings.crease_study();
-    let share: Vec<_> = study
-        .grid()?
-        .into_iter()
-        .filter(|((index, ..), _)| shard.is_none_or(|s| index % s.count == s.index))
-        .collect();
-    let mut pending = Vec::new();
-    for (at, parameters) in &share {
-        if read_point(study, out, at.0)?.is_some() {
-            tick();
-        } else {
-            pending.push((*at, parameters.clone()));
-        }
-    }
-    let reused = share.len() - pending.len();
-    pending.into_par_iter().try_for_each(|(at, parameters)| {
-        let point = point::compute(&study.settings, &crease_study, at, parameters)?;
-        write_json_shared(
-            &point_path(out, at.0),
-            &PointFile {
-                study: study.clone(),
-                point,
-            },
-        )?;
-        tick();
-        Ok::<_, Error>(())
-    })?;
-    Ok(Computed {
-        points: share.len(),
-        reused,
-    })
+    grid::compute(study, out, shard, tick)
 }
 
 /// `map.json`.
@@ -426,28 +236,7 @@ const MAP_NOTE: &str = "d_wrinkle: minimum of the linear theory's d_c(k) (minimu
 /// diagram; refuses a folder of another map or with missing points.
 pub fn collect(study: &MapStudy, out: &Path) -> Result<(MapReport, Vec<PathBuf>)> {
     study.validate()?;
-    claim_folder(study, out)?;
-    let grid = study.grid()?;
-    let mut points = Vec::with_capacity(grid.len());
-    let mut missing = Vec::new();
-    for ((index, ..), _) in &grid {
-        match read_point(study, out, *index)? {
-            Some(p) => points.push(p),
-            None => missing.push(*index),
-        }
-    }
-    if let Some(first) = missing.first() {
-        return Err(Error::invalid(
-            "collect",
-            out.display(),
-            &format!(
-                "a folder with all {} points of the map; {} are missing (the first is point-{first:05}.json): \
-                 run their shards first",
-                grid.len(),
-                missing.len(),
-            ),
-        ));
-    }
+    let points = grid::finished_points(study, out)?;
     let report = MapReport {
         command: "map",
         study: study.clone(),

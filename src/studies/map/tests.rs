@@ -1,6 +1,7 @@
 //! The map's axes, grid, shards and folder claims.
 
 use super::*;
+use crate::studies::grid::claim_folder;
 
 fn axis(name: &str, from: f64, to: f64, log: bool) -> Axis {
     Axis {

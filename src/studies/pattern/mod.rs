@@ -14,11 +14,16 @@
 //! `state_top.png/svg`.
 
 mod figure;
+mod map;
+mod map_figure;
+mod map_files;
 mod options;
 mod path;
 
+pub use map::{compute_map, PatternMap, PatternMapOptions, PatternMapReport, PatternPoint};
+pub use map_files::collect as collect_map;
 pub use options::PatternOptions;
-pub use path::{PathStudy, PathSummary, PatternState};
+pub use path::{PathEnd, PathStudy, PathSummary, PatternState};
 
 use crate::error::{Error, Result};
 use crate::fem::element::{Hex27, ReferenceElement};
@@ -32,7 +37,7 @@ use crate::protocol::patch::{surface_spectrum, PatchBifurcation, PatchPath, Wave
 use crate::protocol::BifurcationSettings;
 use crate::stability::oblique::{box_modes, BoxMode};
 use crate::stability::{Method, StabilityAnalysis, Surface, SurfaceOnset};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -40,7 +45,7 @@ use std::time::Instant;
 const LISTED_WAVE_VECTORS: usize = 8;
 
 /// How the patch is sized and meshed, and the search's settings.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PatternStudy {
     /// `R = d_3 / d` in `[0, 1]`.
     pub biaxial: f64,
@@ -232,12 +237,32 @@ pub fn run(
     out: &Path,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<PatternReport> {
+    let report = compute(params, study, out, progress)?;
+    // A path that stopped early is a failure, reported once everything up to it is written.
+    if let Some(path) = report.path.as_ref().filter(|p| p.stopped.is_some()) {
+        return Err(Error::Solver(format!(
+            "the path past the onset stopped at d = {:.6} (asked: {}): {}; every state up to there is in {}",
+            path.d_reached,
+            path.d_end,
+            path.stopped.as_deref().unwrap_or_default(),
+            out.display()
+        )));
+    }
+    Ok(report)
+}
+
+/// [`run`], with a path that stops early reported in `pattern.json`'s `path.stopped` rather
+/// than as an error.
+pub fn compute(
+    params: &Parameters,
+    study: &PatternStudy,
+    out: &Path,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<PatternReport> {
     params.validate()?;
     let start = Instant::now();
-    if let Some(path) = &study.path {
-        path.validate()?;
-    }
     let (onset, spec) = size_patch(params, study)?;
+    let d_end = study.path.map(|path| path.validate(onset.onset.d_c)).transpose()?;
     // The elements and the tangent alone, before anything is allocated for the exact estimate:
     // about 97 stored entries per unknown in the lower triangle of 27-node hexahedra (64 nodes
     // coupled to each on average).
@@ -295,15 +320,15 @@ pub fn run(
     let title = format!("Bifurcation mode at d = {:.5}: surface u_Y, X and Z in H", found.d);
     files.extend(figure::perspective(&view, &title, out, "mode_3d")?);
     files.push(write_mode(out, &mesh, &found)?);
-    let followed = match &study.path {
-        Some(path_study) => {
-            let (summary, written) = path::follow(params, path, &admissible, path_study, out, &mut |state| {
+    let followed = match (&study.path, d_end) {
+        (Some(path_study), Some(d_end)) => {
+            let (summary, written) = path::follow(params, path, &admissible, path_study, d_end, out, &mut |state| {
                 progress(Progress::State(state))
             })?;
             files.extend(written);
             Some(summary)
         }
-        None => None,
+        _ => None,
     };
     let json = out.join("pattern.json");
     files.push(json.clone());
@@ -333,16 +358,6 @@ pub fn run(
         files: files.iter().map(|f| f.display().to_string()).collect(),
     };
     write_json(&json, &report)?;
-    // A path that stopped early is a failure, reported once everything up to it is written.
-    if let Some(path) = report.path.as_ref().filter(|p| p.stopped.is_some()) {
-        return Err(Error::Solver(format!(
-            "the path past the onset stopped at d = {:.6} (asked: {}): {}; every state up to there is in {}",
-            path.d_reached,
-            path.d_end,
-            path.stopped.as_deref().unwrap_or_default(),
-            out.display()
-        )));
-    }
     Ok(report)
 }
 

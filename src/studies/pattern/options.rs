@@ -2,7 +2,7 @@
 //! values as their defaults: what the command line reads (`clap` fills this struct, with these
 //! texts as the flags' help), turned into a validated [`PatternStudy`].
 
-use super::{PathStudy, PatternStudy};
+use super::{PathEnd, PathStudy, PatternStudy};
 use crate::error::{Error, Result};
 use crate::mesh::{ElementKind, Sides};
 use crate::protocol::BifurcationSettings;
@@ -60,8 +60,13 @@ pub struct PatternOptions {
     /// Follow the path past the onset to this d, in (d-start, 0.95): the patch seeded with every
     /// wave vector critical at the onset (on symmetry sides the products of cosines they
     /// admit), one row of pattern.csv per state. Not followed if absent.
-    #[arg(long, value_name = "D")]
+    #[arg(long, value_name = "D", conflicts_with = "follow_past")]
     pub follow_to: Option<f64>,
+
+    /// Follow the path as --follow-to does, to this far past the exact theory's onset d_c
+    /// (d_c + DELTA below 0.95): in a map of patterns each point ends as far past its own onset.
+    #[arg(long, value_name = "DELTA")]
+    pub follow_past: Option<f64>,
 
     /// Amplitude A_init of the first seeded wave of the path's imperfection, in layer
     /// thicknesses H, in (0, 1).
@@ -74,7 +79,7 @@ pub struct PatternOptions {
     #[arg(long, default_value_t = PathStudy::default().seed_ratio)]
     pub seed_ratio: f64,
 
-    /// Where the followed path starts, in (0, --follow-to).
+    /// Where the followed path starts, in (0, the path's end).
     #[arg(long, default_value_t = PathStudy::default().d_start)]
     pub d_start: f64,
 
@@ -114,11 +119,16 @@ impl PatternOptions {
                 tolerance: self.tolerance,
                 ..study().settings
             },
-            path: self.follow_to.map(|d_end| PathStudy {
+            path: match (self.follow_to, self.follow_past) {
+                (Some(d_end), _) => Some(PathEnd::At(d_end)),
+                (None, Some(past)) => Some(PathEnd::PastOnset(past)),
+                (None, None) => None,
+            }
+            .map(|end| PathStudy {
                 imperfection: self.imperfection,
                 seed_ratio: self.seed_ratio,
                 d_start: self.d_start,
-                d_end,
+                end,
             }),
             force: self.force,
         })
@@ -147,7 +157,9 @@ mod tests {
         assert_eq!(format!("{study:?}"), format!("{default:?}"));
         let followed = parse(&["--follow-to", "0.12", "--seed-ratio", "1"]).study().unwrap();
         let path = followed.path.expect("a path");
-        assert_eq!((path.d_end, path.seed_ratio), (0.12, 1.0));
+        assert_eq!((path.end, path.seed_ratio), (PathEnd::At(0.12), 1.0));
+        let past = parse(&["--follow-past", "0.05"]).study().unwrap().path.expect("a path");
+        assert_eq!(past.end, PathEnd::PastOnset(0.05));
         let message = |flags: &[&str]| parse(flags).study().unwrap_err().to_string();
         assert!(message(&["--tolerance", "1"]).contains("`tolerance`"));
         assert!(message(&["--d-max", "0.99"]).contains("`d-max`"));

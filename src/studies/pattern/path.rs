@@ -23,12 +23,12 @@ use crate::protocol::patch::{
 };
 use crate::protocol::Event;
 use crate::stability::oblique::BoxMode;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
 /// How the path past the onset is followed.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PathStudy {
     /// `A_init`, the amplitude of the first seeded wave.
     pub imperfection: f64,
@@ -39,7 +39,18 @@ pub struct PathStudy {
     /// Where the path starts.
     pub d_start: f64,
     /// Where it ends.
-    pub d_end: f64,
+    pub end: PathEnd,
+}
+
+/// Where a path past the onset ends.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PathEnd {
+    /// At this `d` (`--follow-to`).
+    At(f64),
+    /// This far in `d` past the exact theory's onset `d_c` of the tissue (`--follow-past`):
+    /// every point of a map of patterns then ends as far past its own onset.
+    PastOnset(f64),
 }
 
 impl Default for PathStudy {
@@ -49,31 +60,48 @@ impl Default for PathStudy {
             imperfection: 0.01,
             seed_ratio: 0.5,
             d_start: crate::protocol::STAGE_ONE_COMPRESSION,
-            d_end: 0.2,
+            end: PathEnd::At(0.2),
         }
     }
 }
 
 impl PathStudy {
-    /// Checks `A_init` in `(0, 1)`, `d_start` in `(0, d_end)` and `d_end` below 0.95.
-    pub fn validate(&self) -> Result<()> {
+    /// Checks `A_init` in `(0, 1)`, the seed ratio in `[0, 1]`, and the path's end, given the
+    /// theory's onset `d_c`, in `(d_start, 0.95)`: that end.
+    pub fn validate(&self, d_c: f64) -> Result<f64> {
         if !(self.imperfection.is_finite() && self.imperfection > 0.0 && self.imperfection < 1.0) {
             return Err(Error::invalid("imperfection", self.imperfection, "(0, 1)"));
         }
         if !(0.0..=1.0).contains(&self.seed_ratio) {
             return Err(Error::invalid("seed-ratio", self.seed_ratio, "[0, 1]"));
         }
-        if !(self.d_end.is_finite() && self.d_end < 0.95) {
-            return Err(Error::invalid("follow-to", self.d_end, "(d-start, 0.95)"));
-        }
-        if !(self.d_start.is_finite() && self.d_start > 0.0 && self.d_start < self.d_end) {
+        let d_end = match self.end {
+            PathEnd::At(d_end) => {
+                if !(d_end.is_finite() && d_end < 0.95) {
+                    return Err(Error::invalid("follow-to", d_end, "(d-start, 0.95)"));
+                }
+                d_end
+            }
+            PathEnd::PastOnset(past) => {
+                let d_end = d_c + past;
+                if !(past.is_finite() && past > 0.0 && d_end < 0.95) {
+                    return Err(Error::invalid(
+                        "follow-past",
+                        past,
+                        &format!("(0, {:.4}): the onset d_c = {d_c:.4} plus it below 0.95", 0.95 - d_c),
+                    ));
+                }
+                d_end
+            }
+        };
+        if !(self.d_start.is_finite() && self.d_start > 0.0 && self.d_start < d_end) {
             return Err(Error::invalid(
                 "d-start",
                 self.d_start,
-                &format!("(0, follow-to = {})", self.d_end),
+                &format!("(0, {d_end}), the path's end"),
             ));
         }
-        Ok(())
+        Ok(d_end)
     }
 }
 
@@ -141,18 +169,18 @@ const COLUMNS: [&str; 17] = [
     "share2",
 ];
 
-/// Follows `path` (whose first bifurcation is found) seeded with the critical ones of the
-/// admissible wave vectors `modes` (sorted by `d_c`), writes the files (module docs) into `out`
+/// Follows `path` (whose first bifurcation is found) to `d_end`, seeded with the critical ones
+/// of the admissible wave vectors `modes` (sorted by `d_c`), writes the files (module docs) into `out`
 /// and tells `progress` every state.
 pub fn follow(
     params: &Parameters,
     path: PatchPath<'_>,
     modes: &[BoxMode],
     study: &PathStudy,
+    d_end: f64,
     out: &Path,
     progress: &mut dyn FnMut(&PatternState),
 ) -> Result<(PathSummary, Vec<PathBuf>)> {
-    study.validate()?;
     let mesh = path.system().mesh().clone();
     // Periodic sides admit `k = 2 pi (m / Lx, n / Lz)`; symmetry sides the products of cosines
     // of `pi (m / Lx, n / Lz)`, one for a mirror pair `(m, +-n)`.
@@ -185,7 +213,7 @@ pub fn follow(
     let mut states: Vec<PatternState> = Vec::new();
     let mut branches_left = Vec::new();
     let mut last_u = Vec::new();
-    let protocol = PatchProtocol::new(study.d_start, study.d_end);
+    let protocol = PatchProtocol::new(study.d_start, d_end);
     let (continuation, stopped) = path.follow(&imperfection, &protocol, &mut |event: Event<'_, BiaxialPatch>| {
         let Event::Step { record, system, u } = event else {
             return Ok(());
@@ -243,7 +271,7 @@ pub fn follow(
         seed_ratio: study.seed_ratio,
         seeded: seeded.iter().map(|m| (m.m, m.n)).collect(),
         d_start: study.d_start,
-        d_end: study.d_end,
+        d_end,
         d_reached: d,
         states: states.len(),
         stopped: stopped.map(|e| e.to_string()),
