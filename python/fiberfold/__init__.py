@@ -256,17 +256,18 @@ def pattern(
     follow_to: Optional[float] = None,
     imperfection: float = 0.01,
     out: Optional[str] = None,
+    follow_past: Optional[float] = None,
 ) -> Dict[str, Any]:
     """A patch of tissue in three dimensions under ``d_3 = biaxial * d`` (``fiberfold
     pattern``): the content of ``pattern.json`` (``d_bifurcation``, ``negative_pivots``, the
     theory's ``d_c_admissible`` over the patch's wave vectors, ``mode_wave_vectors``, the
-    ``patch``, ...). With ``follow_to``, the path past the onset is followed to that ``d``,
-    seeded with every critical wave of amplitude ``imperfection``: ``path`` then holds its
-    summary (the pattern's ``changes``, the ``last`` state) and ``pattern.csv`` one row per
-    state. Its files (VTU, spectra, top views) go to ``out``, or to a temporary folder that is
-    removed."""
+    ``patch``, ...). With ``follow_to``, the path past the onset is followed to that ``d``
+    (with ``follow_past`` instead, to the theory's onset ``d_c`` plus it), seeded with every
+    critical wave of amplitude ``imperfection``: ``path`` then holds its summary (the pattern's
+    ``changes``, the ``last`` state) and ``pattern.csv`` one row per state. Its files (VTU,
+    spectra, top views) go to ``out``, or to a temporary folder that is removed."""
     params = _check_parameters(params)
-    arguments = (biaxial, periods, elements_per_wavelength, follow_to, imperfection)
+    arguments = (biaxial, periods, elements_per_wavelength, follow_to, imperfection, follow_past)
     if out is not None:
         return json.loads(_fiberfold.pattern_run(params, str(out), *arguments))
     with tempfile.TemporaryDirectory() as folder:

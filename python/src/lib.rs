@@ -337,9 +337,10 @@ fn bifurcation_run(
 }
 
 /// A patch of tissue in three dimensions (`fiberfold pattern`), written into `out`; returns
-/// `pattern.json` as JSON text.
+/// `pattern.json` as JSON text. The path is followed to `follow_to`, or to the theory's onset
+/// plus `follow_past` (not both).
 #[pyfunction]
-#[pyo3(signature = (params, out, biaxial=1.0, periods=1, elements_per_wavelength=6, follow_to=None, imperfection=0.01))]
+#[pyo3(signature = (params, out, biaxial=1.0, periods=1, elements_per_wavelength=6, follow_to=None, imperfection=0.01, follow_past=None))]
 #[allow(clippy::too_many_arguments)]
 fn pattern_run(
     py: Python<'_>,
@@ -350,15 +351,28 @@ fn pattern_run(
     elements_per_wavelength: usize,
     follow_to: Option<f64>,
     imperfection: f64,
+    follow_past: Option<f64>,
 ) -> PyResult<String> {
     use fiberfold::studies::pattern::{run, PathEnd, PathStudy, PatternStudy};
+    let end = match (follow_to, follow_past) {
+        (Some(_), Some(_)) => {
+            return Err(to_py(fiberfold::Error::invalid(
+                "follow_past",
+                "given with follow_to",
+                "one of follow_to and follow_past",
+            )))
+        }
+        (Some(d_end), None) => Some(PathEnd::At(d_end)),
+        (None, Some(past)) => Some(PathEnd::PastOnset(past)),
+        (None, None) => None,
+    };
     let study = PatternStudy {
         biaxial,
         periods,
         elements_per_wavelength,
-        path: follow_to.map(|d_end| PathStudy {
+        path: end.map(|end| PathStudy {
             imperfection,
-            end: PathEnd::At(d_end),
+            end,
             ..PathStudy::default()
         }),
         ..PatternStudy::default()

@@ -424,3 +424,14 @@ def test_the_pattern_past_the_onset_of_inclined_fibres_is_stripes_along_them():
     assert last["amplitude"] > 10 * path["imperfection"]
     with pytest.raises(ValueError, match="follow-to"):
         fiberfold.pattern(p, follow_to=0.99)
+
+
+def test_a_path_followed_past_the_onset_ends_that_far_past_the_theorys_onset():
+    # Vertical fibres on a coarse patch: the path ends at the theory's d_c + 0.01.
+    p = fiberfold.Parameters(beta=1.5707963)
+    r = fiberfold.pattern(p, elements_per_wavelength=3, follow_past=0.01)
+    assert abs(r["path"]["d_reached"] - (r["onset_theory"]["d_c"] + 0.01)) < 1e-9
+    with pytest.raises(ValueError, match="follow_past"):
+        fiberfold.pattern(p, follow_to=0.2, follow_past=0.01)
+    with pytest.raises(ValueError, match="follow-past"):
+        fiberfold.pattern(p, follow_past=0.9)
