@@ -74,6 +74,10 @@ pub enum Error {
     #[error("interrupted: {0}")]
     Interrupted(String),
 
+    /// A checkpoint that a run cannot continue from (user input): says why.
+    #[error("cannot resume from {0}")]
+    Resume(String),
+
     /// Rendering a plot.
     #[error("plot {path}: {message}")]
     Plot { path: String, message: String },
@@ -90,6 +94,7 @@ impl Error {
                 | Error::MissingConstant { .. }
                 | Error::NotAConstant { .. }
                 | Error::WrongType { .. }
+                | Error::Resume(_)
         )
     }
 

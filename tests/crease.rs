@@ -96,10 +96,8 @@ fn a_run_to_a_crease_writes_contact_secondary_and_pressure() {
     let mut protocol = Protocol::new(2.0 * PI / 10.0, 0.05, 0.36).with_crease_path();
     protocol.newton.inertia_at_solution = true;
     let study = SimulateStudy {
-        mesh: MeshSpec::new(20, 2, 8, 0.5, 10.0, 10.0),
-        protocol,
         vtu_every: 0.1,
-        secondary_modes: simulate::MODES,
+        ..SimulateStudy::new(MeshSpec::new(20, 2, 8, 0.5, 10.0, 10.0), protocol)
     };
     let params = Parameters {
         beta: FRAC_PI_4,

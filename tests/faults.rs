@@ -1,16 +1,18 @@
 //! Faults of a cluster's file systems: a disk that fills up during `simulate` and `map`, and a
 //! read-only output folder. Each gives a one-line error naming the file and a non-zero exit,
 //! leaves no partial file under a final name, and, once space is freed, the next run succeeds
-//! (`map` resuming from the points it had written). They mount file systems (a small tmpfs, a
+//! (`map` resuming from the points it had written, `simulate --resume` from its last
+//! checkpoint, which the full disk left whole). They mount file systems (a small tmpfs, a
 //! read-only bind mount), so they need root: ignored by a plain `cargo test`, run by `.ci/run`
 //! with `--ignored`.
 
 mod common;
 
 use common::files::check_complete;
+use common::resume::{assert_same_files, rows, run_args};
 use common::{fiberfold, map_points, quick_simulate, scratch, tiny_map_of};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::{Command, Output, Stdio};
 
 /// A file system mounted on a scratch folder, unmounted when dropped.
 struct Mounted(PathBuf);
@@ -103,6 +105,46 @@ fn a_disk_that_fills_during_simulate_is_named_and_leaves_complete_files() {
     assert!(again.status.success(), "{}", String::from_utf8_lossy(&again.stderr));
     assert!(out.join("simulate.json").is_file());
     check_complete(&out);
+}
+
+#[test]
+#[ignore = "mounts a tmpfs as root: run by .ci/run with --ignored"]
+fn a_disk_that_fills_while_a_checkpoint_is_written_keeps_the_last_one_and_the_run_resumes() {
+    let with_few_snapshots = |out: &Path| [run_args("mixed", out), vec!["--vtu-every".into(), "0.5".into()]].concat();
+    let whole = scratch("full-checkpoint-whole");
+    assert!(fiberfold(&with_few_snapshots(&whole)).status.success());
+
+    let disk = Mounted::tmpfs("full-checkpoint", 64 * 1024);
+    let out = disk.0.join("run");
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_fiberfold"))
+        .args(with_few_snapshots(&out))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Once the checkpoints are under way, the disk is filled but for room for rows, not for a
+    // checkpoint (about 2 MB) beside the last one.
+    while !(out.join("checkpoint.bin").is_file() && rows(&out).len() > 20) {
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    fill_leaving(&disk.0, 256);
+    let failed = run.wait_with_output().unwrap();
+    assert_one_line_error(&failed, &out, "No space left on device", 1);
+    let stderr = String::from_utf8_lossy(&failed.stderr);
+    assert!(stderr.contains("checkpoint.bin"), "the disk filled elsewhere: {stderr}");
+    check_complete(&out);
+    assert!(
+        rows(&out).len() < rows(&whole).len(),
+        "the disk filled after the run's end"
+    );
+
+    std::fs::remove_file(disk.0.join("filler")).unwrap();
+    let resumed = fiberfold(&[with_few_snapshots(&out), vec!["--resume".into()]].concat());
+    let said = String::from_utf8_lossy(&resumed.stdout);
+    assert!(resumed.status.success(), "{}", String::from_utf8_lossy(&resumed.stderr));
+    assert!(said.contains("resuming at d = "), "{said}");
+    assert_same_files(&whole, &out, "resumed after a full disk");
+    let _ = std::fs::remove_dir_all(&whole);
 }
 
 #[test]

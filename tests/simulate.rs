@@ -93,10 +93,8 @@ fn fixed_step_study(step: f64, d_max: f64) -> SimulateStudy {
         ..StepControl::default()
     };
     SimulateStudy {
-        mesh: small_mesh(),
-        protocol,
         vtu_every: 0.05,
-        secondary_modes: simulate::MODES,
+        ..SimulateStudy::new(small_mesh(), protocol)
     }
 }
 

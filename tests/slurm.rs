@@ -1,16 +1,23 @@
-//! The map as a SLURM job array on a real single-node SLURM (`ci/slurm.sh`, as root): two array
+//! Jobs on a real single-node SLURM (`ci/slurm.sh`, as root). The map as a job array: two array
 //! tasks compute their shards into one folder; one of them is killed (`scancel --signal=KILL`)
 //! while it computes a point and requeued (`scontrol requeue`), and resumes from the points it
-//! had written; `--collect` assembles the shards, and the result equals the unsharded map.
+//! had written; `--collect` assembles the shards, and the result equals the unsharded map. A
+//! `simulate` job with `--resume`, killed after its first checkpoint and requeued, finishes with
+//! the files of the uninterrupted run.
 //! Ignored by a plain `cargo test` (it installs and starts daemons); `.ci/run` runs it with
 //! `--ignored`.
 
 mod common;
 
+use common::resume::{assert_same_files, rows, run_args};
 use common::{fiberfold, map_points, scratch, tiny_map_of};
 use std::path::Path;
 use std::process::Command;
+use std::sync::Mutex;
 use std::time::{Duration, Instant};
+
+/// Each test starts and stops the cluster: one at a time.
+static CLUSTER: Mutex<()> = Mutex::new(());
 
 fn slurm(action: &str, dir: &Path) {
     let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("ci/slurm.sh");
@@ -64,6 +71,7 @@ fn shard_zero_points(dir: &Path) -> usize {
 #[test]
 #[ignore = "starts a real SLURM as root: run by .ci/run with --ignored"]
 fn a_killed_and_requeued_array_task_resumes_and_the_array_computes_the_same_map() {
+    let _one = CLUSTER.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
     let state = scratch("slurm-state");
     slurm("start", &state);
     let outcome = std::panic::catch_unwind(|| {
@@ -161,6 +169,78 @@ fn a_killed_and_requeued_array_task_resumes_and_the_array_computes_the_same_map(
         assert!(unsharded.status.success());
         assert_eq!(map_points(&sharded), map_points(&whole));
         let _ = std::fs::remove_dir_all(&sharded);
+        let _ = std::fs::remove_dir_all(&whole);
+    });
+    slurm("stop", &state);
+    if let Err(panic) = outcome {
+        std::panic::resume_unwind(panic);
+    }
+}
+
+#[test]
+#[ignore = "starts a real SLURM as root: run by .ci/run with --ignored"]
+fn a_killed_and_requeued_simulate_job_resumes_to_the_uninterrupted_path() {
+    let _one = CLUSTER.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    let state = scratch("slurm-simulate-state");
+    slurm("start", &state);
+    let outcome = std::panic::catch_unwind(|| {
+        let dir = scratch("slurm-simulate");
+        std::fs::create_dir_all(&dir).unwrap();
+        let out = dir.join("run");
+        // The job always passes --resume: its first start finds no checkpoint.
+        let args = [run_args("mixed", &out), vec!["--resume".to_string()]].concat();
+        let command: Vec<String> = std::iter::once(env!("CARGO_BIN_EXE_fiberfold").to_string())
+            .chain(args.iter().map(|a| format!("'{a}'")))
+            .collect();
+        let job = dir.join("job.sh");
+        std::fs::write(
+            &job,
+            format!(
+                "#!/bin/bash\nset -e\nexport RAYON_NUM_THREADS=1\n{}\n",
+                command.join(" ")
+            ),
+        )
+        .unwrap();
+        let log = dir.join("job.log");
+        let id = client(
+            &state,
+            "sbatch",
+            &[
+                "--parsable",
+                "--requeue",
+                "--open-mode=append",
+                "-o",
+                log.to_str().unwrap(),
+                job.to_str().unwrap(),
+            ],
+        );
+        let running = || {
+            let state_of = client(&state, "squeue", &["-h", "-j", &id, "-o", "%T"]);
+            state_of == "RUNNING" || state_of == "COMPLETING"
+        };
+        wait_until(120, "the job's first checkpoint", || {
+            out.join("checkpoint.bin").is_file() && rows(&out).len() > 15
+        });
+        client(&state, "scancel", &["--signal=KILL", &id]);
+        wait_until(60, "the killed job to end", || !running());
+        assert!(!out.join("simulate.json").exists(), "the kill came after the job's end");
+        client(&state, "scontrol", &["requeue", &id]);
+        client(&state, "scontrol", &["update", &format!("JobId={id}"), "StartTime=now"]);
+        wait_until(300, "the requeued job to end", || {
+            client(&state, "squeue", &["-h", "-j", &id]).is_empty() && out.join("simulate.json").is_file()
+        });
+        let said = std::fs::read_to_string(&log).unwrap_or_default();
+        assert_eq!(said.matches("no checkpoint in").count(), 1, "{said}");
+        assert!(
+            said.contains("resuming at d = "),
+            "the requeued job did not resume: {said}"
+        );
+
+        let whole = scratch("slurm-simulate-whole");
+        let uninterrupted = fiberfold(&run_args("mixed", &whole));
+        assert!(uninterrupted.status.success());
+        assert_same_files(&whole, &out, "killed and requeued on SLURM");
+        let _ = std::fs::remove_dir_all(&dir);
         let _ = std::fs::remove_dir_all(&whole);
     });
     slurm("stop", &state);

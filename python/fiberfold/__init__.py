@@ -185,6 +185,7 @@ def simulate(
     waves: Optional[float] = None,
     *,
     progress: Optional[Callable[[Dict[str, Any]], None]] = None,
+    out: Optional[str] = None,
     **options: Any,
 ) -> Simulation:
     """The paper's finite-element protocol, exactly as ``fiberfold simulate``, with the same
@@ -203,7 +204,10 @@ def simulate(
     limit point in d along the unstable branch (with ``contact=False, stabilisation="none"``;
     ``d`` then falls and rises again). ``progress`` is
     called with a dict (``event``: ``"stage"``, ``"step"`` or ``"cut"``; ``d``, ``A``,
-    ``message``...) after every stage, accepted state and cut. An unknown option raises
+    ``message``...) after every stage, accepted state and cut. With ``out``, the run also
+    writes the command's files into that folder, with its checkpoints (``checkpoint_every``,
+    ``checkpoint_seconds``); ``resume=True`` then continues from the checkpoint there, as
+    ``fiberfold simulate --resume`` does (from the beginning if there is none). An unknown option raises
     ``ValueError``, a value of the wrong type ``TypeError``. Raises :class:`SolverError` (with
     ``result``, the path so far) if the path stops before ``d_max``.
     """
@@ -211,8 +215,11 @@ def simulate(
         raise TypeError("progress must be callable")
     if waves is not None:
         options["waves"] = waves
+    if options.get("resume") and out is None:
+        raise ValueError("resume=True continues the checkpoint of a folder: give out")
     keywords = json.dumps(options, default=_plain)
-    columns, summary, state, stopped = _fiberfold.simulate_run(_check_parameters(params), keywords, progress)
+    folder = None if out is None else str(out)
+    columns, summary, state, stopped = _fiberfold.simulate_run(_check_parameters(params), keywords, progress, folder)
     result = Simulation(columns, json.loads(summary), state, stopped)
     if stopped is not None:
         error = SolverError(f"{stopped}; the path up to d = {result.d_reached:.6f} is in the exception's `result`")

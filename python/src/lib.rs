@@ -241,18 +241,20 @@ fn shaped<'py>(py: Python<'py>, array: &DataArray) -> Bound<'py, PyAny> {
     }
 }
 
-/// Runs `simulate` in memory with `options`, a JSON object of `fiberfold simulate`'s options
-/// (the library's names; the missing ones at its defaults, [`simulate_defaults`]). Returns
+/// Runs `simulate` with `options`, a JSON object of `fiberfold simulate`'s options (the
+/// library's names; the missing ones at its defaults, [`simulate_defaults`]): in memory, or
+/// writing its files (and checkpoints, from which `resume` continues) into `out`. Returns
 /// `(columns, summary_json, state, stopped)`: the `amplitude.csv` columns as arrays, the JSON
-/// text of `simulate.json` (with no files), the last state, and why the path stopped early (None
-/// if it reached `d_max`).
+/// text of `simulate.json` (with no files in memory), the last state, and why the path stopped
+/// early (None if it reached `d_max`).
 #[pyfunction]
-#[pyo3(signature = (params, options, progress))]
+#[pyo3(signature = (params, options, progress, out=None))]
 fn simulate_run<'py>(
     py: Python<'py>,
     params: &PyParameters,
     options: &str,
     progress: Option<Py<PyAny>>,
+    out: Option<PathBuf>,
 ) -> PyResult<(Bound<'py, PyDict>, String, PyState, Option<String>)> {
     let options = SimulateOptions::from_keywords(options).map_err(to_py)?;
     let study = options.study().map_err(to_py)?;
@@ -293,11 +295,16 @@ fn simulate_run<'py>(
         })
     };
     let start = std::time::Instant::now();
-    let solution = py.detach(|| simulate::solve(&p, &study, &monitor));
+    let solved = py.detach(|| match &out {
+        Some(out) => {
+            simulate::run_keeping(&p, &study, out, &monitor).map(|(summary, solution)| (Some(summary), solution))
+        }
+        None => simulate::solve(&p, &study, &monitor).map(|solution| (None, solution)),
+    });
     if let Some(e) = raised.lock().expect("not poisoned").take() {
         return Err(e);
     }
-    let solution = solution.map_err(to_py)?;
+    let (written, solution) = solved.map_err(to_py)?;
     let header = amplitude_header();
     let rows: Vec<Vec<f64>> = solution.curve.records.iter().map(amplitude_row).collect();
     let columns = PyDict::new(py);
@@ -305,8 +312,9 @@ fn simulate_run<'py>(
         let column: Vec<f64> = rows.iter().map(|r| r[c]).collect();
         columns.set_item(*name, column.into_pyarray(py))?;
     }
-    // The summary of `simulate.json`, without files.
-    let summary = SimulationSummary::new(&p, &study, &solution, Vec::new(), start.elapsed().as_secs_f64());
+    // The summary of `simulate.json`, without files when in memory.
+    let summary = written
+        .unwrap_or_else(|| SimulationSummary::new(&p, &study, &solution, Vec::new(), start.elapsed().as_secs_f64()));
     let summary = serde_json::to_string(&summary).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
     let stopped = solution.curve.stopped.as_ref().map(|e| e.to_string());
     Ok((columns, summary, PyState { fields: solution.state }, stopped))

@@ -137,11 +137,39 @@ def without_times_and_files(value):
         return {
             k: without_times_and_files(v)
             for k, v in value.items()
-            if "seconds" not in k and k not in ("files", "mode_file", "totals")
+            if "seconds" not in k and k not in ("files", "mode_file", "totals", "checkpoints")
         }
     if isinstance(value, list):
         return [without_times_and_files(v) for v in value]
     return value
+
+
+class Stop(Exception):
+    pass
+
+
+def test_simulate_into_a_folder_resumes_from_its_checkpoint(tmp_path):
+    p = fiberfold.Parameters(beta=0.785398)
+    run = dict(d_max=0.06, checkpoint_every=1, **TINY)
+    whole = fiberfold.simulate(p, 4.5, out=tmp_path / "whole", **run)
+    assert (tmp_path / "whole" / "checkpoint.bin").is_file()
+    assert whole.summary["checkpoints"]["written"] == len(whole.amplitude["d"]) - 1
+
+    def stop_past(info):
+        if info["event"] == "step" and info["d"] > 0.03:
+            raise Stop()
+
+    folder = tmp_path / "stopped"
+    with pytest.raises(Stop):
+        fiberfold.simulate(p, 4.5, out=folder, progress=stop_past, **run)
+    said = []
+    resumed = fiberfold.simulate(p, 4.5, out=folder, resume=True, progress=said.append, **run)
+    assert any(e.get("message", "").startswith("resuming at d = 0.0") for e in said), said
+    for column in whole.amplitude:
+        if "seconds" not in column:
+            assert list(resumed.amplitude[column]) == list(whole.amplitude[column]), column
+    with pytest.raises(ValueError, match="out"):
+        fiberfold.simulate(p, 4.5, resume=True, **run)
 
 
 def test_arc_length_reaches_displacement_controls_state():

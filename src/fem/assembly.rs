@@ -31,6 +31,7 @@ mod tangent;
 
 pub use tangent::Tangent;
 
+pub use pattern::StoredEntries;
 use pattern::{Pattern, Slot};
 
 /// The assembled nonlinear system at one displacement.
@@ -210,6 +211,24 @@ where
         moved.set_biaxial_load(self.load, self.load3);
         moved.pattern = self.pattern;
         Ok(moved)
+    }
+
+    /// What rebuilds the current sparsity pattern with the same stored entries, if one is built.
+    pub fn stored_entries(&self) -> Option<StoredEntries> {
+        self.pattern.as_ref().map(Pattern::stored_entries)
+    }
+
+    /// The sparsity pattern rebuilt from `entries` ([`System::stored_entries`] of this system
+    /// at an earlier state), or none.
+    pub fn recall_stored_entries(&mut self, entries: Option<StoredEntries>) -> Result<()> {
+        self.pattern =
+            match entries {
+                Some(entries) => Some(Pattern::rebuilt(&self.mesh, entries).ok_or_else(|| {
+                    Error::invalid("checkpoint", "its sparsity pattern", "one of this run's unknowns")
+                })?),
+                None => None,
+            };
+        Ok(())
     }
 
     /// Whether an assembly with `bc` prescribed and `groups` added keeps the current stored

@@ -10,10 +10,10 @@ use crate::material::ellipticity::referential_margin;
 use crate::material::Hyperelastic;
 use crate::mesh::Region;
 use rayon::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// The smallest strong-ellipticity margin over the Gauss points of each layer (units of `mu_s`).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct EllipticityMargins {
     pub layer: f64,
     pub substrate: f64,

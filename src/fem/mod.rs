@@ -20,7 +20,7 @@ pub mod linear_solver;
 pub mod memory;
 pub mod newton;
 
-pub use assembly::{Assembled, PatchSystem, System, Tangent};
+pub use assembly::{Assembled, PatchSystem, StoredEntries, System, Tangent};
 pub use boundary::Dirichlet;
 pub use element::{ElementKind, LOCKING_RATIO};
 pub use linear_solver::{Factorisation, SparseLdlt};

@@ -1,6 +1,7 @@
 //! Results on disk: CSV tables flushed row by row, JSON summaries, PNG/SVG figures.
 
 pub mod atomic;
+pub mod checkpoint;
 pub mod lock;
 pub mod plot;
 pub mod table;

@@ -205,6 +205,22 @@ impl Collection {
         }
     }
 
+    /// The collection at `path` listing `entries` (`(d, file name)`, as
+    /// [`Collection::entries`] gave them), rewritten.
+    pub fn with_entries(path: &Path, entries: Vec<(f64, String)>) -> Result<Self> {
+        let collection = Collection {
+            path: path.to_path_buf(),
+            entries,
+        };
+        collection.write()?;
+        Ok(collection)
+    }
+
+    /// The files listed, `(d, file name)`.
+    pub fn entries(&self) -> &[(f64, String)] {
+        &self.entries
+    }
+
     /// Adds `file` (a path in the collection's folder) at time `d` and rewrites the collection.
     pub fn add(&mut self, d: f64, file: &Path) -> Result<()> {
         let name = file
@@ -212,6 +228,10 @@ impl Collection {
             .map(|n| n.to_string_lossy().to_string())
             .unwrap_or_default();
         self.entries.push((d, name));
+        self.write()
+    }
+
+    fn write(&self) -> Result<()> {
         let mut text = String::from(r#"<?xml version="1.0"?>"#);
         text.push_str("\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n<Collection>\n");
         for (time, file) in &self.entries {

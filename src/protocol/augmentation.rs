@@ -3,16 +3,16 @@
 //! ([`crate::fem::contact`]), and viscous stabilisation ([`super::stabilisation`]); with what
 //! each accepted step reports about them.
 
-use super::stabilisation::{Stabilisation, StabilisationSettings};
-use crate::error::Result;
+use super::stabilisation::{Stabilisation, StabilisationMemory, StabilisationSettings};
+use crate::error::{Error, Result};
 use crate::fem::added::{AddedEnergy, NoAddedEnergy, Sum};
-use crate::fem::contact::{Contact, ContactSettings, Plane};
+use crate::fem::contact::{Contact, ContactMemory, ContactSettings, Plane};
 use crate::fem::equilibrium::{minimise, solve_with, solve_with_contact};
 use crate::fem::inertia::BackgroundInertia;
 use crate::fem::{Assembled, Dirichlet, Newton, NewtonPolicy, NewtonReport, System, Updates};
 use crate::material::Bilayer;
 use crate::protocol::Loading;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Contact and stabilisation of one continuation (either may be absent).
 #[derive(Debug)]
@@ -38,8 +38,16 @@ fn distance(a: &[f64], b: &[f64]) -> f64 {
 /// Index of the right symmetry plane among the contact planes.
 const RIGHT_PLANE: usize = 1;
 
+/// What a resumed path needs of its augmentation: the contact's pairs and multipliers, the
+/// stabilisation's `eta` and dissipated energy.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct AugmentationMemory {
+    pub contact: Option<ContactMemory>,
+    pub stabilisation: Option<StabilisationMemory>,
+}
+
 /// What an accepted step reports about contact and stabilisation.
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct AugmentedRecord {
     pub in_contact: bool,
     /// Deformed length of the closed surface (see [`crate::fem::contact::ContactState`]).
@@ -59,10 +67,8 @@ pub struct AugmentedRecord {
     pub inertia_seconds: f64,
     /// Whether the inertia is being counted in the background: the count is then
     /// [`Augmentation::next_inertia`]'s, in the order of the states.
-    #[serde(skip)]
     pub inertia_pending: bool,
     /// Nominal contact pressure `(node, p)` at every top-surface node.
-    #[serde(skip)]
     pub pressure: Vec<(usize, f64)>,
 }
 
@@ -89,6 +95,35 @@ impl Augmentation {
                 .transpose()?,
             inertia: BackgroundInertia::default(),
         })
+    }
+
+    /// What a resumed path needs of it.
+    pub fn memory(&self) -> AugmentationMemory {
+        AugmentationMemory {
+            contact: self.contact.as_ref().map(Contact::memory),
+            stabilisation: self.stabilisation.as_ref().map(Stabilisation::memory),
+        }
+    }
+
+    /// Back to a state it had ([`Augmentation::memory`]) on the same mesh and settings.
+    pub fn recall(&mut self, memory: AugmentationMemory) -> Result<()> {
+        match (&mut self.contact, memory.contact) {
+            (Some(contact), Some(memory)) => contact.recall(memory)?,
+            (None, None) => {}
+            _ => return Err(Error::invalid("checkpoint", "its contact", "the contact this run has")),
+        }
+        match (&mut self.stabilisation, memory.stabilisation) {
+            (Some(stabilisation), Some(memory)) => stabilisation.recall(memory),
+            (None, None) => {}
+            _ => {
+                return Err(Error::invalid(
+                    "checkpoint",
+                    "its stabilisation",
+                    "the stabilisation this run has",
+                ))
+            }
+        }
+        Ok(())
     }
 
     /// The inertia of the oldest accepted state whose count was pending (waiting for it).

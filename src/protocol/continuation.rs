@@ -23,7 +23,7 @@ use super::record::StepRecord;
 use super::snap::{SnapRecord, SnapSettings};
 use crate::error::{Error, Result};
 use crate::fem::{Newton, NewtonPolicy, NewtonReport, Reuse, SparseLdlt, System};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::collections::VecDeque;
 use std::time::Instant;
 
@@ -31,10 +31,12 @@ mod arc_length;
 mod followed;
 mod method;
 mod minimised;
+mod resumable;
 pub use arc_length::ArcLength;
 pub(crate) use followed::plain_linearised;
 pub use followed::{Augmenting, Followed, NoAugmentation};
 pub use method::{ContinuationMethod, PathFollowing};
+pub use resumable::{CheckpointInterval, PathState};
 
 /// Step-size control.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -96,7 +98,7 @@ impl StepControl {
 }
 
 /// A failed attempt that was discarded.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Cut {
     /// The `d` tried.
     pub d: f64,
@@ -118,6 +120,9 @@ pub enum Event<'a, S = System> {
     },
     /// A discarded attempt; the step is cut.
     Cut(&'a Cut),
+    /// The whole state after an accepted step, when a checkpoint is due
+    /// ([`Continuation::with_checkpoints`]): the state is reported before it.
+    Checkpoint(&'a PathState),
 }
 
 /// The solution path in `d` of a system `S`: the current converged state and the last few for
@@ -147,12 +152,14 @@ pub struct Continuation<S: Followed = System> {
     /// Whether the path halts at the first accepted state that is unstable
     /// ([`Continuation::halting_where_unstable`]).
     halt_where_unstable: bool,
+    /// When the whole state is reported, if ever.
+    checkpoints: Option<resumable::Checkpoints>,
 }
 
 /// Whether the last accepted state is stable (its inertia counted, none negative) and in
 /// contact: where a step from it may be corrected by minimisation
 /// ([`Continuation::attempt_by_minimisation`]).
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 struct LastState {
     stable: bool,
     /// Its inertia is counted, with a negative pivot.
@@ -214,6 +221,7 @@ impl<S: Followed> Continuation<S> {
             measures: Vec::new(),
             last: LastState::default(),
             halt_where_unstable: false,
+            checkpoints: None,
         })
     }
 
@@ -423,6 +431,10 @@ impl<S: Followed> Continuation<S> {
         if snapped {
             self.history.clear();
         }
+        // Each step starts without a factorisation of an earlier one: a step is then a function
+        // of the path's state alone, which a checkpoint holds ([`PathState`]). Only a damped or
+        // contact step after one whose factor was kept loses a reuse.
+        self.newton.forget_factorisation();
         self.history.push_back((d, u));
         if self.history.len() > PREDICTOR_POINTS {
             self.history.pop_front();
@@ -432,7 +444,7 @@ impl<S: Followed> Continuation<S> {
         if by_newton && report.tangent_steps <= c.easy_iterations + report.updates.pressure {
             self.step = (self.step * c.grow).min(c.max);
         }
-        Ok(())
+        self.checkpoint_if_due(observer)
     }
 
     /// Discards the failed attempt at `d` and cuts the step; at the minimum step, stops.

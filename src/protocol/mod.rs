@@ -28,7 +28,9 @@ pub mod surface;
 
 pub use augmentation::{Augmentation, AugmentedRecord};
 pub use bifurcation::{find_bifurcation, Bifurcation, BifurcationSettings};
-pub use continuation::{ArcLength, Continuation, ContinuationMethod, Cut, Event, PathFollowing, StepControl};
+pub use continuation::{
+    ArcLength, CheckpointInterval, Continuation, ContinuationMethod, Cut, Event, PathFollowing, PathState, StepControl,
+};
 pub use imperfection::{mode_number, wavenumber_of_waves, Imperfection};
 pub use load_path::{model_conditions, LoadPath, Loading};
 pub use measures::{bilayer_measures, Measure};

@@ -5,10 +5,10 @@ use super::augmentation::AugmentedRecord;
 use super::snap::SnapRecord;
 use crate::fem::ellipticity::EllipticityMargins;
 use crate::fem::{NewtonReport, Timings};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// An accepted step.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct StepRecord {
     /// End-shortening reached.
     pub d: f64,
@@ -34,7 +34,6 @@ pub struct StepRecord {
     /// Wall time of the attempts discarded before this one was accepted.
     pub failed_seconds: f64,
     /// Wall times of the accepted attempt's phases.
-    #[serde(skip)]
     pub timings: Timings,
     /// Contact and stabilisation of the step, when the continuation has them.
     pub augmented: Option<AugmentedRecord>,

@@ -62,7 +62,7 @@ impl Default for SnapSettings {
 }
 
 /// One snap: the last equilibrium of the branch left, and the minimum reached.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 pub struct SnapRecord {
     /// End-shortening of the snap (the new state's).
     pub d: f64,

@@ -21,6 +21,7 @@ use crate::fem::System;
 use crate::homogeneous::homogeneous_state;
 use crate::material::Bilayer;
 use crate::protocol::basic_state::homogeneous_displacement;
+use serde::{Deserialize, Serialize};
 
 /// Damping coefficient and energy budget.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -51,6 +52,14 @@ impl Default for StabilisationSettings {
     }
 }
 
+/// What a resumed path needs of the stabilisation: `eta` (cut by the budget) and the energy
+/// dissipated so far.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StabilisationMemory {
+    pub eta: f64,
+    pub dissipated: f64,
+}
+
 /// The damper of one system and the energy it has dissipated.
 #[derive(Clone, Debug)]
 pub struct Stabilisation {
@@ -76,6 +85,20 @@ impl Stabilisation {
             eta: settings.eta,
             dissipated: 0.0,
         })
+    }
+
+    /// What a resumed path needs of it.
+    pub fn memory(&self) -> StabilisationMemory {
+        StabilisationMemory {
+            eta: self.eta,
+            dissipated: self.dissipated,
+        }
+    }
+
+    /// Back to a state it had.
+    pub fn recall(&mut self, memory: StabilisationMemory) {
+        self.eta = memory.eta;
+        self.dissipated = memory.dissipated;
     }
 
     /// The current `eta`.

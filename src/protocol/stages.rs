@@ -2,10 +2,14 @@
 //! to `d = 0.005`; (2) the imperfection [`Imperfection`] is put into the reference geometry, the
 //! nodal displacements of stage 1 are kept, and equilibrium is restored at the same `d`;
 //! (3) displacement control to `d_max` ([`Continuation`]). `A_init = 0` runs the perfect system.
+//! Stage 3 may report its whole state now and then, and start from such a state
+//! ([`Resumption`]).
 
 use super::augmentation::Augmentation;
 use super::basic_state::homogeneous_unknowns;
-use super::continuation::{ArcLength, Continuation, ContinuationMethod, Event, PathFollowing, StepControl};
+use super::continuation::{
+    ArcLength, CheckpointInterval, Continuation, ContinuationMethod, Event, PathFollowing, PathState, StepControl,
+};
 use super::imperfection::{mode_number, wavenumber_of_waves, Imperfection};
 use super::measures::{bilayer_measures, measure_all};
 use super::record::StepRecord;
@@ -180,6 +184,17 @@ pub struct Outcome {
     pub stopped: Option<Error>,
 }
 
+/// Where stage 3 starts, and whether it reports its whole state as it goes.
+#[derive(Clone, Debug, Default)]
+pub struct Resumption {
+    /// A state of stage 3 of the same protocol to continue from: stages 1 and 2 are redone to
+    /// rebuild the system, without reporting their states.
+    pub from: Option<PathState>,
+    /// How often stage 3 reports its whole state ([`Event::Checkpoint`]); displacement control
+    /// only.
+    pub checkpoints: Option<CheckpointInterval>,
+}
+
 /// Runs the three stages, reporting each converged state (from the end of stage 2 on) and each
 /// cut to `observer`. A failure in stages 1-2 is an error; one in stage 3 ends up in
 /// [`Outcome::stopped`] with the path so far.
@@ -189,7 +204,37 @@ pub fn run(
     protocol: &Protocol,
     observer: &mut dyn FnMut(Event<'_>) -> Result<()>,
 ) -> Result<Outcome> {
+    run_resumable(materials, spec, protocol, Resumption::default(), observer)
+}
+
+/// [`run`] from a state of stage 3 and with checkpoints, as `resumption` asks.
+pub fn run_resumable(
+    materials: &Bilayer,
+    spec: MeshSpec,
+    protocol: &Protocol,
+    resumption: Resumption,
+    observer: &mut dyn FnMut(Event<'_>) -> Result<()>,
+) -> Result<Outcome> {
     protocol.validate(&spec)?;
+    if resumption.from.is_some() && protocol.method == ContinuationMethod::ArcLength {
+        return Err(Error::invalid(
+            "resume",
+            "an arc-length path",
+            "a path of displacement control (arc-length paths keep no checkpoints)",
+        ));
+    }
+    // A resumed run rebuilds stages 1 and 2 without reporting them again.
+    let resuming = resumption.from.as_ref().map(PathState::d);
+    if let Some(d) = resuming {
+        observer(Event::Stage(&format!(
+            "resuming at d = {d:.6} from a checkpoint (stages 1 and 2 rebuilt)"
+        )))?;
+    }
+    let quiet = std::cell::Cell::new(resuming.is_some());
+    let mut observer = |event: Event<'_>| match event {
+        Event::Stage(_) | Event::Step { .. } if quiet.get() => Ok(()),
+        _ => observer(event),
+    };
     let d0 = STAGE_ONE_COMPRESSION;
     let mut newton = Newton::new();
     let start = Instant::now();
@@ -256,6 +301,7 @@ pub fn run(
         system: &system,
         u: &u,
     })?;
+    quiet.set(false);
     observer(Event::Stage(&format!(
         "stage 3: {} to d = {}",
         match protocol.method {
@@ -270,10 +316,18 @@ pub fn run(
                 .with_measures(bilayer_measures()),
         ),
         ContinuationMethod::Displacement => {
-            Box::new(displacement_control(system, newton, (d0, u), materials, protocol)?)
+            let mut path = displacement_control(system, newton, (d0, u), materials, protocol)?;
+            if let Some(interval) = resumption.checkpoints {
+                interval.validate()?;
+                path = path.with_checkpoints(interval);
+            }
+            if let Some(state) = resumption.from {
+                path.resume(state)?;
+            }
+            Box::new(path)
         }
     };
-    let stopped = continuation.advance_to(protocol.d_max, observer).err();
+    let stopped = continuation.advance_to(protocol.d_max, &mut observer).err();
     Ok(Outcome { continuation, stopped })
 }
 

@@ -47,6 +47,17 @@ pub fn check_complete(dir: &Path) -> usize {
             "svg" => assert!(text().trim_end().ends_with("</svg>"), "{}: truncated", path.display()),
             "html" => assert!(text().trim_end().ends_with("</html>"), "{}: truncated", path.display()),
             "md" => assert!(!bytes.is_empty(), "{}", path.display()),
+            // A checkpoint ends with the CRC-32 of everything before it.
+            "bin" => {
+                let (content, checksum) = bytes.split_last_chunk::<4>().expect("a checkpoint");
+                assert!(content.starts_with(b"FFCHKPT\n"), "{}", path.display());
+                assert_eq!(
+                    crc32fast::hash(content).to_le_bytes(),
+                    *checksum,
+                    "{}: damaged",
+                    path.display()
+                );
+            }
             other => panic!("unexpected file type {other}: {}", path.display()),
         }
         checked += 1;

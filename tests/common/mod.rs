@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod files;
+pub mod resume;
 
 use fiberfold::fem::element::{PlaneElement, ReferenceElement, ELEMENT_DOFS};
 use fiberfold::fem::{Dirichlet, System};

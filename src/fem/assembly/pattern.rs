@@ -7,6 +7,7 @@
 use crate::mesh::Mesh;
 use faer::sparse::{Pair, SymbolicSparseColMat};
 use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 
@@ -52,7 +53,40 @@ pub(super) struct Pattern {
     pub(super) diagonal: Vec<usize>,
 }
 
+/// What rebuilds a pattern with the same stored entries, so that its tangents are ordered and
+/// factorised as before (an entry stored once stays, and changes the ordering): the prescribed
+/// unknowns, the groups laid out, and the free pairs `(row, col)` stored besides the elements'.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StoredEntries {
+    constrained: Vec<usize>,
+    groups: Vec<Vec<usize>>,
+    coupled: Vec<(usize, usize)>,
+}
+
 impl Pattern {
+    /// What rebuilds it ([`Pattern::rebuilt`]).
+    pub(super) fn stored_entries(&self) -> StoredEntries {
+        StoredEntries {
+            constrained: self.constrained.clone(),
+            groups: self.groups.clone(),
+            coupled: self.coupled.iter().map(|q| (q.row, q.col)).collect(),
+        }
+    }
+
+    /// The pattern of `entries` on `mesh`, or `None` if they do not fit the mesh's unknowns.
+    pub(super) fn rebuilt<const D: usize, const N: usize>(mesh: &Mesh<D, N>, entries: StoredEntries) -> Option<Self> {
+        let n = mesh.num_dofs();
+        let free = n.checked_sub(entries.constrained.len())?;
+        let fits = entries
+            .constrained
+            .iter()
+            .chain(entries.groups.iter().flatten())
+            .all(|&d| d < n)
+            && entries.coupled.iter().all(|&(row, col)| row < free && col <= row);
+        let coupled = entries.coupled.iter().map(|&(row, col)| Pair::new(row, col)).collect();
+        fits.then(|| build_pattern(mesh, &entries.constrained, &entries.groups, coupled, &[]))
+    }
+
     /// Makes `pattern` the one for the prescribed unknowns `constrained` and the added `groups`,
     /// keeping its stored entries where they suffice.
     /// When the stored entries grow, the sets of unknowns `likely` (see

@@ -19,8 +19,10 @@ pub use search::{End, Pair, Plane, Surface};
 pub use solve::ContactUpdate;
 
 use super::added::{AddedEnergy, Block};
+use crate::error::{Error, Result};
 use crate::mesh::{DofMap, Mesh, X, Y};
 use gap::{differentiate, pair_energy, plane_gap, pressure, pressure_argument, segment_gap};
+use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
 /// The numbering of a pair's own unknowns by its surface nodes ([`Surface::dofs`]).
@@ -90,6 +92,15 @@ pub struct Contact {
     multipliers: Vec<f64>,
 }
 
+/// What a resumed path needs of the contact: the planes where they are, the pairs and their
+/// multipliers.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ContactMemory {
+    pub planes: Vec<Plane>,
+    pub pairs: Vec<Pair>,
+    pub multipliers: Vec<f64>,
+}
+
 /// Multipliers are kept per slave and target (a plane, or the surface): a slave that slides
 /// onto the next segment keeps its pressure.
 fn key(pair: &Pair) -> (usize, Option<usize>) {
@@ -110,6 +121,38 @@ impl Contact {
             groups: Vec::new(),
             multipliers: Vec::new(),
         }
+    }
+
+    /// What a resumed path needs of it.
+    pub fn memory(&self) -> ContactMemory {
+        ContactMemory {
+            planes: self.planes.clone(),
+            pairs: self.pairs.clone(),
+            multipliers: self.multipliers.clone(),
+        }
+    }
+
+    /// Back to a state it had ([`Contact::memory`]) on the same surface.
+    pub fn recall(&mut self, memory: ContactMemory) -> Result<()> {
+        let nodes = self.surface.len();
+        let fits = memory.planes.len() == self.planes.len()
+            && memory.multipliers.len() == memory.pairs.len()
+            && memory
+                .pairs
+                .iter()
+                .all(|p| p.surface_nodes().iter().all(|&n| n < nodes));
+        if !fits {
+            return Err(Error::invalid(
+                "checkpoint",
+                "its contact pairs",
+                "pairs of this run's surface",
+            ));
+        }
+        self.groups = memory.pairs.iter().map(|p| self.surface.dofs(p)).collect();
+        self.planes = memory.planes;
+        self.pairs = memory.pairs;
+        self.multipliers = memory.multipliers;
+        Ok(())
     }
 
     /// The contact surface.

@@ -12,10 +12,11 @@
 
 use super::gap::{plane_gap, projection, segment_gap};
 use crate::mesh::{DofMap, Mesh, TOP, X, Y};
+use serde::{Deserialize, Serialize};
 use std::collections::HashMap;
 
 /// A rigid plane `{x : n . x = c}`; `n` is the unit normal towards the open side.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Plane {
     pub normal: [f64; 2],
     pub offset: f64,
@@ -25,7 +26,7 @@ pub struct Plane {
 }
 
 /// An end of the surface.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub enum End {
     First,
     Last,
@@ -61,7 +62,7 @@ impl Plane {
 }
 
 /// A contact pair. `slave` indexes the surface nodes; segment `j` joins surface nodes `j, j + 1`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 pub enum Pair {
     Plane { slave: usize, plane: usize },
     Segment { slave: usize, segment: usize },

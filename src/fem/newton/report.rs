@@ -22,7 +22,7 @@ impl std::ops::Add for Timings {
 }
 
 /// Accumulated wall times of the phases of one solve, and how often each ran.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Timings {
     /// Assemblies (residual and tangent).
     pub assembly: Duration,

@@ -8,9 +8,9 @@ use crate::fem::added::NoAddedEnergy;
 use crate::fem::contact::Contact;
 use crate::fem::element::Registry;
 use crate::fem::equilibrium;
-use crate::fem::{Assembled, Dirichlet, Newton, NewtonPolicy, NewtonReport, System};
+use crate::fem::{Assembled, Dirichlet, Newton, NewtonPolicy, NewtonReport, StoredEntries, System};
 use crate::mesh::ElementKind;
-use crate::protocol::augmentation::{Augmentation, AugmentedRecord};
+use crate::protocol::augmentation::{Augmentation, AugmentationMemory, AugmentedRecord};
 use crate::protocol::surface::amplitude;
 use crate::protocol::Loading;
 
@@ -24,6 +24,13 @@ pub trait Followed {
 
     /// The load the system is at.
     fn load(&self) -> f64;
+
+    /// What rebuilds its tangents' sparsity with the same stored entries (which decide their
+    /// ordering, and so their round-off): part of a path's state ([`super::PathState`]).
+    fn stored_entries(&self) -> Option<StoredEntries>;
+
+    /// Back to stored entries it had ([`Followed::stored_entries`]).
+    fn recall_stored_entries(&mut self, entries: Option<StoredEntries>) -> Result<()>;
 
     /// The displacement unknowns (the leading entries of a state; multipliers may follow).
     fn displacement_unknowns(&self) -> usize;
@@ -100,6 +107,10 @@ pub trait Augmenting {
     fn save(&self) -> Self::Saved;
     /// Back to a saved state.
     fn restore(&mut self, saved: Self::Saved);
+    /// What a resumed path needs of it ([`super::PathState`]).
+    fn memory(&self) -> AugmentationMemory;
+    /// Back to a state it had ([`Augmenting::memory`]).
+    fn recall(&mut self, memory: AugmentationMemory) -> Result<()>;
 }
 
 impl Augmenting for Augmentation {
@@ -119,6 +130,14 @@ impl Augmenting for Augmentation {
 
     fn restore(&mut self, saved: Option<Contact>) {
         self.contact = saved;
+    }
+
+    fn memory(&self) -> AugmentationMemory {
+        Augmentation::memory(self)
+    }
+
+    fn recall(&mut self, memory: AugmentationMemory) -> Result<()> {
+        Augmentation::recall(self, memory)
     }
 }
 
@@ -144,6 +163,14 @@ impl Augmenting for NoAugmentation {
     fn restore(&mut self, _: ()) {
         match *self {}
     }
+
+    fn memory(&self) -> AugmentationMemory {
+        match *self {}
+    }
+
+    fn recall(&mut self, _: AugmentationMemory) -> Result<()> {
+        match *self {}
+    }
 }
 
 impl Followed for System {
@@ -155,6 +182,14 @@ impl Followed for System {
 
     fn load(&self) -> f64 {
         System::load(self)
+    }
+
+    fn stored_entries(&self) -> Option<StoredEntries> {
+        System::stored_entries(self)
+    }
+
+    fn recall_stored_entries(&mut self, entries: Option<StoredEntries>) -> Result<()> {
+        System::recall_stored_entries(self, entries)
     }
 
     fn displacement_unknowns(&self) -> usize {

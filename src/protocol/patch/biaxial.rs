@@ -77,6 +77,14 @@ impl Followed for BiaxialPatch {
         self.system.load()
     }
 
+    fn stored_entries(&self) -> Option<crate::fem::StoredEntries> {
+        self.system.stored_entries()
+    }
+
+    fn recall_stored_entries(&mut self, entries: Option<crate::fem::StoredEntries>) -> Result<()> {
+        self.system.recall_stored_entries(entries)
+    }
+
     fn displacement_unknowns(&self) -> usize {
         self.system.mesh().num_dofs()
     }

@@ -17,7 +17,7 @@ use crate::protocol::{stages, wavenumber_of_waves, Event, Protocol, StepControl,
 use crate::studies::Tick;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
 /// The compressions shown.
@@ -28,7 +28,7 @@ const WINDOW_DEPTH: f64 = 12.0;
 const BOUNDARY: [usize; 8] = [0, 1, 2, 5, 8, 7, 6, 3];
 
 /// One panel's state.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Fig7State {
     pub d_target: f64,
     pub d: f64,
@@ -53,6 +53,14 @@ pub struct Fig7Facts {
     pub files: Vec<PathBuf>,
 }
 
+/// What [`CreaseSnapshots`] needs to go on: the states kept, each with its unknowns.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct CreaseMemory {
+    targets: Vec<f64>,
+    states: Vec<Option<(Fig7State, Vec<f64>)>>,
+    first_contact: Option<f64>,
+}
+
 /// The accepted states nearest the compressions of Fig. 7 that a path reaches, collected as it
 /// goes, and the first contact.
 pub struct CreaseSnapshots {
@@ -69,6 +77,29 @@ impl CreaseSnapshots {
             states: vec![None; targets.len()],
             targets,
             first_contact: None,
+        }
+    }
+
+    /// What a resumed path needs to go on.
+    pub fn memory(&self) -> CreaseMemory {
+        let states = self.states.iter().map(|s| s.as_ref().map(|s| (s.clone(), s.u.clone())));
+        CreaseMemory {
+            targets: self.targets.clone(),
+            states: states.collect(),
+            first_contact: self.first_contact,
+        }
+    }
+
+    /// The snapshots of a resumed path.
+    pub fn resumed(memory: CreaseMemory) -> Self {
+        let states = memory
+            .states
+            .into_iter()
+            .map(|s| s.map(|(state, u)| Fig7State { u, ..state }));
+        CreaseSnapshots {
+            targets: memory.targets,
+            states: states.collect(),
+            first_contact: memory.first_contact,
         }
     }
 

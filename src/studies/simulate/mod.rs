@@ -6,42 +6,47 @@
 //! reaches (when contact is on) and `simulate.json`.
 //! A run that stops early keeps all of this for the path so far and then returns the error.
 
+mod checkpoint;
 mod columns;
 mod crease;
 mod fig3;
 mod fig4a;
 mod fig7;
 mod options;
+mod path_files;
 mod secondary;
 mod snapshots;
 mod solve;
 mod state_vtu;
 
+pub use checkpoint::{SolveMemory, CHECKPOINT_FILE};
 pub use columns::{amplitude_header, amplitude_row, AMPLITUDE_COLUMNS};
 pub use crease::ContactReport;
 pub use fig3::fig3;
 pub use fig4a::{fig4a, Fig4aOptions, Fig4aRow};
 pub use fig7::{fig7, CreaseSnapshots, Fig7Facts, Fig7State, FIG7_D};
 pub use options::{Crossing, MeshChoice, SimulateOptions};
+pub use path_files::CheckpointTotals;
 pub use secondary::{write_secondary, ModeState, SecondaryReport, SecondaryTracker, MODES};
-pub use solve::{solve, solve_observed, solve_to_secondary, Solution, Solved, StateFields, ToSecondary};
+pub use solve::{solve, solve_observed, solve_to_secondary, Observed, Solution, Solved, StateFields, ToSecondary};
 pub use state_vtu::{nodal_array, write_state, CELL_TYPE};
 
 use crate::error::{Error, Result};
 pub use crate::fem::ellipticity::EllipticityReport;
-use crate::fem::{System, Timings};
+use crate::fem::Timings;
 use crate::material::Bilayer;
 use crate::mesh::MeshSpec;
-use crate::output::{write_json, CsvWriter};
+use crate::output::write_json;
 use crate::parameters::{Load, Parameters};
 use crate::protocol::onset::A2_FIT_WINDOW;
 use crate::protocol::{
-    mode_number, stages, ContinuationMethod, Cut, Event, OnsetEstimates, Protocol, SnapRecord, StepRecord,
+    mode_number, stages, CheckpointInterval, ContinuationMethod, Cut, Event, OnsetEstimates, Protocol, SnapRecord,
+    StepRecord,
 };
 use crate::stability::{Method, StabilityAnalysis};
+use path_files::PathFiles;
 use serde::Serialize;
-use snapshots::Snapshots;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Instant;
 
 /// What the study reports while it runs.
@@ -67,6 +72,12 @@ pub struct SimulateStudy {
     pub vtu_every: f64,
     /// How many secondary modes are computed (those of the first changes of the inertia).
     pub secondary_modes: usize,
+    /// How often the path's whole state is written to `checkpoint.bin` in the output folder
+    /// (never if `None`; a path of arc length writes none).
+    pub checkpoints: Option<CheckpointInterval>,
+    /// Whether [`run`] continues from the checkpoint in the output folder (from the start if
+    /// there is none).
+    pub resume: bool,
 }
 
 impl SimulateStudy {
@@ -78,6 +89,8 @@ impl SimulateStudy {
             protocol,
             vtu_every: 0.01,
             secondary_modes: MODES,
+            checkpoints: None,
+            resume: false,
         }
     }
 
@@ -86,6 +99,16 @@ impl SimulateStudy {
         self.protocol.validate(&self.mesh)?;
         if !(self.vtu_every.is_finite() && self.vtu_every > 0.0) {
             return Err(Error::invalid("vtu-every", self.vtu_every, "(0, inf)"));
+        }
+        if let Some(interval) = self.checkpoints {
+            interval.validate()?;
+        }
+        if self.resume && self.protocol.method == ContinuationMethod::ArcLength {
+            return Err(Error::invalid(
+                "resume",
+                "with --continuation arc-length",
+                "displacement control (a path of arc length keeps no checkpoints)",
+            ));
         }
         Ok(())
     }
@@ -136,10 +159,15 @@ struct Recorder<'m> {
 
 impl<'m> Recorder<'m> {
     fn new(monitor: Monitor<'m>) -> Self {
+        Self::resumed(monitor, Vec::new(), Vec::new())
+    }
+
+    /// A recorder holding the states and cuts of a path so far.
+    fn resumed(monitor: Monitor<'m>, records: Vec<StepRecord>, cuts: Vec<Cut>) -> Self {
         Recorder {
             monitor,
-            records: Vec::new(),
-            cuts: Vec::new(),
+            records,
+            cuts,
             start: Instant::now(),
         }
     }
@@ -155,6 +183,7 @@ impl<'m> Recorder<'m> {
                 self.cuts.push((*cut).clone());
                 (self.monitor)(Progress::Cut(cut))
             }
+            Event::Checkpoint(_) => Ok(()),
         }
     }
 
@@ -288,6 +317,8 @@ pub struct SimulationSummary {
     pub snaps: Vec<SnapRecord>,
     /// Where the finite-element states lose strong ellipticity.
     pub ellipticity: EllipticityReport,
+    /// The checkpoints this run wrote (none in memory; after `--resume`, those since).
+    pub checkpoints: CheckpointTotals,
     pub files: Vec<String>,
 }
 
@@ -343,42 +374,18 @@ impl SimulationSummary {
             secondary: solution.secondary.clone(),
             snaps: solution.snaps.clone(),
             ellipticity: solution.ellipticity,
+            checkpoints: CheckpointTotals::default(),
             files,
         }
     }
 }
 
 /// Runs the study ([`solve_observed`]) and writes its files (module docs): `amplitude.csv`, the
-/// VTU snapshots and the snaps' states as the path goes, the rest once it ends. A stop in stage
-/// 3 is returned as an error after everything computed so far has been written.
+/// VTU snapshots, the snaps' states and the checkpoints as the path goes, the rest once it ends
+/// (from the checkpoint in `out` if `study.resume`). A stop in stage 3 is returned as an error
+/// after everything computed so far has been written.
 pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Monitor) -> Result<SimulationSummary> {
-    params.validate()?;
-    study.validate()?;
-    study.mesh.element.check_for(params.incompressible)?;
-    let _lock = crate::output::lock::OutputLock::acquire(out)?;
-    let start = Instant::now();
-    let mut path = PathFiles::create(out, study)?;
-    let solved = solve_observed(params, study, monitor, &mut |event, materials| {
-        path.note(event, materials)
-    });
-    let Solved {
-        mut solution,
-        materials,
-        mut system,
-        u,
-        modes,
-    } = solved?;
-    let mut files = path.finish(&solution, &system, &materials, &u, params)?;
-    files.extend(write_secondary(
-        &mut solution.secondary,
-        &modes,
-        &mut system,
-        &materials,
-        out,
-    )?);
-    let files = files.iter().map(|f| f.display().to_string()).collect();
-    let summary = SimulationSummary::new(params, study, &solution, files, start.elapsed().as_secs_f64());
-    write_json(&out.join("simulate.json"), &summary)?;
+    let (summary, solution) = run_keeping(params, study, out, monitor)?;
     let d_reached = solution.d_reached;
     match solution.curve.stopped {
         Some(Error::Interrupted(_)) => Err(Error::Interrupted(format!(
@@ -401,95 +408,83 @@ pub fn run(params: &Parameters, study: &SimulateStudy, out: &Path, monitor: Moni
     }
 }
 
-/// The files of a run written as its path goes (`amplitude.csv`, the VTU snapshots, the states
-/// around each snap, the states of Fig. 7), and at its end.
-struct PathFiles {
-    dir: PathBuf,
-    table: CsvWriter,
-    snapshots: Snapshots,
-    snap_files: Vec<PathBuf>,
-    last_state: Vec<f64>,
-    crease: Option<CreaseSnapshots>,
-}
-
-impl PathFiles {
-    fn create(out: &Path, study: &SimulateStudy) -> Result<Self> {
-        Ok(PathFiles {
-            dir: out.to_path_buf(),
-            table: CsvWriter::create(&out.join("amplitude.csv"), &amplitude_header())?,
-            snapshots: Snapshots::new(out, study.vtu_every),
-            snap_files: Vec::new(),
-            last_state: Vec::new(),
-            crease: study
-                .protocol
-                .contact
-                .then(|| CreaseSnapshots::new(study.protocol.d_max)),
-        })
-    }
-
-    /// Writes what one event of the path adds.
-    fn note(&mut self, event: &Event<'_>, materials: &Bilayer) -> Result<()> {
-        let Event::Step { record, system, u } = event else {
-            return Ok(());
-        };
-        self.table.append(&amplitude_row(record))?;
-        self.snapshots.maybe_write(record, system, materials, u)?;
-        if record.snap.is_some() {
-            for (when, state) in [("before", &self.last_state[..]), ("after", u)] {
-                let path = self.dir.join(format!("snap_{}_{when}.vtu", self.snap_files.len() / 2));
-                write_state(&path, system, materials, state, Vec::new())?;
-                self.snap_files.push(path);
+/// [`run`], returning the summary and the solution, whose `curve.stopped` says whether and
+/// why the path stopped early, instead of an error for that stop.
+pub fn run_keeping(
+    params: &Parameters,
+    study: &SimulateStudy,
+    out: &Path,
+    monitor: Monitor,
+) -> Result<(SimulationSummary, Solution)> {
+    params.validate()?;
+    study.validate()?;
+    study.mesh.element.check_for(params.incompressible)?;
+    let request = checkpoint::Request::of(params, study)?;
+    // A checkpoint of another run is refused before anything in the folder is touched.
+    let resumed = match study.resume {
+        true => checkpoint::read(out, &request)?,
+        false => None,
+    };
+    let _lock = crate::output::lock::OutputLock::acquire(out)?;
+    let start = Instant::now();
+    let (mut path, resume) = match resumed {
+        Some((solve, files)) => (PathFiles::resumed(out, study, files, &solve)?, Some(solve)),
+        None => {
+            if study.resume {
+                monitor(Progress::Stage(&format!(
+                    "no checkpoint in {}: starting from the beginning",
+                    out.display()
+                )))?;
             }
+            (PathFiles::create(out, study)?, None)
         }
-        self.last_state.clear();
-        self.last_state.extend_from_slice(u);
-        if let Some(crease) = &mut self.crease {
-            crease.note(record, u);
+    };
+    let solved = solve_observed(
+        params,
+        study,
+        monitor,
+        resume,
+        &mut |observed, materials| match observed {
+            Observed::Event(event) => path.note(event, materials),
+            Observed::Checkpoint(solve) => path.checkpoint(&request, solve),
+        },
+    );
+    let Solved {
+        mut solution,
+        materials,
+        mut system,
+        u,
+        modes,
+    } = solved?;
+    let checkpoints = path.checkpoint_totals();
+    let written = path
+        .finish(&solution, &system, &materials, &u, params)
+        .and_then(|mut files| {
+            files.extend(write_secondary(
+                &mut solution.secondary,
+                &modes,
+                &mut system,
+                &materials,
+                out,
+            )?);
+            Ok(files)
+        });
+    // A path stopped by a fault (a full disk) may fail its last files too: the first fault is
+    // the one to name.
+    let files = match (written, &solution.curve.stopped) {
+        (Ok(files), _) => files,
+        (Err(e), Some(stopped)) => {
+            return Err(Error::Solver(format!(
+                "{stopped}; the files of the path's end were not written either: {e}"
+            )))
         }
-        Ok(())
-    }
-
-    /// Writes the files of the finished path: the last snapshot, `surface.csv`, `onset_estimates.json`,
-    /// `contact.json`, `snaps.json`, Fig. 3 and Fig. 7; every file of the run so far.
-    fn finish(
-        mut self,
-        solution: &Solution,
-        system: &System,
-        materials: &Bilayer,
-        u: &[f64],
-        params: &Parameters,
-    ) -> Result<Vec<PathBuf>> {
-        let out = &self.dir;
-        let curve = &solution.curve;
-        self.snapshots
-            .write_final(curve.records.last(), solution.d_reached, system, materials, u)?;
-        let mut surface = CsvWriter::create(&out.join("surface.csv"), &["x", "y"])?;
-        for &(x, y) in &solution.surface {
-            surface.append(&[x, y])?;
-        }
-        write_json(&out.join("onset_estimates.json"), &solution.onset)?;
-        write_json(&out.join("contact.json"), &solution.contact)?;
-        write_json(&out.join("snaps.json"), &solution.snaps)?;
-        let mut files: Vec<PathBuf> = [
-            "amplitude.csv",
-            "surface.csv",
-            "onset_estimates.json",
-            "contact.json",
-            "snaps.json",
-            "simulate.pvd",
-        ]
-        .iter()
-        .map(|f| out.join(f))
-        .collect();
-        files.append(&mut self.snap_files);
-        files.extend(crate::output::plot::save_panels(
-            &fig3(curve, &solution.onset, params.load),
-            out,
-            "fig3",
-        )?);
-        if let Some(crease) = self.crease {
-            files.extend(crease.draw(system, materials, params.beta, out)?.1);
-        }
-        Ok(files)
-    }
+        (Err(e), None) => return Err(e),
+    };
+    let files = files.iter().map(|f| f.display().to_string()).collect();
+    let summary = SimulationSummary {
+        checkpoints,
+        ..SimulationSummary::new(params, study, &solution, files, start.elapsed().as_secs_f64())
+    };
+    write_json(&out.join("simulate.json"), &summary)?;
+    Ok((summary, solution))
 }

@@ -9,8 +9,8 @@ use crate::fem::memory::{available_bytes, MemoryEstimate};
 use crate::fem::ElementKind;
 use crate::mesh::{MeshPreset, MeshSpec, XRefinement};
 use crate::protocol::{
-    mode_number, wavenumber_of_waves, ContinuationMethod, Protocol, SnapCrossing, SnapSettings, StabilisationSettings,
-    StepControl,
+    mode_number, wavenumber_of_waves, CheckpointInterval, ContinuationMethod, Protocol, SnapCrossing, SnapSettings,
+    StabilisationSettings, StepControl,
 };
 use crate::studies::keywords::{default_keywords, from_keywords};
 use serde::{Deserialize, Serialize};
@@ -184,6 +184,23 @@ pub struct SimulateOptions {
     #[arg(long, default_value_t = defaults().vtu_every, allow_negative_numbers = true)]
     pub vtu_every: f64,
 
+    /// Write the path's whole state to checkpoint.bin in the output folder after every N
+    /// accepted states (or --checkpoint-seconds, whichever comes first), for --resume; 0 writes
+    /// none. A path of arc length writes none.
+    #[arg(long, value_name = "N", default_value_t = defaults().checkpoint_every)]
+    pub checkpoint_every: usize,
+
+    /// Write a checkpoint at least this often, in seconds of wall time, in (0, inf).
+    #[arg(long, value_name = "SECONDS", default_value_t = defaults().checkpoint_seconds, allow_negative_numbers = true)]
+    pub checkpoint_seconds: f64,
+
+    /// Continue the run from the checkpoint in the output folder: the states after it are those
+    /// the uninterrupted run computes, bit for bit. A checkpoint of other parameters or options,
+    /// of another version, or damaged, is refused (exit 2); with none, the run starts from the
+    /// beginning (so a requeued job may always pass --resume).
+    #[arg(long)]
+    pub resume: bool,
+
     /// Run even when the memory estimate (printed in the header) exceeds the memory available.
     #[arg(long)]
     pub force: bool,
@@ -249,6 +266,9 @@ impl Default for SimulateOptions {
             eta: 1e-6,
             inertia: true,
             vtu_every: 0.01,
+            checkpoint_every: 25,
+            checkpoint_seconds: 300.0,
+            resume: false,
             force: false,
         }
     }
@@ -321,6 +341,11 @@ impl SimulateOptions {
             protocol,
             vtu_every: self.vtu_every,
             secondary_modes: MODES,
+            checkpoints: (self.checkpoint_every > 0).then_some(CheckpointInterval {
+                states: self.checkpoint_every,
+                seconds: self.checkpoint_seconds,
+            }),
+            resume: self.resume,
         };
         study.validate()?;
         if !self.force {

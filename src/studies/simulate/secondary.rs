@@ -22,6 +22,7 @@ pub const MODES: usize = 3;
 const MODE_SOLVES: usize = 60;
 
 /// Keeps the states just after the first few changes of the inertia.
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct SecondaryTracker {
     modes: usize,
     last: Option<usize>,

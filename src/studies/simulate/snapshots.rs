@@ -24,7 +24,38 @@ pub(super) struct Snapshots {
     writing: Option<(f64, PathBuf, JoinHandle<Result<()>>)>,
 }
 
+/// What the snapshots of a path need to go on: the next mark, the last `d` written and the
+/// files collected.
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
+pub(super) struct SnapshotsMemory {
+    next_mark: f64,
+    last_written: Option<f64>,
+    entries: Vec<(f64, String)>,
+}
+
 impl Snapshots {
+    /// Waits for the snapshot being written; what a resumed path needs to go on.
+    pub(super) fn memory(&mut self) -> Result<SnapshotsMemory> {
+        self.finish_writing()?;
+        Ok(SnapshotsMemory {
+            next_mark: self.next_mark,
+            last_written: self.last_written,
+            entries: self.collection.entries().to_vec(),
+        })
+    }
+
+    /// The snapshots of a path resumed from `memory` (the collection is rewritten to list them).
+    pub(super) fn resumed(dir: &Path, every: f64, memory: SnapshotsMemory) -> Result<Self> {
+        Ok(Snapshots {
+            dir: dir.to_path_buf(),
+            every,
+            collection: Collection::with_entries(&dir.join("simulate.pvd"), memory.entries)?,
+            next_mark: memory.next_mark,
+            last_written: memory.last_written,
+            writing: None,
+        })
+    }
+
     pub(super) fn new(dir: &Path, every: f64) -> Self {
         Snapshots {
             dir: dir.to_path_buf(),

@@ -3,6 +3,7 @@
 //! an observer of every step, so that a crash keeps the path so far); the Python package takes
 //! the [`Solution`] as it is.
 
+use super::checkpoint::SolveMemory;
 use super::secondary::{ModeState, SecondaryTracker};
 use super::{ContactReport, Curve, EllipticityReport, Monitor, OnsetReport, Recorder, SecondaryReport, SimulateStudy};
 use crate::error::Error;
@@ -15,6 +16,7 @@ use crate::parameters::Parameters;
 use crate::protocol::secondary::{branch, secondary_mode, SecondaryMode};
 use crate::protocol::Loading;
 use crate::protocol::{stages, surface_profile, Event, SnapRecord};
+use stages::Resumption;
 
 /// A mesh state ready for a viewer: reference points, 9-node cells (the local node order of
 /// [`crate::mesh`]; [`super::CELL_TYPE`] gives VTK's), the nodal displacement and the element-centre
@@ -63,27 +65,59 @@ pub struct Solved {
 /// an error; a stop in stage 3 (solver failure, or the monitor's error) is kept in
 /// `curve.stopped` with the path up to it.
 pub fn solve(params: &Parameters, study: &SimulateStudy, monitor: Monitor) -> Result<Solution> {
-    Ok(solve_observed(params, study, monitor, &mut |_, _| Ok(()))?.solution)
+    Ok(solve_observed(params, study, monitor, None, &mut |_, _| Ok(()))?.solution)
 }
 
-/// [`solve`], showing every event to `observer` with the materials as it happens (an error it
-/// returns stops the path like a solver failure), and keeping the final system for writing.
+/// What [`solve_observed`] shows its observer: an event of the path, or, when a checkpoint is
+/// due, everything kept in memory that a resumed run needs.
+pub enum Observed<'a> {
+    Event(&'a Event<'a>),
+    Checkpoint(&'a SolveMemory),
+}
+
+/// [`solve`], from `resume` if given, showing every event (and every checkpoint the study asks
+/// for) to `observer` with the materials as it happens (an error it returns stops the path like
+/// a solver failure), and keeping the final system for writing.
 pub fn solve_observed(
     params: &Parameters,
     study: &SimulateStudy,
     monitor: Monitor,
-    observer: &mut dyn FnMut(&Event<'_>, &Bilayer) -> Result<()>,
+    resume: Option<SolveMemory>,
+    observer: &mut dyn FnMut(Observed<'_>, &Bilayer) -> Result<()>,
 ) -> Result<Solved> {
     params.validate()?;
     study.validate()?;
     let materials = Bilayer::new(params);
-    let mut recorder = Recorder::new(monitor);
-    let mut tracker = SecondaryTracker::new(study.secondary_modes);
-    let outcome = stages::run(&materials, study.mesh, &study.protocol, &mut |event| {
+    let (mut recorder, mut tracker, from) = match resume {
+        Some(memory) => (
+            Recorder::resumed(monitor, memory.records, memory.cuts),
+            memory.tracker,
+            Some(memory.path),
+        ),
+        None => (
+            Recorder::new(monitor),
+            SecondaryTracker::new(study.secondary_modes),
+            None,
+        ),
+    };
+    let resumption = Resumption {
+        from,
+        checkpoints: study.checkpoints,
+    };
+    let outcome = stages::run_resumable(&materials, study.mesh, &study.protocol, resumption, &mut |event| {
+        if let Event::Checkpoint(path) = &event {
+            let memory = SolveMemory {
+                path: (*path).clone(),
+                records: recorder.records.clone(),
+                cuts: recorder.cuts.clone(),
+                tracker: tracker.clone(),
+            };
+            return observer(Observed::Checkpoint(&memory), &materials);
+        }
         if let Event::Step { record, u, .. } = &event {
             tracker.note(record, u);
         }
-        observer(&event, &materials)?;
+        observer(Observed::Event(&event), &materials)?;
         recorder.note(&event)
     })?;
     finish(params, study, materials, recorder, tracker, outcome)
