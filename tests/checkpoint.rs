@@ -142,3 +142,82 @@ fn resume_without_a_checkpoint_starts_from_the_beginning() {
     assert!(said.contains("no checkpoint"), "{said}");
     assert_eq!(rows(&dir).len(), 5, "header and the states at d = 0.005, ..., 0.02");
 }
+
+/// The lines of `file` in `dir` (none if it is absent).
+fn lines(dir: &Path, file: &str) -> Vec<String> {
+    std::fs::read_to_string(dir.join(file))
+        .unwrap_or_default()
+        .lines()
+        .map(str::to_string)
+        .collect()
+}
+
+#[test]
+fn a_pattern_path_killed_and_resumed_gives_the_uninterrupted_states() {
+    // The checkerboard of Table 1's fibres in the surface turns unstable and is left at
+    // d = 0.1: killed a few states after it was left.
+    let args = |out: &Path| -> Vec<String> {
+        let flags = [
+            "pattern",
+            "--set",
+            "beta=0",
+            "--elements-per-wavelength",
+            "4",
+            "--substrate-elements",
+            "8",
+            "--follow-to",
+            "0.12",
+            "--checkpoint-every",
+            "1",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        flags.iter().map(|s| s.to_string()).collect()
+    };
+    let whole = scratch("checkpoint-pattern-whole");
+    let run = fiberfold(&args(&whole));
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let table = lines(&whole, "pattern.csv");
+    let left = table
+        .iter()
+        .position(|l| l.split(',').nth(4) == Some("1"))
+        .expect("a state left");
+    let rows_wanted = left + 3;
+    let what = format!("pattern, killed at about state {rows_wanted}");
+    let resumed = scratch(&format!("checkpoint-pattern-{rows_wanted}"));
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_fiberfold"))
+        .args(args(&resumed))
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    while child.try_wait().unwrap().is_none() && lines(&resumed, "pattern.csv").len() <= rows_wanted {
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    let _ = child.kill();
+    child.wait().unwrap();
+    assert!(
+        lines(&resumed, "pattern.csv").len() < table.len(),
+        "{what}: ended before the kill"
+    );
+    let again = fiberfold(&[args(&resumed), vec!["--resume".into()]].concat());
+    let said = String::from_utf8_lossy(&again.stdout).to_string();
+    assert!(
+        again.status.success(),
+        "{what}: {said}{}",
+        String::from_utf8_lossy(&again.stderr)
+    );
+    assert!(
+        said.contains("resuming the path at d = "),
+        "{what}: not resumed: {said}"
+    );
+    assert_eq!(lines(&resumed, "pattern.csv"), table, "{what}: pattern.csv");
+    for file in ["state.vtu", "mode.vtu", "inertia.csv", "wave_vectors.csv"] {
+        assert!(
+            std::fs::read(whole.join(file)).unwrap() == std::fs::read(resumed.join(file)).unwrap(),
+            "{what}: {file}"
+        );
+    }
+    let json = |dir: &Path| common::resume::json_without_timings(&dir.join("pattern.json"), dir);
+    assert_eq!(json(&whole), json(&resumed), "{what}: pattern.json");
+}

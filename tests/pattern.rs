@@ -128,6 +128,11 @@ fn bad_input_is_refused_with_exit_code_2_naming_the_flag() {
         (&["--follow-to", "0.99"][..], "`follow-to`"),
         (&["--follow-to", "0.2", "--imperfection", "0"][..], "`imperfection`"),
         (&["--follow-to", "0.2", "--d-start", "0.3"][..], "`d-start`"),
+        (&["--resume"][..], "`resume`"),
+        (
+            &["--follow-to", "0.2", "--checkpoint-seconds", "0"][..],
+            "`checkpoint-seconds`",
+        ),
         // Some 190 million unknowns: refused by its memory estimate before anything is built.
         (&["--periods", "60"][..], "`patch`"),
     ] {

@@ -264,6 +264,7 @@ def pattern(
     imperfection: float = 0.01,
     out: Optional[str] = None,
     follow_past: Optional[float] = None,
+    resume: bool = False,
 ) -> Dict[str, Any]:
     """A patch of tissue in three dimensions under ``d_3 = biaxial * d`` (``fiberfold
     pattern``): the content of ``pattern.json`` (``d_bifurcation``, ``negative_pivots``, the
@@ -272,9 +273,13 @@ def pattern(
     (with ``follow_past`` instead, to the theory's onset ``d_c`` plus it), seeded with every
     critical wave of amplitude ``imperfection``: ``path`` then holds its summary (the pattern's
     ``changes``, the ``last`` state) and ``pattern.csv`` one row per state. Its files (VTU,
-    spectra, top views) go to ``out``, or to a temporary folder that is removed."""
+    spectra, top views) go to ``out``, or to a temporary folder that is removed. The path writes
+    checkpoints into ``out``; ``resume=True`` continues it from the last one there, as
+    ``fiberfold pattern --resume`` does."""
     params = _check_parameters(params)
-    arguments = (biaxial, periods, elements_per_wavelength, follow_to, imperfection, follow_past)
+    if resume and out is None:
+        raise ValueError("resume=True continues the checkpoint of a folder: give out")
+    arguments = (biaxial, periods, elements_per_wavelength, follow_to, imperfection, follow_past, resume)
     if out is not None:
         return json.loads(_fiberfold.pattern_run(params, str(out), *arguments))
     with tempfile.TemporaryDirectory() as folder:

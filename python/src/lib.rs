@@ -346,9 +346,9 @@ fn bifurcation_run(
 
 /// A patch of tissue in three dimensions (`fiberfold pattern`), written into `out`; returns
 /// `pattern.json` as JSON text. The path is followed to `follow_to`, or to the theory's onset
-/// plus `follow_past` (not both).
+/// plus `follow_past` (not both), from the checkpoint in `out` if `resume`.
 #[pyfunction]
-#[pyo3(signature = (params, out, biaxial=1.0, periods=1, elements_per_wavelength=6, follow_to=None, imperfection=0.01, follow_past=None))]
+#[pyo3(signature = (params, out, biaxial=1.0, periods=1, elements_per_wavelength=6, follow_to=None, imperfection=0.01, follow_past=None, resume=false))]
 #[allow(clippy::too_many_arguments)]
 fn pattern_run(
     py: Python<'_>,
@@ -360,6 +360,7 @@ fn pattern_run(
     follow_to: Option<f64>,
     imperfection: f64,
     follow_past: Option<f64>,
+    resume: bool,
 ) -> PyResult<String> {
     use fiberfold::studies::pattern::{run, PathEnd, PathStudy, PatternStudy};
     let end = match (follow_to, follow_past) {
@@ -383,6 +384,7 @@ fn pattern_run(
             end,
             ..PathStudy::default()
         }),
+        resume,
         ..PatternStudy::default()
     };
     let p = params.inner.clone();

@@ -454,6 +454,21 @@ def test_the_pattern_past_the_onset_of_inclined_fibres_is_stripes_along_them():
         fiberfold.pattern(p, follow_to=0.99)
 
 
+def test_a_pattern_path_asked_to_resume_without_a_checkpoint_starts_from_the_beginning(tmp_path):
+    # Too short a path for a checkpoint (every 25 states): resume=True then runs it whole, the
+    # same as without; without out it is refused.
+    p = fiberfold.Parameters(beta=0.785398, psi=0.5235988)
+    run = dict(elements_per_wavelength=3, follow_to=0.06, out=tmp_path / "patch")
+    whole = fiberfold.pattern(p, **run)
+    table = (tmp_path / "patch" / "pattern.csv").read_text()
+    assert not (tmp_path / "patch" / "checkpoint.bin").exists()
+    again = fiberfold.pattern(p, resume=True, **run)
+    assert (tmp_path / "patch" / "pattern.csv").read_text() == table
+    assert again["path"]["last"] == whole["path"]["last"]
+    with pytest.raises(ValueError, match="out"):
+        fiberfold.pattern(p, follow_to=0.08, resume=True)
+
+
 def test_a_path_followed_past_the_onset_ends_that_far_past_the_theorys_onset():
     # Vertical fibres on a coarse patch: the path ends at the theory's d_c + 0.01.
     p = fiberfold.Parameters(beta=1.5707963)

@@ -48,7 +48,8 @@ pub fn run(args: &PatternArgs) -> Result<()> {
         "pattern: a patch of tissue {load}, sized by the exact 3D theory; its first bifurcation from the inertia of the tangent along the homogeneous path"
     );
     let start = Instant::now();
-    let r = pattern::run(&params, &study, &args.out, &mut |progress| match progress {
+    let r = pattern::run(&params, &study, &args.out, &mut |progress| {
+        match progress {
         Progress::Patch {
             spec,
             unknowns,
@@ -113,6 +114,15 @@ pub fn run(args: &PatternArgs) -> Result<()> {
                 start.elapsed().as_secs_f64()
             )
         }
+        Progress::Resume(Some(d)) => println!(
+            "resuming the path at d = {d:.6} from the checkpoint in {} (the patch and its bifurcation found again first)",
+            args.out.display()
+        ),
+        Progress::Resume(None) => println!(
+            "no checkpoint in {}: the path starts from the beginning",
+            args.out.display()
+        ),
+    }
     })?;
     println!(
         "d_bifurcation = {:.7}{} (bracket [{:.7}, {:.7}], {} negative pivot(s) past it); the theory's smallest d_c over the patch's wave vectors {:.7}: relative difference {:+.3e}",

@@ -7,7 +7,7 @@
 use super::atomic::write_atomically;
 use crate::error::{Error, Result};
 use serde::de::DeserializeOwned;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::io::Write;
 use std::path::Path;
 
@@ -18,6 +18,52 @@ const FORMAT: u32 = 1;
 /// The program that wrote a checkpoint must be the one that reads it: the path it continues is
 /// then the one the uninterrupted run takes.
 const PROGRAM: &str = concat!("fiberfold ", env!("CARGO_PKG_VERSION"));
+
+/// What a run was asked, as text: its parameters (JSON) and its options (`Debug`, one setting
+/// a line). A run resumes only a checkpoint of the same request.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Request {
+    parameters: String,
+    options: String,
+}
+
+impl Request {
+    /// The request of `parameters` and `options`.
+    pub fn of(parameters: &impl Serialize, options: &impl std::fmt::Debug) -> Result<Self> {
+        let parameters =
+            serde_json::to_string_pretty(parameters).map_err(|e| Error::NonFinite(format!("the parameters: {e}")))?;
+        Ok(Request {
+            parameters,
+            options: format!("{options:#?}"),
+        })
+    }
+
+    /// Refuses the checkpoint `path` of a run asked `self` for a run asked `asked`, naming the
+    /// first setting that differs.
+    pub fn check(&self, asked: &Request, path: &Path) -> Result<()> {
+        let differing = |kind: &str, theirs: &str, ours: &str| {
+            let (theirs, ours) = theirs
+                .lines()
+                .zip(ours.lines())
+                .find(|(a, b)| a != b)
+                .unwrap_or(("(shorter)", "(longer)"));
+            Error::Resume(format!(
+                "{}: it is of a run with other {kind} (`{}` there, `{}` here); resume with the run's own \
+                 settings, or give another --out",
+                path.display(),
+                theirs.trim().trim_end_matches(','),
+                ours.trim().trim_end_matches(',')
+            ))
+        };
+        if self.parameters != asked.parameters {
+            return Err(differing("parameters", &self.parameters, &asked.parameters));
+        }
+        if self.options != asked.options {
+            return Err(differing("options", &self.options, &asked.options));
+        }
+        Ok(())
+    }
+}
 
 /// Writes `value` as the checkpoint `path`, atomically and synced to disk; its size in bytes.
 pub fn write_checkpoint<T: Serialize>(path: &Path, value: &T) -> Result<u64> {

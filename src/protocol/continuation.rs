@@ -154,6 +154,8 @@ pub struct Continuation<S: Followed = System> {
     halt_where_unstable: bool,
     /// When the whole state is reported, if ever.
     checkpoints: Option<resumable::Checkpoints>,
+    /// Unstable states the path has left ([`Continuation::leave_unstable_state`]).
+    unstable_states_left: usize,
 }
 
 /// Whether the last accepted state is stable (its inertia counted, none negative) and in
@@ -222,6 +224,7 @@ impl<S: Followed> Continuation<S> {
             last: LastState::default(),
             halt_where_unstable: false,
             checkpoints: None,
+            unstable_states_left: 0,
         })
     }
 

@@ -100,6 +100,7 @@ impl<S: Followed> Continuation<S> {
         let d = self.d();
         let ((report, u, augmented), snap) = self.minimum_from_last(d, Some(perturbation))?;
         let clock = super::StepClock::start();
+        self.unstable_states_left += 1;
         self.accept(
             (d, 0.0),
             ((report, u, augmented), super::Reached::Snap(snap)),

@@ -29,6 +29,8 @@ pub struct PathState {
     pub augmentation: Option<AugmentationMemory>,
     /// The stored entries of the tangents' sparsity.
     pub stored_entries: Option<StoredEntries>,
+    /// Unstable states the path has left.
+    pub unstable_states_left: usize,
 }
 
 impl PathState {
@@ -47,6 +49,13 @@ pub struct CheckpointInterval {
 }
 
 impl CheckpointInterval {
+    /// Every 25 accepted states or 300 s: on the fine Fig. 7 run, a few milliseconds per
+    /// checkpoint against steps of about a second.
+    pub const DEFAULT: CheckpointInterval = CheckpointInterval {
+        states: 25,
+        seconds: 300.0,
+    };
+
     /// Checks `states >= 1` and `seconds > 0`.
     pub fn validate(&self) -> Result<()> {
         if self.states == 0 {
@@ -98,6 +107,11 @@ impl<S: Followed> Continuation<S> {
         self
     }
 
+    /// Unstable states the path has left ([`Continuation::leave_unstable_state`]).
+    pub fn unstable_states_left(&self) -> usize {
+        self.unstable_states_left
+    }
+
     /// The whole state after the last accepted step (whose inertia must not be pending).
     pub fn path_state(&self) -> PathState {
         debug_assert!(self.pending.is_none(), "a checkpoint waits for the pending inertia");
@@ -108,6 +122,7 @@ impl<S: Followed> Continuation<S> {
             last: self.last,
             augmentation: self.augmentation.as_ref().map(Augmenting::memory),
             stored_entries: self.system.stored_entries(),
+            unstable_states_left: self.unstable_states_left,
         }
     }
 
@@ -132,6 +147,7 @@ impl<S: Followed> Continuation<S> {
         self.slope = state.slope;
         self.last = state.last;
         self.pending = None;
+        self.unstable_states_left = state.unstable_states_left;
         self.system.recall_stored_entries(state.stored_entries)?;
         self.system.load_to(self.d())?;
         Ok(())

@@ -20,7 +20,7 @@ use crate::protocol::imperfection::Imperfection;
 use crate::protocol::measures::{Measure, SurfaceAmplitude};
 use crate::protocol::record::StepRecord;
 use crate::protocol::snap::SnapSettings;
-use crate::protocol::stages::simulation_newton;
+use crate::protocol::stages::{simulation_newton, Resumption};
 
 /// The reference-geometry imperfection `Delta Y = sum_j A_j c_j(X, Z) s_j(Y)` of a patch: one
 /// wave of amplitude `A_j` per seeded wave vector `k_j = (k_x, k_z)`, `c_j = cos(k_j . X)` on
@@ -147,6 +147,19 @@ impl PatchPath<'_> {
         protocol: &PatchProtocol,
         observer: &mut dyn FnMut(Event<'_, BiaxialPatch>) -> Result<()>,
     ) -> Result<(Continuation<BiaxialPatch>, Option<Error>)> {
+        self.follow_resumable(imperfection, protocol, Resumption::default(), observer)
+    }
+
+    /// [`PatchPath::follow`], reporting its whole state as `resumption` asks, or continuing
+    /// from a state it reported (the imperfect patch at `d_start` is then solved again, as the
+    /// start of the predictor, but not reported).
+    pub fn follow_resumable(
+        self,
+        imperfection: &PatchImperfection,
+        protocol: &PatchProtocol,
+        resumption: Resumption,
+        observer: &mut dyn FnMut(Event<'_, BiaxialPatch>) -> Result<()>,
+    ) -> Result<(Continuation<BiaxialPatch>, Option<Error>)> {
         let (d_start, d_max) = (protocol.d_start, protocol.d_max);
         if !(d_start.is_finite() && d_start > 0.0 && d_start < d_max) {
             return Err(Error::invalid("d-start", d_start, &format!("(0, d-max = {d_max})")));
@@ -173,13 +186,15 @@ impl PatchPath<'_> {
                 (d_start, 0.0),
             )
             .map_err(|e| Error::Solver(format!("the imperfect patch at d_start = {d_start}: {e}")))?;
-        let mut record = StepRecord::new((d_start, 0.0), &report, 0.0);
-        SurfaceAmplitude.measure(&patch, &u, &mut record)?;
-        observer(Event::Step {
-            record: &record,
-            system: &patch,
-            u: &u,
-        })?;
+        if resumption.from.is_none() {
+            let mut record = StepRecord::new((d_start, 0.0), &report, 0.0);
+            SurfaceAmplitude.measure(&patch, &u, &mut record)?;
+            observer(Event::Step {
+                record: &record,
+                system: &patch,
+                u: &u,
+            })?;
+        }
         // The first step is predicted along the homogeneous path's du/dd (central difference).
         let h = 1e-3 * d_start;
         let homogeneous = |d: f64| -> Result<Vec<f64>> {
@@ -193,7 +208,13 @@ impl PatchPath<'_> {
             .with_measures(measures)
             .halting_where_unstable()
             .with_snaps(SnapSettings::default());
-        let mut left = 0;
+        if let Some(interval) = resumption.checkpoints {
+            interval.validate()?;
+            continuation = continuation.with_checkpoints(interval);
+        }
+        if let Some(state) = resumption.from {
+            continuation.resume(state)?;
+        }
         loop {
             if let Err(stopped) = continuation.advance_to(d_max, observer) {
                 return Ok((continuation, Some(stopped)));
@@ -201,6 +222,7 @@ impl PatchPath<'_> {
             if !continuation.is_unstable() {
                 return Ok((continuation, None));
             }
+            let left = continuation.unstable_states_left();
             if left == MAX_BRANCHES_LEFT {
                 let d = continuation.d();
                 let why = format!("the path turned unstable at d = {d:.6} after leaving {left} unstable branches");
@@ -212,7 +234,6 @@ impl PatchPath<'_> {
                 let why = format!("the unstable state at d = {d:.6} could not be left for a stable one: {e}");
                 return Ok((continuation, Some(Error::Solver(why))));
             }
-            left += 1;
         }
     }
 }

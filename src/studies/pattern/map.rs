@@ -65,6 +65,13 @@ pub struct PatternPoint {
 impl PatternMap {
     /// Checks the axes, every point's parameters and the path's end.
     pub fn validate(&self) -> Result<()> {
+        if self.study.resume {
+            return Err(Error::invalid(
+                "resume",
+                "with --x and --y",
+                "one patch (a map of patterns resumes by its points: run it again)",
+            ));
+        }
         grid::validate_axes(&self.base, &self.x, &self.y)?;
         for (_, parameters) in self.points()? {
             parameters.validate()?;
@@ -229,6 +236,7 @@ pub struct PatternMapOptions {
 
 impl PatternMapOptions {
     /// The map these flags ask for over `base` with every point's `study` (None without --x).
+    /// A point writes no checkpoints: a map resumes by its points.
     pub fn map(&self, base: Parameters, study: PatternStudy) -> Option<PatternMap> {
         let axis = |name: &Option<String>, from, to, points, log| Axis {
             name: name.clone().unwrap_or_default(),
@@ -243,7 +251,10 @@ impl PatternMapOptions {
             x: axis(&self.x, self.x_from, self.x_to, self.x_points, self.x_log),
             y: axis(&self.y, self.y_from, self.y_to, self.y_points, self.y_log),
             keep_poisson: !self.free_bulk,
-            study,
+            study: PatternStudy {
+                checkpoints: None,
+                ..study
+            },
         })
     }
 }

@@ -13,6 +13,7 @@
 //! Asked to, it follows the path past the onset (`path`): `pattern.csv`, `state.vtu`,
 //! `state_top.png/svg`.
 
+mod checkpoint;
 mod figure;
 mod map;
 mod map_figure;
@@ -34,7 +35,7 @@ use crate::output::vtu::{write_vtu, CellType, DataArray};
 use crate::output::{write_json, CsvWriter};
 use crate::parameters::Parameters;
 use crate::protocol::patch::{surface_spectrum, PatchBifurcation, PatchPath, WaveVector};
-use crate::protocol::BifurcationSettings;
+use crate::protocol::{BifurcationSettings, CheckpointInterval};
 use crate::stability::oblique::{box_modes, BoxMode};
 use crate::stability::{Method, StabilityAnalysis, Surface, SurfaceOnset};
 use serde::{Deserialize, Serialize};
@@ -68,6 +69,14 @@ pub struct PatternStudy {
     pub path: Option<PathStudy>,
     /// Run even when the memory estimate exceeds the memory available.
     pub force: bool,
+    /// How often the path past the onset writes its checkpoint (never if `None`); not part of
+    /// what a map's points are computed with.
+    #[serde(skip)]
+    pub checkpoints: Option<CheckpointInterval>,
+    /// Whether the path continues from the checkpoint in the output folder (from the start if
+    /// there is none).
+    #[serde(skip)]
+    pub resume: bool,
 }
 
 impl Default for PatternStudy {
@@ -91,6 +100,8 @@ impl Default for PatternStudy {
             },
             path: None,
             force: false,
+            checkpoints: Some(CheckpointInterval::DEFAULT),
+            resume: false,
         }
     }
 }
@@ -263,6 +274,22 @@ pub fn compute(
     let start = Instant::now();
     let (onset, spec) = size_patch(params, study)?;
     let d_end = study.path.map(|path| path.validate(onset.onset.d_c)).transpose()?;
+    // A checkpoint of another run is refused before anything in the folder is touched.
+    let request = checkpoint::request(params, study)?;
+    let resumed = match (study.resume, d_end) {
+        (true, Some(_)) => checkpoint::read(out, &request)?,
+        (true, None) => {
+            return Err(Error::invalid(
+                "resume",
+                "without a path",
+                "with --follow-to or --follow-past (the path past the onset is what resumes)",
+            ))
+        }
+        (false, _) => None,
+    };
+    if study.resume {
+        progress(Progress::Resume(resumed.as_ref().map(|memory| memory.path.d())));
+    }
     // The elements and the tangent alone, before anything is allocated for the exact estimate:
     // about 97 stored entries per unknown in the lower triangle of 27-node hexahedra (64 nodes
     // coupled to each on average).
@@ -322,9 +349,18 @@ pub fn compute(
     files.push(write_mode(out, &mesh, &found)?);
     let followed = match (&study.path, d_end) {
         (Some(path_study), Some(d_end)) => {
-            let (summary, written) = path::follow(params, path, &admissible, path_study, d_end, out, &mut |state| {
-                progress(Progress::State(state))
-            })?;
+            let checkpoints = path::Checkpoints {
+                interval: study.checkpoints,
+                request: &request,
+                resumed,
+            };
+            let (summary, written) = path::follow(
+                params,
+                (path, &admissible),
+                (path_study, d_end, checkpoints),
+                out,
+                &mut |state| progress(Progress::State(state)),
+            )?;
             files.extend(written);
             Some(summary)
         }
@@ -375,6 +411,8 @@ pub enum Progress<'a> {
     Inertia { d: f64, negative: usize },
     /// A state of the path past the onset.
     State(&'a PatternState),
+    /// Asked to resume: the `d` of the checkpoint the path continues from, or none.
+    Resume(Option<f64>),
 }
 
 /// `wave_vectors.csv`: the admissible wave vectors nearest the onset and their `d_c`.

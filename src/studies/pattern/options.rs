@@ -5,7 +5,7 @@
 use super::{PathEnd, PathStudy, PatternStudy};
 use crate::error::{Error, Result};
 use crate::mesh::{ElementKind, Sides};
-use crate::protocol::BifurcationSettings;
+use crate::protocol::{BifurcationSettings, CheckpointInterval};
 
 /// Every option of `fiberfold pattern`.
 #[derive(Clone, Debug, PartialEq, clap::Args)]
@@ -83,6 +83,24 @@ pub struct PatternOptions {
     #[arg(long, default_value_t = PathStudy::default().d_start)]
     pub d_start: f64,
 
+    /// Write the path's whole state to checkpoint.bin in the output folder after every N
+    /// accepted states of the path past the onset (or --checkpoint-seconds, whichever comes
+    /// first), for --resume; 0 writes none.
+    #[arg(long, value_name = "N", default_value_t = CheckpointInterval::DEFAULT.states)]
+    pub checkpoint_every: usize,
+
+    /// Write a checkpoint at least this often, in seconds of wall time, in (0, inf).
+    #[arg(long, value_name = "SECONDS", default_value_t = CheckpointInterval::DEFAULT.seconds, allow_negative_numbers = true)]
+    pub checkpoint_seconds: f64,
+
+    /// Continue the path past the onset from the checkpoint in the output folder (the patch is
+    /// sized and its bifurcation found again first, as before): the states after it are those
+    /// the uninterrupted run computes, bit for bit. A checkpoint of other parameters or
+    /// options, of another version, or damaged, is refused (exit 2); with none, the path starts
+    /// from the beginning.
+    #[arg(long)]
+    pub resume: bool,
+
     /// Run even when the memory estimate (printed with the patch: its factor's exact size)
     /// exceeds the memory available.
     #[arg(long)]
@@ -103,6 +121,13 @@ impl PatternOptions {
         }
         if !(self.d_max > 0.0 && self.d_max <= 0.95) {
             return Err(Error::invalid("d-max", self.d_max, "(0, 0.95]"));
+        }
+        let checkpoints = (self.checkpoint_every > 0).then_some(CheckpointInterval {
+            states: self.checkpoint_every,
+            seconds: self.checkpoint_seconds,
+        });
+        if let Some(interval) = checkpoints {
+            interval.validate()?;
         }
         Ok(PatternStudy {
             biaxial: self.biaxial,
@@ -131,6 +156,8 @@ impl PatternOptions {
                 end,
             }),
             force: self.force,
+            checkpoints,
+            resume: self.resume,
         })
     }
 }

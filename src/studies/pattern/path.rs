@@ -9,10 +9,12 @@
 //! `state.vtu` (the patch, cut open along periodic sides, with the displacement) and
 //! `state_top.png/svg` (its surface relief seen from above, with the fibres' projection).
 
+use super::checkpoint::{self, PathMemory};
 use super::figure;
 use crate::error::{Error, Result};
 use crate::fem::element::{Hex27, ReferenceElement};
 use crate::mesh::{Mesh, TOP, Y};
+use crate::output::checkpoint::Request;
 use crate::output::table::Cell;
 use crate::output::vtu::{write_vtu, CellType, DataArray};
 use crate::output::CsvWriter;
@@ -21,7 +23,8 @@ use crate::protocol::patch::{
     classify, height_spectrum, surface_crosses_itself, BiaxialPatch, Direction, PatchImperfection, PatchPath,
     PatchProtocol, SurfacePattern,
 };
-use crate::protocol::Event;
+use crate::protocol::stages::Resumption;
+use crate::protocol::{CheckpointInterval, Event};
 use crate::stability::oblique::BoxMode;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -110,7 +113,7 @@ impl PathStudy {
 const CRITICAL_TOGETHER: f64 = 1e-6;
 
 /// A state of the path, as `pattern.csv` has it.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct PatternState {
     pub d: f64,
     /// `A = (max y - min y) / 2` of the top surface.
@@ -169,15 +172,21 @@ const COLUMNS: [&str; 17] = [
     "share2",
 ];
 
+/// The checkpoints of a path: how often, what the run was asked, and the checkpoint it resumes
+/// from, if any.
+pub(super) struct Checkpoints<'a> {
+    pub interval: Option<CheckpointInterval>,
+    pub request: &'a Request,
+    pub resumed: Option<PathMemory<PatternState>>,
+}
+
 /// Follows `path` (whose first bifurcation is found) to `d_end`, seeded with the critical ones
-/// of the admissible wave vectors `modes` (sorted by `d_c`), writes the files (module docs) into `out`
-/// and tells `progress` every state.
-pub fn follow(
+/// of the admissible wave vectors `modes` (sorted by `d_c`), with its checkpoints; writes the
+/// files (module docs) into `out` and tells `progress` every state.
+pub(super) fn follow(
     params: &Parameters,
-    path: PatchPath<'_>,
-    modes: &[BoxMode],
-    study: &PathStudy,
-    d_end: f64,
+    (path, modes): (PatchPath<'_>, &[BoxMode]),
+    (study, d_end, checkpoints): (&PathStudy, f64, Checkpoints<'_>),
     out: &Path,
     progress: &mut dyn FnMut(&PatternState),
 ) -> Result<(PathSummary, Vec<PathBuf>)> {
@@ -210,17 +219,41 @@ pub fn follow(
     };
     let csv = out.join("pattern.csv");
     let mut table = CsvWriter::create(&csv, &COLUMNS)?;
-    let mut states: Vec<PatternState> = Vec::new();
-    let mut branches_left = Vec::new();
-    let mut last_u = Vec::new();
+    let (mut states, mut branches_left, mut last_u, from) = match checkpoints.resumed {
+        Some(memory) => {
+            let last_u = memory.path.history.last().map(|(_, u)| u.clone()).unwrap_or_default();
+            (memory.states, memory.branches_left, last_u, Some(memory.path))
+        }
+        None => {
+            // A new path: a checkpoint of an earlier run in the folder is removed.
+            let old = out.join(checkpoint::CHECKPOINT_FILE);
+            match std::fs::remove_file(&old) {
+                Err(e) if e.kind() != std::io::ErrorKind::NotFound => return Err(Error::io(&old, e)),
+                _ => (Vec::new(), Vec::new(), Vec::new(), None),
+            }
+        }
+    };
+    for state in &states {
+        append_row(&mut table, state)?;
+    }
+    let resumption = Resumption {
+        from,
+        checkpoints: checkpoints.interval,
+    };
     let protocol = PatchProtocol::new(study.d_start, d_end);
-    let (continuation, stopped) = path.follow(&imperfection, &protocol, &mut |event: Event<'_, BiaxialPatch>| {
-        let Event::Step { record, system, u } = event else {
-            return Ok(());
+    let observer = &mut |event: Event<'_, BiaxialPatch>| {
+        let (record, system, u) = match event {
+            Event::Step { record, system, u } => (record, system, u),
+            Event::Checkpoint(path) => {
+                return checkpoint::write(out, checkpoints.request, path, (&states, &branches_left));
+            }
+            _ => return Ok(()),
         };
         let patch = system.system();
         if surface_crosses_itself(patch.mesh(), u, patch.average_gradient()) {
-            let before = states.last().map_or(String::from("the start"), |s| format!("d = {:.6}", s.d));
+            let before = states
+                .last()
+                .map_or(String::from("the start"), |s| format!("d = {:.6}", s.d));
             return Err(Error::Solver(format!(
                 "the surface touches itself between {before} and d = {:.6} (self-contact is not modelled in three dimensions)",
                 record.d
@@ -244,7 +277,8 @@ pub fn follow(
         states.push(state);
         last_u = u.to_vec();
         Ok(())
-    })?;
+    };
+    let (continuation, stopped) = path.follow_resumable(&imperfection, &protocol, resumption, observer)?;
     let mut files = vec![csv];
     let patch = continuation.system();
     let d = states.last().map_or(study.d_start, |s| s.d);

@@ -6,8 +6,8 @@
 use super::fig7::CreaseMemory;
 use super::snapshots::SnapshotsMemory;
 use super::{SecondaryTracker, SimulateStudy};
-use crate::error::{Error, Result};
-use crate::output::checkpoint::{read_checkpoint, write_checkpoint};
+use crate::error::Result;
+use crate::output::checkpoint::{read_checkpoint, write_checkpoint, Request};
 use crate::parameters::Parameters;
 use crate::protocol::{Cut, PathState, StepRecord};
 use serde::{Deserialize, Serialize};
@@ -31,56 +31,6 @@ pub(super) struct FilesMemory {
     pub snapshots: SnapshotsMemory,
     pub snap_files: Vec<PathBuf>,
     pub crease: Option<CreaseMemory>,
-}
-
-/// What a run was asked, as text: its parameters (JSON) and its options (all but how often it
-/// checkpoints and whether it resumes, which do not change the path).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub(super) struct Request {
-    parameters: String,
-    options: String,
-}
-
-impl Request {
-    pub(super) fn of(params: &Parameters, study: &SimulateStudy) -> Result<Self> {
-        let parameters =
-            serde_json::to_string_pretty(params).map_err(|e| Error::NonFinite(format!("the parameters: {e}")))?;
-        let options = SimulateStudy {
-            checkpoints: None,
-            resume: false,
-            ..*study
-        };
-        Ok(Request {
-            parameters,
-            options: format!("{options:#?}"),
-        })
-    }
-
-    /// Refuses the checkpoint `path` of a run asked `self` for a run asked `asked`, naming the
-    /// first setting that differs.
-    fn check(&self, asked: &Request, path: &Path) -> Result<()> {
-        let differing = |kind: &str, theirs: &str, ours: &str| {
-            let (theirs, ours) = theirs
-                .lines()
-                .zip(ours.lines())
-                .find(|(a, b)| a != b)
-                .unwrap_or(("(shorter)", "(longer)"));
-            Error::Resume(format!(
-                "{}: it is of a run with other {kind} (`{}` there, `{}` here); resume with the run's own \
-                 settings, or give another --out",
-                path.display(),
-                theirs.trim().trim_end_matches(','),
-                ours.trim().trim_end_matches(',')
-            ))
-        };
-        if self.parameters != asked.parameters {
-            return Err(differing("parameters", &self.parameters, &asked.parameters));
-        }
-        if self.options != asked.options {
-            return Err(differing("options", &self.options, &asked.options));
-        }
-        Ok(())
-    }
 }
 
 /// The file's layout for writing: borrowed, so that a checkpoint copies nothing.
@@ -112,4 +62,15 @@ pub(super) fn read(out: &Path, request: &Request) -> Result<Option<(SolveMemory,
     };
     read.request.check(request, &path)?;
     Ok(Some((read.solve, read.files)))
+}
+
+/// What a run was asked: its parameters, and its options but for how often it checkpoints and
+/// whether it resumes (which do not change the path).
+pub(super) fn request(params: &Parameters, study: &SimulateStudy) -> Result<Request> {
+    let options = SimulateStudy {
+        checkpoints: None,
+        resume: false,
+        ..*study
+    };
+    Request::of(params, &options)
 }

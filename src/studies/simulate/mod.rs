@@ -419,7 +419,7 @@ pub fn run_keeping(
     params.validate()?;
     study.validate()?;
     study.mesh.element.check_for(params.incompressible)?;
-    let request = checkpoint::Request::of(params, study)?;
+    let request = checkpoint::request(params, study)?;
     // A checkpoint of another run is refused before anything in the folder is touched.
     let resumed = match study.resume {
         true => checkpoint::read(out, &request)?,

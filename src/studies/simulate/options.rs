@@ -266,8 +266,8 @@ impl Default for SimulateOptions {
             eta: 1e-6,
             inertia: true,
             vtu_every: 0.01,
-            checkpoint_every: 25,
-            checkpoint_seconds: 300.0,
+            checkpoint_every: CheckpointInterval::DEFAULT.states,
+            checkpoint_seconds: CheckpointInterval::DEFAULT.seconds,
             resume: false,
             force: false,
         }

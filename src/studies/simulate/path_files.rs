@@ -8,6 +8,7 @@ use super::{amplitude_header, amplitude_row, fig3, write_state, CreaseSnapshots,
 use crate::error::{Error, Result};
 use crate::fem::System;
 use crate::material::Bilayer;
+use crate::output::checkpoint::Request;
 use crate::output::{write_json, CsvWriter};
 use crate::parameters::Parameters;
 use crate::protocol::Event;
@@ -82,7 +83,7 @@ impl PathFiles {
     }
 
     /// Writes the checkpoint of the path's state `solve` with what these files need to go on.
-    pub(super) fn checkpoint(&mut self, request: &checkpoint::Request, solve: &SolveMemory) -> Result<()> {
+    pub(super) fn checkpoint(&mut self, request: &Request, solve: &SolveMemory) -> Result<()> {
         let started = Instant::now();
         let files = checkpoint::FilesMemory {
             snapshots: self.snapshots.memory()?,
