@@ -45,6 +45,23 @@ fn client(state: &Path, program: &str, args: &[&str]) -> String {
     String::from_utf8_lossy(&out.stdout).trim().to_string()
 }
 
+/// Writes `command` (its words, quoted as they should be) as the job script `dir/job.sh`, one
+/// thread a task, and submits it with `flag`, its output appended to `log`: the job's id.
+fn submit(state: &Path, dir: &Path, command: &[String], flag: &str, log: &Path) -> String {
+    let job = dir.join("job.sh");
+    let script = format!(
+        "#!/bin/bash\nset -e\nexport RAYON_NUM_THREADS=1\n{}\n",
+        command.join(" ")
+    );
+    std::fs::write(&job, script).unwrap();
+    let (log, job) = (log.to_str().unwrap(), job.to_str().unwrap());
+    client(
+        state,
+        "sbatch",
+        &["--parsable", flag, "--open-mode=append", "-o", log, job],
+    )
+}
+
 /// Waits (up to `seconds`) until `done` holds.
 fn wait_until(seconds: u64, what: &str, mut done: impl FnMut() -> bool) {
     let start = Instant::now();
@@ -89,29 +106,8 @@ fn a_killed_and_requeued_array_task_resumes_and_the_array_computes_the_same_map(
                 }
             }))
             .collect();
-        let job = sharded.join("job.sh");
         // One thread a task: each takes a few seconds for its 4 points, one after the other.
-        std::fs::write(
-            &job,
-            format!(
-                "#!/bin/bash\nset -e\nexport RAYON_NUM_THREADS=1\n{}\n",
-                command.join(" ")
-            ),
-        )
-        .unwrap();
-        let log = sharded.join("task_%a.log");
-        let id = client(
-            &state,
-            "sbatch",
-            &[
-                "--parsable",
-                "--array=0-1",
-                "--open-mode=append",
-                "-o",
-                log.to_str().unwrap(),
-                job.to_str().unwrap(),
-            ],
-        );
+        let id = submit(&state, &sharded, &command, "--array=0-1", &sharded.join("task_%a.log"));
         let task = format!("{id}_0");
         let running = |task: &str| {
             let state_of = client(&state, "squeue", &["-h", "-j", task, "-o", "%T"]);
@@ -192,28 +188,8 @@ fn a_killed_and_requeued_simulate_job_resumes_to_the_uninterrupted_path() {
         let command: Vec<String> = std::iter::once(env!("CARGO_BIN_EXE_fiberfold").to_string())
             .chain(args.iter().map(|a| format!("'{a}'")))
             .collect();
-        let job = dir.join("job.sh");
-        std::fs::write(
-            &job,
-            format!(
-                "#!/bin/bash\nset -e\nexport RAYON_NUM_THREADS=1\n{}\n",
-                command.join(" ")
-            ),
-        )
-        .unwrap();
         let log = dir.join("job.log");
-        let id = client(
-            &state,
-            "sbatch",
-            &[
-                "--parsable",
-                "--requeue",
-                "--open-mode=append",
-                "-o",
-                log.to_str().unwrap(),
-                job.to_str().unwrap(),
-            ],
-        );
+        let id = submit(&state, &dir, &command, "--requeue", &log);
         let running = || {
             let state_of = client(&state, "squeue", &["-h", "-j", &id, "-o", "%T"]);
             state_of == "RUNNING" || state_of == "COMPLETING"
