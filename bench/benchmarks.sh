@@ -3,7 +3,7 @@
 # measures now: `fiberfold bench stability`, `fiberfold bench fe`, `fiberfold bench patch` and,
 # where FEniCSx is installed (bench/fenicsx/install.sh), the side-by-side comparisons
 # bench/fenicsx/compare.sh on the coarse mesh and bench/fenicsx/compare_patch.sh on a small 3D
-# patch. The page names the machine, the date and the commit, and is replaced on each run.
+# patch. The page names the machine, the date and fiberfold's version, and is replaced on each run.
 #
 #   bench/benchmarks.sh            (after cargo build --release; about 15 minutes on 2 cores and
 #                                   12 GB of memory for the largest patch)
@@ -34,13 +34,12 @@ fi
 
 # A page's own headings one level down, under this page's sections.
 demote() { sed 's/^#/##/' "$1"; }
-commit=$(git -C "$root" rev-parse --short HEAD)
-git -C "$root" diff --quiet HEAD -- src Cargo.toml Cargo.lock || commit="$commit with local changes"
+version=$("$binary" --version | awk '{print $2}')
 {
   echo "<!-- Written by bench/benchmarks.sh, replaced on each run: do not edit by hand. -->"
   echo "# Benchmarks"
   echo
-  echo "Measured by \`bench/benchmarks.sh\` on $(date -u +%Y-%m-%d), fiberfold $commit, on"
+  echo "Measured by \`bench/benchmarks.sh\` on $(date -u +%Y-%m-%d), fiberfold $version, on"
   echo "$(lscpu | sed -n 's/^Model name: *//p' | head -1) ($(nproc) cores),"
   echo "$(free -g | awk '/^Mem:/ {print $2}') GiB of memory, $(uname -sr)."
   echo "Absolute times differ between machines; the FEniCSx ratio is measured side by side in one"

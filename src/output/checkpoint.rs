@@ -84,6 +84,14 @@ pub fn write_checkpoint<T: Serialize>(path: &Path, value: &T) -> Result<u64> {
     Ok(bytes.len() as u64)
 }
 
+/// Removes the checkpoint at `path`, if there is one (a new path in its folder).
+pub fn remove_checkpoint(path: &Path) -> Result<()> {
+    match std::fs::remove_file(path) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(Error::io(path, e)),
+        _ => Ok(()),
+    }
+}
+
 /// The checkpoint at `path`, or `None` if there is none; a file that is not a whole checkpoint
 /// of this program is an [`Error::Resume`] saying why.
 pub fn read_checkpoint<T: DeserializeOwned>(path: &Path) -> Result<Option<T>> {

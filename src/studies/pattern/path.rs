@@ -14,7 +14,7 @@ use super::figure;
 use crate::error::{Error, Result};
 use crate::fem::element::{Hex27, ReferenceElement};
 use crate::mesh::{Mesh, TOP, Y};
-use crate::output::checkpoint::Request;
+use crate::output::checkpoint::{remove_checkpoint, Request};
 use crate::output::table::Cell;
 use crate::output::vtu::{write_vtu, CellType, DataArray};
 use crate::output::CsvWriter;
@@ -226,11 +226,8 @@ pub(super) fn follow(
         }
         None => {
             // A new path: a checkpoint of an earlier run in the folder is removed.
-            let old = out.join(checkpoint::CHECKPOINT_FILE);
-            match std::fs::remove_file(&old) {
-                Err(e) if e.kind() != std::io::ErrorKind::NotFound => return Err(Error::io(&old, e)),
-                _ => (Vec::new(), Vec::new(), Vec::new(), None),
-            }
+            remove_checkpoint(&out.join(checkpoint::CHECKPOINT_FILE))?;
+            (Vec::new(), Vec::new(), Vec::new(), None)
         }
     };
     for state in &states {

@@ -5,10 +5,10 @@
 use super::checkpoint::{self, SolveMemory, CHECKPOINT_FILE};
 use super::snapshots::Snapshots;
 use super::{amplitude_header, amplitude_row, fig3, write_state, CreaseSnapshots, SimulateStudy, Solution};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::fem::System;
 use crate::material::Bilayer;
-use crate::output::checkpoint::Request;
+use crate::output::checkpoint::{remove_checkpoint, Request};
 use crate::output::{write_json, CsvWriter};
 use crate::parameters::Parameters;
 use crate::protocol::Event;
@@ -39,11 +39,7 @@ pub(super) struct PathFiles {
 impl PathFiles {
     /// The files of a new path (a checkpoint of an earlier run in `out` is removed).
     pub(super) fn create(out: &Path, study: &SimulateStudy) -> Result<Self> {
-        let old = out.join(CHECKPOINT_FILE);
-        match std::fs::remove_file(&old) {
-            Err(e) if e.kind() != std::io::ErrorKind::NotFound => return Err(Error::io(&old, e)),
-            _ => {}
-        }
+        remove_checkpoint(&out.join(CHECKPOINT_FILE))?;
         Ok(PathFiles {
             dir: out.to_path_buf(),
             table: CsvWriter::create(&out.join("amplitude.csv"), &amplitude_header())?,
