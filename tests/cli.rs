@@ -377,31 +377,46 @@ fn crease_writes_its_onset_and_refuses_bad_folds() {
         &["d-from"],
     );
     // A soft layer (mu_l = 1.5) on Table 1's substrate, one fold, a coarse block.
-    let run = fiberfold(&[
-        "crease",
-        "--set",
-        "mu_l=1.5",
-        "--set",
-        "K_l=4.5",
-        "--fold",
-        "1",
-        "--d-from",
-        "0.2",
-        "--d-to",
-        "0.3",
-        "--nx",
-        "24",
-        "--substrate-elements",
-        "12",
-        "--layer-elements",
-        "2",
-        "--no-convergence",
-        "--out",
-        out,
-    ]);
-    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
-    let report: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("crease.json")).unwrap()).unwrap();
+    let soft = |more: &[&str]| {
+        let mut flags = vec![
+            "crease",
+            "--set",
+            "mu_l=1.5",
+            "--set",
+            "K_l=4.5",
+            "--fold",
+            "1",
+            "--d-from",
+            "0.2",
+            "--d-to",
+            "0.3",
+            "--nx",
+            "24",
+            "--substrate-elements",
+            "12",
+            "--layer-elements",
+            "2",
+            "--no-convergence",
+            "--out",
+            out,
+        ];
+        flags.extend(more);
+        let run = fiberfold(&flags);
+        assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+        let report: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("crease.json")).unwrap()).unwrap();
+        (String::from_utf8_lossy(&run.stdout).to_string(), report)
+    };
+    // Its wrinkle (d = 0.2208) comes first: the scan ends 0.01 past it, and says so.
+    let (printed, report) = soft(&[]);
+    let d_wrinkle = report["d_wrinkle"].as_f64().unwrap();
+    assert_eq!(report["first"], "wrinkle", "{printed}");
+    assert_eq!(report["scan_ends_past_wrinkle"], true);
+    assert!((report["scan"]["to"].as_f64().unwrap() - (d_wrinkle + 0.01)).abs() < 1e-12);
+    assert!(printed.contains("the wrinkle comes first") && printed.contains("--beyond-wrinkle"), "{printed}");
+    // Past it, the crease's own threshold.
+    let (_, report) = soft(&["--beyond-wrinkle"]);
+    assert_eq!(report["scan_ends_past_wrinkle"], false);
     let d = report["d_crease"].as_f64().expect("a crease onset");
     assert!((0.2..0.3).contains(&d), "{d}");
     assert_eq!(report["fold_length"].as_f64(), Some(1.0));

@@ -248,6 +248,7 @@ fn the_crease_onset_of_a_half_space_is_the_same_for_every_fold_length() {
         criterion: Criterion::Held,
         refinement: None,
         lowest_only: false,
+        stop_past_wrinkle: false,
     };
     let report = crease(&params, &study, &|| {}).unwrap();
     let thresholds: Vec<f64> = report.folds.iter().map(|f| f.thresholds[0].unwrap()).collect();

@@ -32,6 +32,7 @@ fn study(mesh: CreaseMesh, max_meshes: usize) -> CreaseStudy {
             ..Refinement::default()
         }),
         lowest_only: false,
+        stop_past_wrinkle: false,
     }
 }
 

@@ -1,5 +1,5 @@
-//! `fiberfold bench stability | fe | patch`: timings printed as Markdown tables (never timed tests),
-//! and written to the output folder (the tables, and the FE timings as JSON).
+//! `fiberfold bench stability | fe | patch | crease | map`: timings printed as Markdown tables
+//! (never timed tests), and written to the output folder (the tables, and the timings as JSON).
 
 use super::common::{report_files, ParamArgs};
 use clap::{Args, ValueEnum};
@@ -24,6 +24,13 @@ pub enum BenchTarget {
     /// LDLT, one solve), the factor's entries and peak memory on periodic boxes of 1 x 1 up to
     /// --periods onset periods (pattern's default mesh, equibiaxial), and how they grow.
     Patch,
+    /// The crease onset (the default `crease` study on the given parameters): the linear
+    /// theory's onset, then each mesh of the sequence (folds searched, creased states solved,
+    /// seconds).
+    Crease,
+    /// A 2 x 2 map (mu_l from 3 to 10, beta from 0 to pi/2, the map's defaults), its points one
+    /// after the other, each split into linear theory, crease search and nonlinear run.
+    Map,
 }
 
 #[derive(Args)]
@@ -47,8 +54,9 @@ pub struct BenchArgs {
     /// unknowns and 3 GB; 3: 245,270 unknowns, 12 GB and about 3 minutes on 2 cores).
     #[arg(long, value_name = "N", default_value_t = 3)]
     pub periods: usize,
-    /// Output folder: `bench_stability.md`, `bench_fe.md` and `bench_fe.json`, or
-    /// `bench_patch.md` and `bench_patch.json`.
+    /// Output folder: `bench_stability.md`, `bench_fe.md` and `bench_fe.json`,
+    /// `bench_patch.md` and `bench_patch.json`, `bench_crease.md` and `bench_crease.json`, or
+    /// `bench_map.md` and `bench_map.json`.
     #[arg(long, value_name = "DIR", default_value = "results/bench")]
     pub out: PathBuf,
 }
@@ -130,9 +138,32 @@ pub fn run(args: &BenchArgs) -> Result<()> {
             vec![table, json]
         }
         BenchTarget::Patch => patch(&params, args)?,
+        BenchTarget::Crease => {
+            println!("timing the crease onset, per phase...");
+            let bench = fiberfold::studies::bench_crease::crease_phases(&params)?;
+            print!("{bench}");
+            write_table(args, "bench_crease", &bench.to_string(), &bench)?
+        }
+        BenchTarget::Map => {
+            println!("timing a 2 x 2 map (mu_l in [3, 10], beta in [0, pi/2]), point by point...");
+            let bench = fiberfold::studies::bench_crease::map_phases(&params)?;
+            print!("{bench}");
+            write_table(args, "bench_map", &bench.to_string(), &bench)?
+        }
     };
     report_files(&files);
     Ok(())
+}
+
+/// `NAME.md` (the table) and `NAME.json`.
+fn write_table(args: &BenchArgs, name: &str, table: &str, json: &impl Serialize) -> Result<Vec<PathBuf>> {
+    let (md, js) = (
+        args.out.join(format!("{name}.md")),
+        args.out.join(format!("{name}.json")),
+    );
+    write_file(&md, table)?;
+    write_json(&js, json)?;
+    Ok(vec![md, js])
 }
 
 /// `bench patch`: the boxes' table, printed and written.

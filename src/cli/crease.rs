@@ -2,7 +2,7 @@
 
 use super::common::{report_files, ParamArgs};
 use clap::Args;
-use fiberfold::studies::crease::{self, CreaseOptions, CreaseReport, CreaseStudy, Criterion, FoldThreshold};
+use fiberfold::studies::crease::{self, CreaseOptions, CreaseReport, CreaseStudy, Criterion, First, FoldThreshold};
 use fiberfold::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
@@ -160,5 +160,33 @@ fn print_onset(report: &CreaseReport, study: &CreaseStudy) {
             }
         }
         _ => println!("no crease pays off within the scan"),
+    }
+    print_first(report, study);
+}
+
+/// The wrinkling onset of the linear theory beside the crease's, and which comes first.
+fn print_first(report: &CreaseReport, study: &CreaseStudy) {
+    let Some(w) = report.d_wrinkle else {
+        println!("wrinkling onset (linear theory): none before the loss of ellipticity");
+        return;
+    };
+    let first = match report.first {
+        First::Wrinkle => "the wrinkle comes first",
+        First::Crease => "the crease comes first",
+        First::TooCloseToCall => "too close to call within the crease onset's uncertainty",
+        First::Undecided => "undecided: the crease search ended below it (a fold that snapped)",
+        First::None => "neither within the scan",
+    };
+    println!("wrinkling onset (linear theory): d_wrinkle = {w:.5}: {first}");
+    if report.scan_ends_past_wrinkle {
+        println!(
+            "  the scan ended at d = {:.4}, {} past d_wrinkle (--beyond-wrinkle scans on to --d-to = {})",
+            report.scan.to,
+            fiberfold::studies::crease::BEYOND_WRINKLE,
+            study.scan.to
+        );
+    }
+    if study.lowest_only && study.fold_lengths.len() > 1 {
+        println!("  only the lowest threshold is located and refined (--every-fold for each fold's)");
     }
 }

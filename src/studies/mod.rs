@@ -1,6 +1,7 @@
 //! Studies: what each command computes and the files it writes (CSV, JSON, figures). The
 //! command line and `reproduce` call these; they take a progress callback and an output folder.
 
+pub mod bench_crease;
 pub mod bench_fe;
 pub mod bench_patch;
 pub mod bench_stability;

@@ -28,6 +28,8 @@ pub struct FoldThreshold {
     /// flat state, so that the equilibrium crease appears already paying off (rather than
     /// passing through `U = U_flat`).
     pub appears_paying: bool,
+    /// Wall time of this fold's search on this mesh (s).
+    pub seconds: f64,
 }
 
 impl FoldThreshold {
@@ -43,6 +45,7 @@ impl FoldThreshold {
             release_error: None,
             released_evaluations: Vec::new(),
             appears_paying: false,
+            seconds: 0.0,
         }
     }
 

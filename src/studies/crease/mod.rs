@@ -19,12 +19,15 @@
 //! frictionless contact, an equilibrium.
 
 pub mod convergence;
+mod first;
 mod fold;
 mod options;
 mod released;
+mod sequence;
 pub mod threshold;
 mod write;
 
+pub use first::First;
 pub use fold::FoldThreshold;
 pub use options::CreaseOptions;
 pub use threshold::fold_threshold;
@@ -37,7 +40,9 @@ use crate::fem::ElementKind;
 use crate::material::Bilayer;
 use crate::mesh::{MeshSpec, XRefinement};
 use crate::parameters::{Load, Parameters};
+use crate::stability::{Method, StabilityAnalysis};
 use convergence::{extrapolate, Extrapolated};
+use sequence::{next_scan, refine, refined_threshold};
 use serde::{Deserialize, Serialize};
 
 /// The square block `[0, size] x [-size, 1]` around the crease at `X = 0`: `nx` elements in X
@@ -137,19 +142,30 @@ pub struct CreaseStudy {
     pub criterion: Criterion,
     /// The mesh sequence that converges each threshold (None: the base mesh alone).
     pub refinement: Option<Refinement>,
-    /// Scan each fold only up to the lowest threshold found before it: the minimum over the
-    /// folds is the same, the thresholds above it are not located (the map's shortcut). Under
+    /// Scan each fold only up to the lowest threshold found before it, and refine only the
+    /// fold of the lowest: the minimum over the folds is the same, the thresholds above it are
+    /// not located, nor refined the folds that ended early above it. Under
     /// the released criterion the held scan is capped there: a shortcut that holds where the
     /// released crease forgets its fold length, as it is seen to (the folds that close give
     /// the same released crease and threshold).
     pub lowest_only: bool,
+    /// End the scan [`BEYOND_WRINKLE`] past the wrinkling onset of the linear theory (plane
+    /// strain): past it the wrinkle comes first, whatever the crease does. A fold whose scan
+    /// ends early (a fold that snapped) past that point is not refined either.
+    pub stop_past_wrinkle: bool,
 }
+
+/// How far past the wrinkling onset `d_wrinkle` a scan that stops there goes: a few times the
+/// uncertainty of a converged crease onset, so that a threshold just past it is located (and
+/// too close to call).
+pub const BEYOND_WRINKLE: f64 = 0.01;
 
 impl Default for CreaseStudy {
     /// A 12 H block, 24 x (3 + 10) elements refined 8 times at the crease in X, the layer's
     /// elements halving towards the surface (1/7, 2/7, 4/7 H); folds of 0.5, 1, 2 H;
     /// `d` scanned from 0.05 to 0.7 by 0.05, located to 1e-5; the held criterion; converged in
-    /// the mesh ([`Refinement::default`]).
+    /// the mesh ([`Refinement::default`]), only the lowest threshold located on the finer
+    /// meshes, the scan ending just past the wrinkle's onset.
     fn default() -> Self {
         CreaseStudy {
             mesh: CreaseMesh {
@@ -170,7 +186,8 @@ impl Default for CreaseStudy {
             },
             criterion: Criterion::default(),
             refinement: Some(Refinement::default()),
-            lowest_only: false,
+            lowest_only: true,
+            stop_past_wrinkle: true,
         }
     }
 }
@@ -220,12 +237,6 @@ impl CreaseStudy {
         self.fold_lengths.iter().copied().fold(0.0, f64::max)
     }
 }
-
-/// The smallest step of a finer mesh's scan around the previous mesh's threshold.
-const LOCAL_STEP: f64 = 2.5e-3;
-
-/// Times a finer mesh's scan lowers its start where its first point already pays off.
-const LOWERINGS: usize = 4;
 
 /// The mesh sequence of a converged onset: the base mesh times 1, 2, ... up to `max_meshes`,
 /// stopped once every refined threshold changes by less than `tolerance` in `d` (and at least
@@ -302,6 +313,11 @@ pub struct MeshUsed {
     /// Unknowns of the mesh of the longest fold (each fold's mesh is refined over `1.5 a` at the
     /// crease, so that its threshold is the same whatever other folds are asked for).
     pub unknowns: usize,
+    /// Folds searched on this mesh, the creased states they solved (held and released), and
+    /// the wall time they took (s): where a run's time goes.
+    pub folds: usize,
+    pub states: usize,
+    pub seconds: f64,
 }
 
 /// `crease.json`.
@@ -314,6 +330,17 @@ pub struct CreaseReport {
     pub unknowns: usize,
     /// What loads the bilayer; under growth every `d` is the strain `1 - 1/g`.
     pub load: Load,
+    /// The wrinkling onset of the linear theory (plane strain; None: none before the loss of
+    /// ellipticity).
+    pub d_wrinkle: Option<f64>,
+    /// Whether the scan ended just past `d_wrinkle` ([`CreaseStudy::stop_past_wrinkle`]) rather
+    /// than at the `to` asked for: a crease that pays off only later is not located.
+    pub scan_ends_past_wrinkle: bool,
+    /// Wall time of the linear theory's onset (s).
+    pub wrinkle_seconds: f64,
+    /// Which comes first: the wrinkle, the crease, or too close to call within `d_crease_error`
+    /// ([`First::decide`]).
+    pub first: First,
     /// Which creased state the thresholds compare with the flat one.
     pub criterion: Criterion,
     /// `min_a d(a)`, extrapolated in the mesh: the crease onset (None if no fold paid off).
@@ -351,64 +378,16 @@ impl CreaseReport {
     }
 }
 
-/// The scan of a fold on the next mesh: steps `delta` (twice the last change of its held
-/// threshold, at least [`LOCAL_STEP`]) from `delta` below its previous held threshold to
-/// `2 delta` above it; without a previous threshold, the whole scan. (The held fold is scanned
-/// first under either criterion; the released search starts from its threshold.)
-fn next_scan(study: &CreaseStudy, fold: &FoldConvergence) -> Scan {
-    let scan = study.scan;
-    let (_, values) = fold.last_run(|m| m.d_held);
-    let Some(&d) = values.last() else { return scan };
-    let change = match values.len() {
-        1 => 2.0 * LOCAL_STEP,
-        n => (values[n - 1] - values[n - 2]).abs(),
-    };
-    let delta = (2.0 * change).max(LOCAL_STEP);
-    let from = (d - delta).max(scan.from);
-    let to = (d + 2.0 * delta).min(scan.to);
-    Scan {
-        from,
-        to,
-        step: delta.min(to - from),
-        tolerance: scan.tolerance.min(0.5 * delta),
-    }
-}
-
-/// [`fold_threshold`] on a finer mesh: where the scan's first point already pays off, its start
-/// is lowered (by four times its step each time, at most [`LOWERINGS`] times, not below the
-/// study's `from`).
-fn refined_threshold(
-    materials: &Bilayer,
-    spec: MeshSpec,
-    a: f64,
-    mut scan: Scan,
-    study: &CreaseStudy,
-    tick: Tick,
-) -> Result<FoldThreshold> {
-    let mut earlier = Vec::new();
-    for lowering in 0..=LOWERINGS {
-        let mut fold = fold_threshold(materials, spec, a, scan, study.criterion, tick)?;
-        let first_pays = fold.d_threshold.is_none() && fold.evaluations.first().is_some_and(|e| e.difference <= 0.0);
-        if !first_pays || scan.from <= study.scan.from || lowering == LOWERINGS {
-            fold.evaluations.extend(earlier);
-            fold.evaluations.sort_by(|x, y| x.strain.total_cmp(&y.strain));
-            return Ok(fold);
-        }
-        earlier.append(&mut fold.evaluations);
-        let to = scan.from;
-        scan.from = (scan.from - 4.0 * scan.step).max(study.scan.from);
-        scan.to = to;
-        scan.step = scan.step.min(to - scan.from);
-    }
-    unreachable!("the last lowering returns")
-}
-
 /// Computes the crease onset of `params` (no files).
 pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<CreaseReport> {
     params.validate()?;
     study.validate()?;
     study.mesh.element.check_for(params.incompressible)?;
     let start = std::time::Instant::now();
+    let d_wrinkle = wrinkle_onset(params)?;
+    let wrinkle_seconds = start.elapsed().as_secs_f64();
+    let requested_to = study.scan.to;
+    let study = &study.bounded(d_wrinkle);
     let materials = Bilayer::new(params);
     let longest = study.longest();
     let mut folds: Vec<FoldConvergence> = Vec::with_capacity(study.fold_lengths.len());
@@ -420,6 +399,9 @@ pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<Cr
             factor,
             mesh,
             unknowns: mesh.spec(longest).num_dofs(),
+            folds: 0,
+            states: 0,
+            seconds: 0.0,
         });
         let mut lowest = study.scan.to;
         for (i, &a) in study.fold_lengths.iter().enumerate() {
@@ -431,7 +413,7 @@ pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<Cr
                     converged: false,
                     meshes: Vec::new(),
                 });
-            } else if !refine(study, &folds, i) {
+            } else if !refine(study, &folds, i, d_wrinkle) {
                 continue;
             }
             let mut scan = next_scan(study, &folds[i]);
@@ -443,10 +425,16 @@ pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<Cr
             }
             // Each fold on its own mesh: its threshold does not depend on the others asked for.
             let spec = mesh.spec(a);
-            let fold = match factor {
+            let clock = std::time::Instant::now();
+            let mut fold = match factor {
                 1 => fold_threshold(&materials, spec, a, scan, study.criterion, tick)?,
                 _ => refined_threshold(&materials, spec, a, scan, study, tick)?,
             };
+            fold.seconds = clock.elapsed().as_secs_f64();
+            let used = meshes.last_mut().expect("this mesh");
+            used.folds += 1;
+            used.states += fold.evaluations.len() + fold.released_evaluations.len();
+            used.seconds += fold.seconds;
             lowest = fold.d_threshold.map_or(lowest, |d| d.min(lowest));
             let fold_convergence = &mut folds[i];
             // Keep the meshes aligned with the sequence: a fold skipped on a mesh has no entry.
@@ -456,7 +444,7 @@ pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<Cr
             fold_convergence.meshes.push(fold);
             fold_convergence.update(study.refinement);
         }
-        let done = (0..folds.len()).all(|i| !refine(study, &folds, i));
+        let done = (0..folds.len()).all(|i| !refine(study, &folds, i, d_wrinkle));
         if factor >= 3 && done {
             break;
         }
@@ -466,13 +454,17 @@ pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<Cr
         .enumerate()
         .filter_map(|(i, f)| f.extrapolated.map(|e| (e, i)))
         .min_by(|x, y| x.0.value.total_cmp(&y.0.value));
-    Ok(CreaseReport {
+    let mut report = CreaseReport {
         command: "crease",
         parameters: params.clone(),
         mesh: study.mesh,
         unknowns: meshes[0].unknowns,
         load: params.load,
         criterion: study.criterion,
+        d_wrinkle,
+        scan_ends_past_wrinkle: study.scan.to < requested_to,
+        wrinkle_seconds,
+        first: First::None,
         d_crease: best.map(|(e, _)| e.value),
         g_crease: best
             .filter(|_| params.load.is_growth())
@@ -494,31 +486,18 @@ pub fn crease(params: &Parameters, study: &CreaseStudy, tick: Tick) -> Result<Cr
         })),
         folds,
         seconds: start.elapsed().as_secs_f64(),
-    })
+    };
+    let error = report.d_crease_error.unwrap_or(0.0);
+    report.first = First::decide((d_wrinkle, report.d_crease), error, report.cleared());
+    Ok(report)
 }
 
-/// Whether fold `i` goes on to the next mesh: with a refinement, while it is not converged,
-/// if it found a threshold or its scan ended early on some mesh (a fold that cleared the whole
-/// scan on every mesh so far has no threshold to converge). With `lowest_only`, only the fold
-/// of the lowest threshold so far goes on (or every fold while none has one).
-fn refine(study: &CreaseStudy, folds: &[FoldConvergence], i: usize) -> bool {
-    let Some(refinement) = study.refinement else {
-        return false;
-    };
-    let fold = &folds[i];
-    let candidate = !fold.converged
-        && fold.meshes.len() < refinement.max_meshes
-        && fold
-            .meshes
-            .iter()
-            .any(|m| m.d_threshold.is_some() || m.stopped.is_some());
-    if !study.lowest_only || !candidate {
-        return candidate;
+/// The wrinkling onset of the linear theory (plane strain), if there is one before the loss
+/// of ellipticity.
+fn wrinkle_onset(params: &Parameters) -> Result<Option<f64>> {
+    match StabilityAnalysis::new(params, Method::Exact)?.onset() {
+        Ok(onset) => Ok(Some(onset.d_c)),
+        Err(Error::NoRoot { .. }) => Ok(None),
+        Err(e) => Err(e),
     }
-    let lowest = folds
-        .iter()
-        .enumerate()
-        .filter_map(|(j, f)| f.extrapolated.map(|e| (e.value, j)))
-        .min_by(|x, y| x.0.total_cmp(&y.0));
-    lowest.is_none_or(|(_, j)| j == i)
 }

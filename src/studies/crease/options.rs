@@ -82,6 +82,17 @@ pub struct CreaseOptions {
     /// The base mesh alone: no refinement, no uncertainty.
     #[arg(id = "no_convergence", long = "no-convergence", action = clap::ArgAction::SetFalse)]
     pub convergence: bool,
+
+    /// Locate and converge every fold's threshold. By default each fold is scanned only up to
+    /// the lowest threshold found before it and only the lowest is refined: the onset is the
+    /// same, the other folds' thresholds are not located.
+    #[arg(long)]
+    pub every_fold: bool,
+
+    /// Scan on to --d-to. By default the scan ends 0.01 past the wrinkling onset of the linear
+    /// theory, where the wrinkle comes first whatever the crease does.
+    #[arg(long)]
+    pub beyond_wrinkle: bool,
 }
 
 /// The default folds as `--fold` takes them ([`CreaseStudy::default`]'s; a test holds them equal).
@@ -113,6 +124,8 @@ impl Default for CreaseOptions {
             convergence: study.refinement.is_some(),
             mesh_tolerance: refinement.tolerance,
             max_meshes: refinement.max_meshes,
+            every_fold: !study.lowest_only,
+            beyond_wrinkle: !study.stop_past_wrinkle,
         }
     }
 }
@@ -157,7 +170,8 @@ impl CreaseOptions {
                 tolerance: self.mesh_tolerance,
                 max_meshes: self.max_meshes,
             }),
-            lowest_only: false,
+            lowest_only: !self.every_fold,
+            stop_past_wrinkle: !self.beyond_wrinkle,
         };
         study.validate()?;
         Ok(study)

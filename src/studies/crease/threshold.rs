@@ -114,6 +114,7 @@ fn held_threshold(materials: &Bilayer, spec: MeshSpec, a: f64, scan: Scan, tick:
         release_error: None,
         released_evaluations: Vec::new(),
         appears_paying: false,
+        seconds: 0.0,
     })
 }
 

@@ -109,6 +109,7 @@ impl MapSettings {
             criterion: self.crease_criterion,
             refinement: self.crease_refinement,
             lowest_only: true,
+            stop_past_wrinkle: true,
         }
     }
 

@@ -8,32 +8,12 @@ use crate::parameters::Parameters;
 use crate::protocol::secondary::{branch_kind, BranchKind};
 use crate::protocol::SnapCrossing;
 use crate::stability::{Method, Minimum, StabilityAnalysis};
-use crate::studies::crease::{crease, CreaseStudy, Scan};
+pub use crate::studies::crease::First;
+use crate::studies::crease::{crease, CreaseStudy};
 use crate::studies::orientation::{directed_onset, Modes};
 use crate::studies::simulate::{solve, solve_to_secondary, MeshChoice, SimulateOptions, ToSecondary};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
-
-/// How far beyond `d_wrinkle` a point's crease search goes (a few times the uncertainty of a
-/// converged crease onset).
-const BEYOND_WRINKLE: f64 = 0.01;
-
-/// The first instability under growing compression.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum First {
-    /// `d_wrinkle <= d_crease` (or no crease pays off in the scan).
-    Wrinkle,
-    /// `d_crease < d_wrinkle` (or no wrinkling before the loss of ellipticity).
-    Crease,
-    /// Neither within the ranges searched.
-    None,
-    /// No crease paid off, but its search ended (a fold that snapped) below `d_wrinkle`.
-    Undecided,
-    /// `|d_crease - d_wrinkle|` is within the crease onset's uncertainty (`d_crease_error`):
-    /// the meshes cannot tell which comes first.
-    TooCloseToCall,
-}
 
 /// What the wrinkle becomes in the nonlinear run ([`post_buckling`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -254,8 +234,8 @@ pub fn first_instability(crease_study: &CreaseStudy, parameters: Parameters) -> 
 
     let d_wrinkle = onset.map(|o| o.d_c);
     let clock = Instant::now();
-    let crease_study = crease_search(crease_study, d_wrinkle);
-    let report = crease(&parameters, &crease_study, &|| {})?;
+    // The crease search ends just past d_wrinkle ([`CreaseStudy::stop_past_wrinkle`]).
+    let report = crease(&parameters, crease_study, &|| {})?;
     let crease_seconds = clock.elapsed().as_secs_f64();
     if report.d_crease.is_none() {
         let why = report
@@ -265,14 +245,11 @@ pub fn first_instability(crease_study: &CreaseStudy, parameters: Parameters) -> 
             .next();
         notes.push(format!(
             "no crease pays off up to d = {:.4} (the search ends at d_wrinkle){}",
-            crease_study.scan.to,
+            report.scan.to,
             why.map(|w| format!(" ({w})")).unwrap_or_default()
         ));
     }
-    // Without a threshold, the crease is known not to pay off below the lowest d where a fold's
-    // scan ended.
-    let uncertainty = report.d_crease_error.unwrap_or(0.0);
-    let first = decide((d_wrinkle, report.d_crease), uncertainty, report.cleared());
+    let first = report.first;
 
     Ok(MapPoint {
         index: 0,
@@ -302,24 +279,6 @@ pub fn first_instability(crease_study: &CreaseStudy, parameters: Parameters) -> 
         notes,
         seconds: [linear_seconds, crease_seconds, 0.0],
     })
-}
-
-/// The crease search of a point: up to `d_wrinkle + BEYOND_WRINKLE` (far beyond it the flat
-/// state the criterion compares with is unstable, and which comes first is decided; just beyond
-/// it a threshold may still be too close to call), in steps that land on `d_wrinkle`; without a
-/// wrinkle, `base`'s scan.
-fn crease_search(base: &CreaseStudy, d_wrinkle: Option<f64>) -> CreaseStudy {
-    let mut study = base.clone();
-    if let Some(w) = d_wrinkle.filter(|&w| w < base.scan.to) {
-        let step = w / (w / base.scan.step).ceil().max(2.0);
-        study.scan = Scan {
-            from: step,
-            step,
-            to: (w + BEYOND_WRINKLE).min(base.scan.to),
-            tolerance: base.scan.tolerance.min(0.5 * step),
-        };
-    }
-    study
 }
 
 /// The nonlinear analysis to `d_wrinkle + post_buckling_range`. The unseeded path is followed
@@ -390,22 +349,6 @@ fn nonlinear(
     Ok(())
 }
 
-/// Which comes first, from the two onsets (`None`: none found) and the crease's uncertainty:
-/// too close to call where they differ by no more than it; without a crease threshold, the
-/// wrinkle if it comes before `cleared`, the lowest `d` up to which no fold paid off, else
-/// undecided.
-pub(super) fn decide((d_wrinkle, d_crease): (Option<f64>, Option<f64>), uncertainty: f64, cleared: f64) -> First {
-    match (d_wrinkle, d_crease) {
-        (Some(w), Some(c)) if (c - w).abs() <= uncertainty => First::TooCloseToCall,
-        (Some(w), Some(c)) if c < w => First::Crease,
-        (Some(_), Some(_)) => First::Wrinkle,
-        (Some(w), None) if w <= cleared => First::Wrinkle,
-        (Some(_), None) => First::Undecided,
-        (None, Some(_)) => First::Crease,
-        (None, None) => First::None,
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -459,16 +402,22 @@ mod tests {
     #[test]
     fn the_first_instability_is_too_close_to_call_within_the_crease_uncertainty() {
         let (w, u) = (0.2305, 5e-4);
-        assert_eq!(decide((Some(w), Some(w - 2.0 * u)), u, 0.0), First::Crease);
-        assert_eq!(decide((Some(w), Some(w + 2.0 * u)), u, 0.0), First::Wrinkle);
-        assert_eq!(decide((Some(w), Some(w - 0.5 * u)), u, 0.0), First::TooCloseToCall);
-        assert_eq!(decide((Some(w), Some(w + 0.5 * u)), u, 0.0), First::TooCloseToCall);
+        assert_eq!(First::decide((Some(w), Some(w - 2.0 * u)), u, 0.0), First::Crease);
+        assert_eq!(First::decide((Some(w), Some(w + 2.0 * u)), u, 0.0), First::Wrinkle);
+        assert_eq!(
+            First::decide((Some(w), Some(w - 0.5 * u)), u, 0.0),
+            First::TooCloseToCall
+        );
+        assert_eq!(
+            First::decide((Some(w), Some(w + 0.5 * u)), u, 0.0),
+            First::TooCloseToCall
+        );
         // An unconverged threshold (no uncertainty) decides by its sign alone.
-        assert_eq!(decide((Some(w), Some(w - 1e-6)), 0.0, 0.0), First::Crease);
+        assert_eq!(First::decide((Some(w), Some(w - 1e-6)), 0.0, 0.0), First::Crease);
         // No fold paid off up to `cleared`: the wrinkle first only if it comes before.
-        assert_eq!(decide((Some(w), None), u, w + 0.01), First::Wrinkle);
-        assert_eq!(decide((Some(w), None), u, w - 0.01), First::Undecided);
-        assert_eq!(decide((None, Some(0.35)), u, 0.0), First::Crease);
-        assert_eq!(decide((None, None), u, 0.0), First::None);
+        assert_eq!(First::decide((Some(w), None), u, w + 0.01), First::Wrinkle);
+        assert_eq!(First::decide((Some(w), None), u, w - 0.01), First::Undecided);
+        assert_eq!(First::decide((None, Some(0.35)), u, 0.0), First::Crease);
+        assert_eq!(First::decide((None, None), u, 0.0), First::None);
     }
 }
