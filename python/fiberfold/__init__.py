@@ -296,7 +296,10 @@ def crease(
     and Suo's criterion). The options are the CLI's flags by name (``d_from``, ``d_to``,
     ``d_step``, ``tolerance``, ``size``, ``nx``, ``layer_elements``, ``substrate_elements``,
     ``ratio``, ``layer_grading``, ``element``, ``criterion``, ``convergence``,
-    ``mesh_tolerance``, ``max_meshes``); :func:`crease_defaults` gives each with its default.
+    ``mesh_tolerance``, ``max_meshes``, ``every_fold``, ``beyond_wrinkle``);
+    :func:`crease_defaults` gives each with its default. The scan ends 0.01 past the wrinkling
+    onset of the linear theory (``beyond_wrinkle=True`` scans on to ``d_to``) and only the
+    lowest threshold is located and refined (``every_fold=True`` converges each fold's).
     ``criterion="released"`` compares the equilibrium crease the fold closes to once released
     to frictionless contact (``"held"``, the default: the fold held on the plane). Each threshold is
     computed on the base mesh with its element counts times 1, 2, 3, ... (at most
@@ -304,8 +307,9 @@ def crease(
     the observed order (``convergence=False``: the base mesh alone). The content of
     ``crease.json``: ``d_crease`` (the smallest extrapolated threshold, None if none within the
     scan), ``d_crease_error`` (its uncertainty), ``order``, ``converged``, ``fold_length``,
-    ``depth``, ``meshes``, and every fold's ``thresholds`` per mesh, ``extrapolated`` and
-    energies. An unknown option raises ``ValueError``, a value of the wrong type ``TypeError``."""
+    ``depth``, ``meshes``, ``d_wrinkle`` and ``first`` (which comes first: ``"wrinkle"``,
+    ``"crease"``, ``"too_close_to_call"``, ``"undecided"`` or ``"none"``), and every fold's
+    ``thresholds`` per mesh, ``extrapolated`` and energies. An unknown option raises ``ValueError``, a value of the wrong type ``TypeError``."""
     if folds is not None:
         options["folds"] = [float(a) for a in folds]
     keywords = json.dumps(options, default=_plain)
