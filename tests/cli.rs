@@ -413,7 +413,10 @@ fn crease_writes_its_onset_and_refuses_bad_folds() {
     assert_eq!(report["first"], "wrinkle", "{printed}");
     assert_eq!(report["scan_ends_past_wrinkle"], true);
     assert!((report["scan"]["to"].as_f64().unwrap() - (d_wrinkle + 0.01)).abs() < 1e-12);
-    assert!(printed.contains("the wrinkle comes first") && printed.contains("--beyond-wrinkle"), "{printed}");
+    assert!(
+        printed.contains("the wrinkle comes first") && printed.contains("--beyond-wrinkle"),
+        "{printed}"
+    );
     // Past it, the crease's own threshold.
     let (_, report) = soft(&["--beyond-wrinkle"]);
     assert_eq!(report["scan_ends_past_wrinkle"], false);
