@@ -323,9 +323,13 @@ def test_incompressible_tissue_with_the_mixed_element():
 
 def test_crease_onset_of_a_soft_layer():
     p = fiberfold.Parameters(mu_l=1.5, K_l=4.5)
-    r = fiberfold.crease(
-        p, [1.0], d_from=0.2, d_to=0.3, nx=24, layer_elements=2, substrate_elements=12, layer_grading=1.0, convergence=False
-    )
+    mesh = dict(nx=24, layer_elements=2, substrate_elements=12, layer_grading=1.0, convergence=False)
+    # Its wrinkle comes first: the scan ends 0.01 past the wrinkling onset.
+    r = fiberfold.crease(p, [1.0], d_from=0.2, d_to=0.3, **mesh)
+    assert r["first"] == "wrinkle" and r["d_crease"] is None and r["scan_ends_past_wrinkle"]
+    assert abs(r["scan"]["to"] - (r["d_wrinkle"] + 0.01)) < 1e-12
+    # Past it, the crease's own threshold.
+    r = fiberfold.crease(p, [1.0], d_from=0.2, d_to=0.3, beyond_wrinkle=True, **mesh)
     assert 0.2 < r["d_crease"] < 0.3 and r["fold_length"] == 1.0
     with pytest.raises(ValueError, match="fold"):
         fiberfold.crease(p, [0.0])
