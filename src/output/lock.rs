@@ -134,12 +134,20 @@ fn host() -> String {
         .unwrap_or_else(|| "unknown-host".into())
 }
 
-/// Whether process `pid` exists (Linux: `/proc/<pid>`; elsewhere assumed alive).
+/// Whether process `pid` is alive (Linux: `/proc/<pid>/stat` exists and its state is not zombie
+/// or dead: a killed run whose parent has not reaped it holds nothing; elsewhere assumed alive).
 fn alive(pid: u32) -> bool {
-    if cfg!(target_os = "linux") {
-        Path::new(&format!("/proc/{pid}")).exists()
-    } else {
-        true
+    if !cfg!(target_os = "linux") {
+        return true;
+    }
+    match std::fs::read_to_string(format!("/proc/{pid}/stat")) {
+        // The state is the first field after the command's name, which is in parentheses.
+        Ok(stat) => !matches!(
+            stat.rsplit_once(')')
+                .and_then(|(_, rest)| rest.trim_start().chars().next()),
+            Some('Z' | 'X' | 'x')
+        ),
+        Err(_) => Path::new(&format!("/proc/{pid}")).exists(),
     }
 }
 
@@ -163,6 +171,21 @@ mod tests {
         drop(OutputLock::acquire(&empty).unwrap());
         assert!(empty.is_dir());
         std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn a_killed_process_not_yet_reaped_holds_nothing() {
+        let mut child = std::process::Command::new("true").spawn().expect("true runs");
+        let pid = child.id();
+        // Exited but not waited for: a zombie, as a killed run is until its parent reaps it.
+        let start = std::time::Instant::now();
+        while alive(pid) && start.elapsed() < std::time::Duration::from_secs(10) {
+            std::thread::sleep(std::time::Duration::from_millis(10));
+        }
+        assert!(Path::new(&format!("/proc/{pid}")).exists(), "not yet reaped");
+        assert!(!alive(pid));
+        child.wait().unwrap();
+        assert!(alive(std::process::id()));
     }
 
     #[test]
