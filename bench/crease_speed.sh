@@ -2,11 +2,12 @@
 # The crease onset and a small map, timed back to back with two fiberfold binaries on this
 # machine, with their answers side by side.
 #
-#   bench/crease_speed.sh OLD NEW OUT
+#   bench/crease_speed.sh OLD NEW OUT [CASE ...]
 #
 #   OLD, NEW  two fiberfold binaries
 #   OUT       output folder: OUT/<binary>/<case>/ (each run's files and log), and
 #             OUT/crease_speed.md (the table printed)
+#   CASE      the cases to run (default: all three, in the order below)
 #
 # Cases, each run by OLD then NEW:
 #   contrast5  crease of an isotropic bilayer, mu_l / mu_s = 5, K = 100 mu (the wrinkle first)
@@ -16,13 +17,17 @@
 # uncertainty) and first for a crease, first / becomes per point for the map.
 set -euo pipefail
 
-if [[ $# -ne 3 ]]; then
-  echo "usage: $0 OLD NEW OUT" >&2
+if [[ $# -lt 3 ]]; then
+  echo "usage: $0 OLD NEW OUT [CASE ...]" >&2
   exit 2
 fi
 OLD=$(realpath "$1")
 NEW=$(realpath "$2")
 OUT=$3
+shift 3
+CASES=("${@:-contrast5 contrast3 map2x2}")
+# shellcheck disable=SC2206
+CASES=(${CASES[*]})
 mkdir -p "$OUT"
 
 ISOTROPIC=(--set K_s=100 --set phi_m=1 --set phi_f=0)
@@ -67,7 +72,11 @@ EOF
   echo "| case | old (s) | new (s) | new / old | old's answer | new's answer |"
   echo "|---|---:|---:|---:|---|---|"
 } >"$OUT/crease_speed.md"
-for case in contrast5 contrast3 map2x2; do
+for case in "${CASES[@]}"; do
+  if [[ -z "${ARGS[$case]:-}" ]]; then
+    echo "unknown case '$case' (contrast5, contrast3 or map2x2)" >&2
+    exit 2
+  fi
   echo "$case: old..." >&2
   old_seconds=$(run "$OLD" old "$case")
   echo "$case: new..." >&2

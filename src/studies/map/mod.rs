@@ -43,6 +43,12 @@ pub struct MapSettings {
     /// the run crosses the snaps a wrinkle makes into a fold or a period doubling (a `simulate`
     /// run stops at 1 %, where the path stops being quasi-static).
     pub snap_budget: f64,
+    /// Follow a fold past the state where it closes on itself (in contact, one trough more
+    /// than 20 % deeper than all others) to the run's end. Without, the run ends there: the
+    /// classification of the last state is then `fold` whatever follows, since a closed fold
+    /// only deepens. Maps written before this setting followed every fold (`true`).
+    #[serde(default = "followed_before")]
+    pub follow_closed_folds: bool,
 
     /// The crease search ([`CreaseStudy`], without its mesh check); its mesh's element is the
     /// nonlinear run's too.
@@ -85,6 +91,7 @@ impl Default for MapSettings {
             post_buckling_range: 0.2,
             d_limit: 0.7,
             snap_budget: 0.5,
+            follow_closed_folds: false,
 
             crease_mesh: crease.mesh,
             fold_lengths: crease.fold_lengths,
@@ -96,6 +103,11 @@ impl Default for MapSettings {
             biaxial: None,
         }
     }
+}
+
+/// Maps written before [`MapSettings::follow_closed_folds`] existed followed every fold.
+fn followed_before() -> bool {
+    true
 }
 
 impl MapSettings {
@@ -228,8 +240,9 @@ const MAP_NOTE: &str = "d_wrinkle: minimum of the linear theory's d_c(k) (minimu
     the first d at which a finite-element state (crease search or nonlinear run) has a Gauss point without strong \
     ellipticity; beyond it the answer depends on the mesh. becomes (where the wrinkle has a wavelength and comes first): a nonlinear run of `waves` \
     wavelengths 2 pi / k0 to d_wrinkle + post_buckling_range; if the tangent's inertia changes along it \
-    (d_secondary), the run is repeated seeded with that change's mode (secondary_half_waves across the domain); the \
-    last state is classified: 'fold' if one trough is more than 20 % deeper than all others, \
+    (d_secondary), the run is repeated seeded with that change's mode (secondary_half_waves across the domain), and \
+    ends where a fold closes on itself (in contact, one trough more than 20 % deeper than all others; d_reached; \
+    --follow-closed-folds follows it on); the last state is classified: 'fold' if one trough is more than 20 % deeper than all others, \
     'period_doubling' if deep and shallow troughs alternate (spread above 20 %) or the surface's k/2 component is \
     at least 20 % of its k component, 'unresolved' if the path stayed periodic but its last state is unstable, 'crease' if the troughs stay alike but close on themselves, 'wrinkle' otherwise.";
 

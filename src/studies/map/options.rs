@@ -87,6 +87,11 @@ pub struct MapOptions {
     /// d_wrinkle + this, at most 0.7).
     #[arg(long, default_value_t = 0.2, allow_negative_numbers = true)]
     pub post_buckling_range: f64,
+    /// Nonlinear run: follow a fold past the state where it closes on itself (in contact, one
+    /// trough more than 20 % deeper than all others) to d_wrinkle + --post-buckling-range. By
+    /// default the run ends there: a closed fold only deepens, so the answer is `fold` either way.
+    #[arg(long)]
+    pub follow_closed_folds: bool,
 
     /// Crease search: fold lengths a (units of H), comma separated.
     #[arg(long, value_delimiter = ',', default_values_t = vec![0.5, 1.0, 2.0], allow_negative_numbers = true)]
@@ -130,6 +135,7 @@ impl MapOptions {
                 substrate_elements: self.substrate_elements,
                 seed: self.seed,
                 post_buckling_range: self.post_buckling_range,
+                follow_closed_folds: self.follow_closed_folds,
                 crease_mesh: CreaseMesh {
                     nx: self.crease_nx,
                     layer: self.crease_layer_elements,

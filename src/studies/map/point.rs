@@ -5,14 +5,18 @@ use super::MapSettings;
 use crate::error::{Error, Result};
 use crate::fem::ellipticity::EllipticityReport;
 use crate::parameters::Parameters;
-use crate::protocol::secondary::{branch_kind, BranchKind};
-use crate::protocol::SnapCrossing;
+use crate::protocol::secondary::{branch, branch_kind, BranchKind};
+use crate::protocol::{Event, SnapCrossing};
 use crate::stability::{Method, Minimum, StabilityAnalysis};
 pub use crate::studies::crease::First;
 use crate::studies::crease::{crease, CreaseStudy};
 use crate::studies::orientation::{directed_onset, Modes};
-use crate::studies::simulate::{solve, solve_to_secondary, MeshChoice, SimulateOptions, ToSecondary};
+use crate::studies::simulate::{
+    solve_observed, solve_to_secondary, MeshChoice, Observed, Progress, SimulateOptions, SimulateStudy, Solution,
+    ToSecondary,
+};
 use serde::{Deserialize, Serialize};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 /// What the wrinkle becomes in the nonlinear run ([`post_buckling`]).
@@ -304,8 +308,8 @@ fn nonlinear(
     if let SnapCrossing::Viscous(damper) = &mut study.protocol.crossing {
         damper.budget = settings.snap_budget;
     }
-    let solution = match solve_to_secondary(parameters, &study)? {
-        ToSecondary::Whole(solution) => *solution,
+    let (solution, closed) = match solve_to_secondary(parameters, &study)? {
+        ToSecondary::Whole(solution) => (*solution, false),
         ToSecondary::Changed(mode) => {
             point.d_secondary = Some(mode.d);
             point.secondary_half_waves = Some(mode.half_waves);
@@ -316,11 +320,16 @@ fn nonlinear(
                 point.notes.push(format!("the secondary mode is not seeded: {why}"));
                 seeded = study;
             }
-            solve(parameters, &seeded, &|_| Ok(()))?
+            seeded_run(parameters, &seeded, !settings.follow_closed_folds)?
         }
     };
-    if let Some(why) = &solution.curve.stopped {
-        point.notes.push(format!("nonlinear run stopped early: {why}"));
+    match &solution.curve.stopped {
+        Some(_) if closed => point.notes.push(format!(
+            "the nonlinear run ends at d = {:.4}, where a fold closed on itself (--follow-closed-folds follows it on)",
+            solution.d_reached
+        )),
+        Some(why) => point.notes.push(format!("nonlinear run stopped early: {why}")),
+        None => {}
     }
     let depths = solution.secondary.branch.trough_depths;
     let d = solution.contact.d_reached;
@@ -347,6 +356,32 @@ fn nonlinear(
         .reduce(f64::min);
     point.d_reached = Some(d);
     Ok(())
+}
+
+/// The seeded run of `study`; with `stop_at_closed_fold` it ends at the first state whose
+/// surface is in contact with one trough more than [`crate::protocol::secondary::LOCALISED_SPREAD`]
+/// deeper than all others (and says so: `true`). That state is classified a fold by
+/// [`post_buckling`], as any later one whose troughs keep that lead.
+fn seeded_run(parameters: &Parameters, study: &SimulateStudy, stop_at_closed_fold: bool) -> Result<(Solution, bool)> {
+    let closed = AtomicBool::new(false);
+    let k = study.protocol.k;
+    let mut observer = |observed: Observed<'_>, _: &_| {
+        if let Observed::Event(Event::Step { record, system, u }) = observed {
+            let in_contact = record.augmented.as_ref().is_some_and(|a| a.in_contact);
+            if stop_at_closed_fold && in_contact && branch(system.mesh(), u, k).kind == BranchKind::Localised {
+                closed.store(true, Ordering::Relaxed);
+            }
+        }
+        Ok(())
+    };
+    // The monitor sees the state after it is recorded: the path ends with the closed fold.
+    let monitor = |_: Progress<'_>| match closed.load(Ordering::Relaxed) {
+        true => Err(Error::Interrupted("a fold closed on itself".into())),
+        false => Ok(()),
+    };
+    let solution = solve_observed(parameters, study, &monitor, None, &mut observer)?.solution;
+    let closed = closed.load(Ordering::Relaxed);
+    Ok((solution, closed))
 }
 
 #[cfg(test)]
