@@ -227,6 +227,53 @@ fn a_periodic_patch_under_surface_growth_bifurcates_at_the_exact_theorys_onset()
     assert!(error > 0.0 && error < 1e-3, "patch {} theory {}", b.d, modes[0].d_c);
 }
 
+/// An exactly incompressible isotropic bilayer (contrast 10) on the mixed hexahedra, its
+/// pressures multipliers: the periodic patch one onset wavelength square bifurcates at the
+/// exact theory's smallest `d_c` over its wave vectors, the pair `(1, 0)`, `(0, 1)` together
+/// (four negative pivots of the displacements under the constraint), from above and within
+/// 1e-3 at six hexahedra per wavelength.
+#[test]
+fn an_incompressible_bilayer_on_mixed_hexahedra_bifurcates_at_the_exact_theorys_onset() {
+    use crate::stability::oblique::box_modes;
+    use crate::stability::{Method, StabilityAnalysis, Surface};
+    let p = Parameters {
+        mu_l: 10.0,
+        phi_m: 1.0,
+        phi_f: 0.0,
+        incompressible: true,
+        ..Parameters::default()
+    };
+    let surface = Some(Surface {
+        biaxial: 1.0,
+        theta: 0.0,
+    });
+    let onset = StabilityAnalysis::with_surface(&p, Method::Exact, surface)
+        .unwrap()
+        .onset()
+        .unwrap();
+    let length = 2.0 * std::f64::consts::PI / onset.k0;
+    let modes = box_modes(&p, Method::Exact, 1.0, (length, length), 2.0).unwrap();
+    assert_eq!([(modes[0].m, modes[0].n), (modes[1].m, modes[1].n)], [(1, 0), (0, 1)]);
+    let settings = BifurcationSettings {
+        scan_step: 0.02,
+        tolerance: 1e-6,
+        ..BifurcationSettings::default()
+    };
+    let spec = PatchSpec {
+        element: ElementKind::Mixed,
+        ..square_patch(length, 6)
+    };
+    let materials = Bilayer::new(&p);
+    let mut path = PatchPath::new(&materials, spec, 1.0).unwrap();
+    let mesh = path.system().mesh().clone();
+    let b = path.bifurcation(&settings, &mut |_, _| {}).unwrap();
+    assert_eq!(b.negative_pivots, 4, "{b:?}");
+    let error = b.d - modes[0].d_c;
+    assert!(error > 0.0 && error < 1e-3, "patch {} theory {}", b.d, modes[0].d_c);
+    let waves = super::surface_spectrum(&mesh, &b.mode);
+    assert!(waves.iter().take(2).all(|w| w.m + w.n == 1), "{:?}", &waves[..3]);
+}
+
 /// Measurement (`--ignored --nocapture`): the onset of periodic patches against the exact
 /// theory, for vertical fibres on a square patch and for fibres in the surface on the patch
 /// that holds the theory's mirror pair of oblique wave vectors.
