@@ -124,7 +124,12 @@ fn bad_input_is_refused_with_exit_code_2_naming_the_flag() {
         (&["--elements-per-wavelength", "1"][..], "`elements-per-wavelength`"),
         (&["--h0", "500"][..], "`h0`"),
         (&["--d-max", "2"][..], "`d-max`"),
-        (&["--sides", "symmetry", "--set", "psi=0.3"][..], "`sides`"),
+        // Symmetry sides with the fibres turned under an unequal load (an equal one turns the
+        // patch with them).
+        (
+            &["--sides", "symmetry", "--set", "psi=0.3", "--biaxial", "0.5"][..],
+            "`sides`",
+        ),
         (&["--follow-to", "0.99"][..], "`follow-to`"),
         (&["--follow-to", "0.2", "--imperfection", "0"][..], "`imperfection`"),
         (&["--follow-to", "0.2", "--d-start", "0.3"][..], "`d-start`"),
@@ -183,4 +188,61 @@ fn a_checkerboard_that_turns_unstable_is_left_for_a_stable_pattern() {
     assert_eq!(rows[at][column("negative_pivots")], "0", "{text}");
     assert_eq!(rows[at - 1][column("pattern")], "checkerboard", "{text}");
     assert_eq!(rows.last().unwrap()[column("d")], "0.12", "{text}");
+}
+
+/// Under a load the same in every direction of the surface, turning the fibres' projection by
+/// `psi` turns the answer with it: the patch is built along the projection, holds both members
+/// of the theory's mirror pair at `psi +- theta_f` (the patch sized in the load's axes held only
+/// the first), and bifurcates where the patch of `psi = 0` does, to the last digit, with its
+/// directions turned by `psi`. Unequal compressions single out the load's X: no turn there.
+#[test]
+fn fibres_turned_in_the_surface_turn_the_patch_under_an_equal_load() {
+    let fibres_in_the_surface = ["--set", "beta=0", "--elements-per-wavelength", "3"];
+    let (_, straight) = pattern("pattern-psi0", &fibres_in_the_surface);
+    let turn = format!("psi={}", std::f64::consts::FRAC_PI_6);
+    let (out, turned) = pattern(
+        "pattern-psi30",
+        &[&fibres_in_the_surface[..], &["--set", &turn]].concat(),
+    );
+    let psi = 30.0;
+    assert!((turned["patch_azimuth_degrees"].as_f64().unwrap() - psi).abs() < 1e-9);
+    assert_eq!(straight["patch_azimuth_degrees"], 0.0);
+    for key in ["d_bifurcation", "d_c_admissible", "negative_pivots", "unknowns"] {
+        assert_eq!(turned[key], straight[key], "{key}");
+    }
+    assert_eq!(turned["negative_pivots"], 4);
+    let degrees = |report: &serde_json::Value, i: usize| {
+        report["admissible_wave_vectors"][i]["theta"]
+            .as_f64()
+            .unwrap()
+            .to_degrees()
+    };
+    let pair: Vec<f64> = (0..2).map(|i| degrees(&turned, i)).collect();
+    let theta_f = degrees(&straight, 0);
+    for expected in [psi + theta_f, psi - theta_f + 180.0] {
+        assert!(pair.iter().any(|t| (t - expected).abs() < 1e-6), "{pair:?}, {expected}");
+    }
+    let onset = |r: &serde_json::Value| r["onset_theory"]["theta0_degrees"].as_f64().unwrap();
+    assert!((onset(&turned) - (onset(&straight) + psi)).abs() < 1e-6);
+    let spectrum = std::fs::read_to_string(out.join("mode_spectrum.csv")).unwrap();
+    let theta: f64 = spectrum
+        .lines()
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .nth(3)
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(pair.iter().any(|t| (t - theta).abs() < 1e-6), "{spectrum}");
+
+    let (_, unequal) = pattern(
+        "pattern-psi30-unequal",
+        &[
+            &fibres_in_the_surface[..],
+            &["--set", "psi=0.5235988", "--biaxial", "0.5"],
+        ]
+        .concat(),
+    );
+    assert_eq!(unequal["patch_azimuth_degrees"], 0.0);
 }

@@ -52,6 +52,7 @@ pub fn run(args: &PatternArgs) -> Result<()> {
         match progress {
         Progress::Patch {
             spec,
+            azimuth,
             unknowns,
             modes,
             memory: (memory, available),
@@ -71,6 +72,13 @@ pub fn run(args: &PatternArgs) -> Result<()> {
                 memory.bytes / 1e6,
                 available.map_or(String::new(), |a| format!(" of {:.0} MB available", a / 1e6))
             );
+            if azimuth != 0.0 {
+                println!(
+                    "the load is the same in every direction of the surface: the patch's X runs along the fibres' projection, \
+                     {:.2} deg from the load's X (every theta below is from the load's X)",
+                    azimuth.to_degrees()
+                );
+            }
             println!("admissible wave vectors nearest the onset (k = 2 pi (m / Lx, n / Lz)):");
             for mode in modes.iter().take(4) {
                 println!(

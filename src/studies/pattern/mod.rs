@@ -15,12 +15,14 @@
 
 mod checkpoint;
 mod figure;
+mod frame;
 mod map;
 mod map_figure;
 mod map_files;
 mod options;
 mod path;
 
+pub use frame::PatchFrame;
 pub use map::{compute_map, PatternMap, PatternMapOptions, PatternMapReport, PatternPoint};
 pub use map_files::collect as collect_map;
 pub use options::PatternOptions;
@@ -134,7 +136,7 @@ pub fn size_patch(params: &Parameters, study: &PatternStudy) -> Result<(SurfaceO
         return Err(Error::invalid(
             "sides",
             "symmetry",
-            "periodic when psi != 0 (the sides are planes of the fibres' symmetry only for psi = 0)",
+            "periodic when psi != 0 under a load that singles out X (R != 1 or a prestrain): the sides are then planes of the fibres' symmetry only for psi = 0",
         ));
     }
     let surface = Surface {
@@ -208,6 +210,11 @@ pub struct PatternReport {
     /// `R = d_3 / d`.
     pub biaxial: f64,
     pub patch: PatchSpec,
+    /// The patch's X axis from the load's X axis towards Z (degrees): `psi` where the load is
+    /// the same in every direction of the surface and the patch is built along the fibres'
+    /// projection ([`PatchFrame`]), else 0. Every `theta` reported is in the load's frame;
+    /// `(m, n)` count periods along the patch's sides.
+    pub patch_azimuth_degrees: f64,
     /// Free unknowns of the tangent.
     pub unknowns: usize,
     pub onset_theory: TheoryOnset,
@@ -272,7 +279,10 @@ pub fn compute(
 ) -> Result<PatternReport> {
     params.validate()?;
     let start = Instant::now();
-    let (onset, spec) = size_patch(params, study)?;
+    // The patch's frame: turned along the fibres' projection under a load the same in every
+    // direction of the surface, where the tissue is computed with psi = 0 ([`PatchFrame`]).
+    let frame = PatchFrame::of(params, study.biaxial);
+    let (onset, spec) = size_patch(&frame.parameters, study)?;
     let d_end = study.path.map(|path| path.validate(onset.onset.d_c)).transpose()?;
     // A checkpoint of another run is refused before anything in the folder is touched.
     let request = checkpoint::request(params, study)?;
@@ -306,7 +316,7 @@ pub fn compute(
         Sides::Periodic => (spec.length_x, spec.length_z),
         Sides::Symmetry => (2.0 * spec.length_x, 2.0 * spec.length_z),
     };
-    let mut modes = box_modes(params, Method::Exact, study.biaxial, periods, k_max)?;
+    let mut modes = box_modes(&frame.parameters, Method::Exact, study.biaxial, periods, k_max)?;
     let first = *modes.first().ok_or_else(|| Error::NoRoot {
         what: "a bifurcation of the linear theory at the patch's wave vectors".into(),
         lower: 0.0,
@@ -314,12 +324,15 @@ pub fn compute(
     })?;
     let admissible = modes.clone();
     modes.truncate(LISTED_WAVE_VECTORS);
-    let materials = crate::material::Bilayer::new(params);
+    // Listed with their directions in the load's frame.
+    let modes: Vec<BoxMode> = modes.into_iter().map(|m| frame.mode(m)).collect();
+    let materials = crate::material::Bilayer::new(&frame.parameters);
     let mut path = PatchPath::new(&materials, spec, study.biaxial)?;
     let mesh = path.system().mesh().clone();
     let memory = path.memory_estimate()?;
     progress(Progress::Patch {
         spec: &spec,
+        azimuth: frame.azimuth,
         unknowns: mesh.num_dofs(),
         modes: &modes,
         memory: (&memory, available),
@@ -330,18 +343,22 @@ pub fn compute(
     let found = path.bifurcation(&study.settings, &mut |d, negative| {
         progress(Progress::Inertia { d, negative })
     })?;
-    let spectrum = surface_spectrum(&mesh, &found.mode);
+    let spectrum: Vec<WaveVector> = surface_spectrum(&mesh, &found.mode)
+        .into_iter()
+        .map(|w| frame.wave(w))
+        .collect();
     let mut files = write_wave_vectors(out, &modes)?;
     files.extend(super::bifurcation::write_inertia(out, &found.path)?);
     files.extend(write_spectrum(out, &spectrum)?);
     let view = figure::TopView {
         title: format!(
-            "Bifurcation mode at d = {:.5}: surface u_Y from above; lines: the fibres",
-            found.d
+            "Bifurcation mode at d = {:.5}: surface u_Y from above; lines: the fibres{}",
+            found.d,
+            frame.caption()
         ),
         mesh: &mesh,
         field: &found.mode,
-        fibres: (params.beta.cos() > 1e-6).then(|| [params.psi.cos(), params.psi.sin()]),
+        fibres: frame.fibres(),
     };
     files.extend(figure::top_view(&view, out, "mode_top")?);
     let title = format!("Bifurcation mode at d = {:.5}: surface u_Y, X and Z in H", found.d);
@@ -355,7 +372,7 @@ pub fn compute(
                 resumed,
             };
             let (summary, written) = path::follow(
-                params,
+                &frame,
                 (path, &admissible),
                 (path_study, d_end, checkpoints),
                 out,
@@ -373,10 +390,11 @@ pub fn compute(
         parameters: params.clone(),
         biaxial: study.biaxial,
         patch: spec,
+        patch_azimuth_degrees: frame.azimuth.to_degrees(),
         unknowns: found.unknowns,
         onset_theory: TheoryOnset {
             k0: onset.onset.k0,
-            theta0_degrees: (!onset.theta0.is_nan()).then(|| onset.theta0.to_degrees()),
+            theta0_degrees: (!onset.theta0.is_nan()).then(|| frame.angle(onset.theta0).to_degrees()),
             d_c: onset.onset.d_c,
         },
         d_bifurcation: found.d,
@@ -402,6 +420,8 @@ pub enum Progress<'a> {
     /// The patch it built, its unknowns and the admissible wave vectors nearest the onset.
     Patch {
         spec: &'a PatchSpec,
+        /// The patch's X axis from the load's (radians; [`PatchFrame`]).
+        azimuth: f64,
         unknowns: usize,
         modes: &'a [BoxMode],
         /// What its factorisations will need, and the memory available (bytes), if known.

@@ -11,6 +11,7 @@
 
 use super::checkpoint::{self, PathMemory};
 use super::figure;
+use super::frame::PatchFrame;
 use crate::error::{Error, Result};
 use crate::fem::element::{Hex27, ReferenceElement};
 use crate::mesh::{Mesh, TOP, Y};
@@ -18,7 +19,6 @@ use crate::output::checkpoint::{remove_checkpoint, Request};
 use crate::output::table::Cell;
 use crate::output::vtu::{write_vtu, CellType, DataArray};
 use crate::output::CsvWriter;
-use crate::parameters::Parameters;
 use crate::protocol::patch::{
     classify, height_spectrum, surface_crosses_itself, BiaxialPatch, Direction, PatchImperfection, PatchPath,
     PatchProtocol, SurfacePattern,
@@ -184,7 +184,7 @@ pub(super) struct Checkpoints<'a> {
 /// of the admissible wave vectors `modes` (sorted by `d_c`), with its checkpoints; writes the
 /// files (module docs) into `out` and tells `progress` every state.
 pub(super) fn follow(
-    params: &Parameters,
+    frame: &PatchFrame,
     (path, modes): (PatchPath<'_>, &[BoxMode]),
     (study, d_end, checkpoints): (&PathStudy, f64, Checkpoints<'_>),
     out: &Path,
@@ -257,6 +257,7 @@ pub(super) fn follow(
             )));
         }
         let (pattern, directions) = classify(&height_spectrum(patch.mesh(), u));
+        let directions = directions.into_iter().map(|d| frame.direction(d)).collect();
         let state = PatternState {
             d: record.d,
             amplitude: record.amplitude,
@@ -283,10 +284,13 @@ pub(super) fn follow(
     files.push(write_state(out, patch.system().mesh(), &last_u, gradient)?);
     let relief = surface_relief(patch.system().mesh(), &last_u);
     let view = figure::TopView {
-        title: format!("Surface relief at d = {d:.4} (blue down, red up); lines: the fibres"),
+        title: format!(
+            "Surface relief at d = {d:.4} (blue down, red up); lines: the fibres{}",
+            frame.caption()
+        ),
         mesh: patch.system().mesh(),
         field: &relief,
-        fibres: (params.beta.cos() > 1e-6).then(|| [params.psi.cos(), params.psi.sin()]),
+        fibres: frame.fibres(),
     };
     files.extend(figure::top_view(&view, out, "state_top")?);
     let title = format!("Surface relief at d = {d:.4} (height exaggerated), X and Z in H");
