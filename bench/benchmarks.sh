@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # Writes the guide's benchmarks page, docs/guide/src/benchmarks.md, from what this machine
-# measures now: `fiberfold bench stability`, `fiberfold bench fe`, `fiberfold bench patch` and,
+# measures now: `fiberfold bench stability`, `fiberfold bench fe`, `fiberfold bench patch`,
+# `fiberfold bench crease` (an isotropic bilayer at contrast 3), `fiberfold bench map` and,
 # where FEniCSx is installed (bench/fenicsx/install.sh), the side-by-side comparisons
 # bench/fenicsx/compare.sh on the coarse mesh and bench/fenicsx/compare_patch.sh on a small 3D
 # patch. The page names the machine, the date and fiberfold's version, and is replaced on each run.
 #
-#   bench/benchmarks.sh            (after cargo build --release; about 15 minutes on 2 cores and
+#   bench/benchmarks.sh            (after cargo build --release; about 20 minutes on 2 cores and
 #                                   12 GB of memory for the largest patch)
 #
 # Run it on a quiet machine: the FEniCSx ratios are only meaningful side by side, in one run.
@@ -23,6 +24,11 @@ echo "bench fe" >&2
 "$binary" bench fe --out "$work/fe" >"$work/fe.log"
 echo "bench patch" >&2
 "$binary" bench patch --periods 3 --out "$work/patch" >"$work/patch.log"
+echo "bench crease" >&2
+"$binary" bench crease --set mu_l=3 --set K_l=300 --set K_s=100 --set phi_m=1 --set phi_f=0 \
+  --out "$work/crease" >"$work/crease.log"
+echo "bench map" >&2
+"$binary" bench map --out "$work/map" >"$work/map.log"
 compared=no
 if [ -x "${FENICSX_DIR:-$HOME/.cache/fiberfold-fenicsx-bench}/venv/bin/python" ]; then
   echo "side by side with FEniCSx" >&2
@@ -85,6 +91,16 @@ version=$("$binary" --version | awk '{print $2}')
   echo "onset periods, at the homogeneous state of d = 0.05."
   echo
   cat "$work/patch/bench_patch.md"
+  echo
+  echo "## Crease onset and maps"
+  echo
+  echo "\`bench crease\`: the converged crease onset of an isotropic bilayer at contrast 3"
+  echo "(\`K = 100 mu\`), where it comes just before the wrinkle; \`bench map\`: a 2 x 2 map, each"
+  echo "point split into its linear theory, crease search and nonlinear run."
+  echo
+  demote "$work/crease/bench_crease.md"
+  echo
+  demote "$work/map/bench_map.md"
 } >"$page.new"
 mv "$page.new" "$page"
 echo "wrote $page" >&2
