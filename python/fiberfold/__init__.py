@@ -269,7 +269,9 @@ def pattern(
     """A patch of tissue in three dimensions under ``d_3 = biaxial * d`` (``fiberfold
     pattern``): the content of ``pattern.json`` (``d_bifurcation``, ``negative_pivots``, the
     theory's ``d_c_admissible`` over the patch's wave vectors, ``mode_wave_vectors``, the
-    ``patch``, ...). With ``follow_to``, the path past the onset is followed to that ``d``
+    ``patch``, ...); under an equal load (``biaxial=1``, no prestrain) the patch is built along
+    the fibres' projection, ``patch_azimuth_degrees`` from X, and every angle is from X. With
+    ``follow_to``, the path past the onset is followed to that ``d``
     (with ``follow_past`` instead, to the theory's onset ``d_c`` plus it), seeded with every
     critical wave of amplitude ``imperfection``: ``path`` then holds its summary (the pattern's
     ``changes``, the ``last`` state) and ``pattern.csv`` one row per state. Its files (VTU,

@@ -447,6 +447,8 @@ def test_the_pattern_past_the_onset_of_inclined_fibres_is_stripes_along_them():
     # keeps it alone, growing from the seed, with no unstable branch to leave.
     p = fiberfold.Parameters(beta=0.785398, psi=0.5235988)
     r = fiberfold.pattern(p, elements_per_wavelength=3, follow_to=0.12)
+    # Equibiaxial: the patch is built along the fibres' projection, 30 deg from X.
+    assert abs(r["patch_azimuth_degrees"] - 30.0) < 1e-4
     path = r["path"]
     assert path["d_reached"] == 0.12 and path["stopped"] is None
     assert path["branches_left"] == []

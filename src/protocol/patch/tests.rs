@@ -195,36 +195,48 @@ fn a_periodic_patch_bifurcates_at_the_exact_theorys_onset_over_its_wave_vectors(
 /// `d_c` over its wave vectors (in the strain `1 - 1/g`), the critical pair together.
 #[test]
 fn a_periodic_patch_under_surface_growth_bifurcates_at_the_exact_theorys_onset() {
-    use crate::stability::oblique::box_modes;
-    use crate::stability::{Method, StabilityAnalysis};
     let p = Parameters {
         beta: std::f64::consts::FRAC_PI_2,
         load: Load::Growth,
         ..Parameters::default()
     };
-    let surface = Some(crate::stability::Surface {
-        biaxial: 1.0,
-        theta: 0.0,
-    });
-    let onset = StabilityAnalysis::with_surface(&p, Method::Exact, surface)
-        .unwrap()
-        .onset()
-        .unwrap();
-    let length = 2.0 * std::f64::consts::PI / onset.k0;
-    let modes = box_modes(&p, Method::Exact, 1.0, (length, length), 2.0).unwrap();
-    assert_eq!([(modes[0].m, modes[0].n), (modes[1].m, modes[1].n)], [(1, 0), (0, 1)]);
-    let settings = BifurcationSettings {
-        scan_step: 0.02,
-        tolerance: 1e-6,
-        ..BifurcationSettings::default()
-    };
+    let (length, modes) = one_wavelength_square(&p);
     let b = PatchPath::new(&Bilayer::new(&p), square_patch(length, 6), 1.0)
         .unwrap()
-        .bifurcation(&settings, &mut |_, _| {})
+        .bifurcation(&onset_search(), &mut |_, _| {})
         .unwrap();
     assert_eq!(b.negative_pivots, 4, "{b:?}");
     let error = b.d - modes[0].d_c;
     assert!(error > 0.0 && error < 1e-3, "patch {} theory {}", b.d, modes[0].d_c);
+}
+
+/// The side of a periodic square patch one onset wavelength of `p` (the exact theory under its
+/// equibiaxial load), and the patch's admissible wave vectors by increasing `d_c`: the critical
+/// pair `(1, 0)`, `(0, 1)` first.
+fn one_wavelength_square(p: &Parameters) -> (f64, Vec<crate::stability::oblique::BoxMode>) {
+    use crate::stability::oblique::box_modes;
+    use crate::stability::{Method, StabilityAnalysis, Surface};
+    let surface = Some(Surface {
+        biaxial: 1.0,
+        theta: 0.0,
+    });
+    let onset = StabilityAnalysis::with_surface(p, Method::Exact, surface)
+        .unwrap()
+        .onset()
+        .unwrap();
+    let length = 2.0 * std::f64::consts::PI / onset.k0;
+    let modes = box_modes(p, Method::Exact, 1.0, (length, length), 2.0).unwrap();
+    assert_eq!([(modes[0].m, modes[0].n), (modes[1].m, modes[1].n)], [(1, 0), (0, 1)]);
+    (length, modes)
+}
+
+/// The bifurcation search of the onset tests: a scan every 0.02, bisected to 1e-6.
+fn onset_search() -> BifurcationSettings {
+    BifurcationSettings {
+        scan_step: 0.02,
+        tolerance: 1e-6,
+        ..BifurcationSettings::default()
+    }
 }
 
 /// An exactly incompressible isotropic bilayer (contrast 10) on the mixed hexahedra, its
@@ -234,8 +246,6 @@ fn a_periodic_patch_under_surface_growth_bifurcates_at_the_exact_theorys_onset()
 /// 1e-3 at six hexahedra per wavelength.
 #[test]
 fn an_incompressible_bilayer_on_mixed_hexahedra_bifurcates_at_the_exact_theorys_onset() {
-    use crate::stability::oblique::box_modes;
-    use crate::stability::{Method, StabilityAnalysis, Surface};
     let p = Parameters {
         mu_l: 10.0,
         phi_m: 1.0,
@@ -243,22 +253,7 @@ fn an_incompressible_bilayer_on_mixed_hexahedra_bifurcates_at_the_exact_theorys_
         incompressible: true,
         ..Parameters::default()
     };
-    let surface = Some(Surface {
-        biaxial: 1.0,
-        theta: 0.0,
-    });
-    let onset = StabilityAnalysis::with_surface(&p, Method::Exact, surface)
-        .unwrap()
-        .onset()
-        .unwrap();
-    let length = 2.0 * std::f64::consts::PI / onset.k0;
-    let modes = box_modes(&p, Method::Exact, 1.0, (length, length), 2.0).unwrap();
-    assert_eq!([(modes[0].m, modes[0].n), (modes[1].m, modes[1].n)], [(1, 0), (0, 1)]);
-    let settings = BifurcationSettings {
-        scan_step: 0.02,
-        tolerance: 1e-6,
-        ..BifurcationSettings::default()
-    };
+    let (length, modes) = one_wavelength_square(&p);
     let spec = PatchSpec {
         element: ElementKind::Mixed,
         ..square_patch(length, 6)
@@ -266,7 +261,7 @@ fn an_incompressible_bilayer_on_mixed_hexahedra_bifurcates_at_the_exact_theorys_
     let materials = Bilayer::new(&p);
     let mut path = PatchPath::new(&materials, spec, 1.0).unwrap();
     let mesh = path.system().mesh().clone();
-    let b = path.bifurcation(&settings, &mut |_, _| {}).unwrap();
+    let b = path.bifurcation(&onset_search(), &mut |_, _| {}).unwrap();
     assert_eq!(b.negative_pivots, 4, "{b:?}");
     let error = b.d - modes[0].d_c;
     assert!(error > 0.0 && error < 1e-3, "patch {} theory {}", b.d, modes[0].d_c);

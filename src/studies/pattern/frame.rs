@@ -52,14 +52,12 @@ impl PatchFrame {
         (p.beta.cos() > 1e-6).then(|| [p.psi.cos(), p.psi.sin()])
     }
 
-    /// What a figure of the patch adds to its title when the patch is turned.
+    /// What a figure of the patch adds to its title when the patch is turned (its X axis along
+    /// the fibres' projection, that many degrees from the load's X).
     pub fn caption(&self) -> String {
         match self.azimuth {
             0.0 => String::new(),
-            azimuth => format!(
-                " (the patch's X along their projection, {:.1} deg from the load's X)",
-                azimuth.to_degrees()
-            ),
+            azimuth => format!(" (patch turned {:.1} deg)", azimuth.to_degrees()),
         }
     }
 
