@@ -117,6 +117,12 @@ pub fn is_boolean(key: &str) -> bool {
 }
 
 impl Parameters {
+    /// The direction of the fibres' projection on the surface, `(cos psi, sin psi)` in the
+    /// `X-Z` plane; `None` for fibres normal to it (`beta = pi/2`), which have no azimuth.
+    pub fn fibre_projection(&self) -> Option<[f64; 2]> {
+        (self.beta.cos() > 1e-6).then(|| [self.psi.cos(), self.psi.sin()])
+    }
+
     /// Reads a TOML file; keys not given keep their Table 1 defaults.
     pub fn from_toml_file(path: &Path) -> Result<Self> {
         let text = std::fs::read_to_string(path)

@@ -29,7 +29,7 @@ impl PatchFrame {
     pub fn of(params: &Parameters, biaxial: f64) -> Self {
         let isotropic_load = biaxial == 1.0 && params.growth_layer == 1.0 && params.growth_substrate == 1.0;
         // Fibres normal to the surface have no projection: psi means nothing to them.
-        let projected = params.beta.cos() > 1e-6;
+        let projected = params.fibre_projection().is_some();
         match isotropic_load && projected && params.psi != 0.0 {
             true => PatchFrame {
                 parameters: Parameters {
@@ -48,8 +48,7 @@ impl PatchFrame {
     /// The fibres' projection on the surface in the patch's frame, for the figures (`None`
     /// for fibres normal to it).
     pub fn fibres(&self) -> Option<[f64; 2]> {
-        let p = &self.parameters;
-        (p.beta.cos() > 1e-6).then(|| [p.psi.cos(), p.psi.sin()])
+        self.parameters.fibre_projection()
     }
 
     /// What a figure of the patch adds to its title when the patch is turned (its X axis along

@@ -91,7 +91,7 @@ fn draw<DB: DrawingBackend>(
             root.draw(&PathElement::new(segment(crest, half), BLACK.stroke_width(3)))
                 .map_err(err)?;
         }
-        if p.parameters.beta.cos() > 1e-6 {
+        if p.parameters.fibre_projection().is_some() {
             root.draw(&PathElement::new(
                 segment(p.parameters.psi, 0.6 * half),
                 FIBRES.stroke_width(2),
