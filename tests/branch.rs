@@ -74,7 +74,7 @@ fn four_wave_run_of(params: &Parameters, d_max: f64, (a2, n2): (f64, f64)) -> (V
         records.len()
     );
     let c = &outcome.continuation;
-    let b = branch(c.system().mesh(), c.displacement(), k);
+    let b = branch(c.system().mesh(), c.displacement(), k, protocol.imperfection);
     (records, b.kind, b.trough_depths)
 }
 

@@ -130,7 +130,7 @@ fn scaled_mode(system: &mut System, bc: &Dirichlet, x: &[f64]) -> Result<Vec<f64
 }
 
 /// The branch a path ended on: the depth below the highest surface point of each trough of the
-/// seeded mode `cos(k X)` (at `X = (2 j + 1) pi / k`), and its kind.
+/// seeded mode `A_init cos(k X)` ([`first_trough`]), and its kind.
 #[derive(Clone, Debug, Serialize)]
 pub struct Branch {
     pub trough_depths: Vec<f64>,
@@ -159,24 +159,36 @@ impl BranchKind {
     }
 }
 
-/// Classifies the final state `u` of `mesh` seeded with wavenumber `k` (module docs).
-pub fn branch(mesh: &Mesh, u: &[f64], k: f64) -> Branch {
+/// Classifies the final state `u` of `mesh` seeded with `imperfection cos(k X)` (module docs).
+pub fn branch(mesh: &Mesh, u: &[f64], k: f64, imperfection: f64) -> Branch {
     let reference: Vec<f64> = mesh.top().iter().map(|&n| mesh.coordinates()[n][0]).collect();
-    let trough_depths = trough_depths(&reference, &surface_profile(mesh, u), k, mesh.spec().length);
+    let first = first_trough(k, imperfection);
+    let trough_depths = trough_depths(&reference, &surface_profile(mesh, u), k, first, mesh.spec().length);
     Branch {
         kind: branch_kind(&trough_depths),
         trough_depths,
     }
 }
 
+/// Where the first trough of the seeded mode `imperfection cos(k X)` lies: half a wavelength
+/// from `X = 0` for a positive amplitude (a crest on each symmetry plane), on `X = 0` for a
+/// negative one (a trough there, and on the far plane when the domain holds whole waves).
+pub fn first_trough(k: f64, imperfection: f64) -> f64 {
+    match imperfection < 0.0 {
+        true => 0.0,
+        false => std::f64::consts::PI / k,
+    }
+}
+
 /// The depth below the highest point of `profile` (deformed `(x, y)` of the surface points at
-/// reference abscissae `reference`) of each trough of `cos(k X)` on `[0, length]`: the lowest
-/// point within a quarter wavelength of `X = (2 j + 1) pi / k`.
-pub fn trough_depths(reference: &[f64], profile: &[(f64, f64)], k: f64, length: f64) -> Vec<f64> {
+/// reference abscissae `reference`) of each trough of a mode of wavenumber `k` whose first
+/// trough lies at `first` ([`first_trough`]), on `[0, length]`: the lowest point within a
+/// quarter wavelength of `X = first + 2 j pi / k`.
+pub fn trough_depths(reference: &[f64], profile: &[(f64, f64)], k: f64, first: f64, length: f64) -> Vec<f64> {
     let top = profile.iter().fold(f64::NEG_INFINITY, |m, p| m.max(p.1));
     let half = std::f64::consts::PI / k;
     (0..)
-        .map(|j| (2 * j + 1) as f64 * half)
+        .map(|j| first + (2 * j) as f64 * half)
         .take_while(|&centre| centre <= length + 1e-9)
         .map(|centre| {
             let lowest = reference

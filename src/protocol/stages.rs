@@ -25,18 +25,25 @@ use crate::protocol::Loading;
 use std::f64::consts::PI;
 use std::time::Instant;
 
-/// End-shortening of stage 1.
+/// End-shortening of stage 1, the paper's (and [`Protocol::new`]'s).
 pub const STAGE_ONE_COMPRESSION: f64 = 0.005;
+
+/// The fractions of the imperfection stage 2 grows it by where one solve does not reach it.
+const IMPERFECTION_RAMP: [f64; 5] = [0.0625, 0.125, 0.25, 0.5, 1.0];
 
 /// A loading protocol: the seeded mode, its amplitude, the final compression and the solver.
 #[derive(Clone, Copy, Debug)]
 pub struct Protocol {
     /// Referential wavenumber of the seeded mode (`m pi / L`).
     pub k: f64,
-    /// `A_init`, the amplitude of the imperfection of the top surface.
+    /// `A_init`, the amplitude of the imperfection `A_init cos(k X)` of the top surface:
+    /// positive puts a crest on each symmetry plane, negative a trough.
     pub imperfection: f64,
     /// Final end-shortening.
     pub d_max: f64,
+    /// End-shortening of stage 1 (homogeneous), where the imperfection is seeded: below the
+    /// onset, or the imperfect equilibrium there is a wrinkle grown too far for one solve.
+    pub d_start: f64,
     /// Adaptive steps of stage 3.
     pub control: StepControl,
     /// Newton's policy in every stage.
@@ -50,7 +57,9 @@ pub struct Protocol {
     /// there: a seed for a modulated or localised pattern).
     pub imperfection2: f64,
     /// `N_2`, the waves of the long-wave imperfection across the domain (`2 N_2` a positive
-    /// integer; `1/2` by default: one half wave). `N / 2` seeds a period doubling.
+    /// integer; `1/2` by default: one half wave). `N / 2` seeds a period doubling: of the
+    /// troughs when the seeded mode has its troughs on the planes (`A_init < 0`), of the
+    /// crests otherwise.
     pub imperfection2_waves: f64,
     /// How stage 3 follows the path: displacement control, or arc length (which goes round a
     /// limit point in `d` instead of crossing it, and so has neither contact nor a crossing).
@@ -64,6 +73,7 @@ impl Protocol {
             k,
             imperfection,
             d_max,
+            d_start: STAGE_ONE_COMPRESSION,
             control: StepControl::default(),
             newton: simulation_newton(),
             contact: false,
@@ -85,7 +95,7 @@ impl Protocol {
         self
     }
 
-    /// Checks `k` against the domain of `spec`, `A_init` in `[0, 1)`, `d_max` in `(0.005, 1)`,
+    /// Checks `k` against the domain of `spec`, `A_init` in `(-1, 1)`, `A_2` in `[0, 1)`, `d_max` in `(0.005, 1)`,
     /// and that the mesh resolves the seeded waves ([`MIN_ELEMENTS_PER_WAVELENGTH`]).
     pub fn validate(&self, spec: &MeshSpec) -> Result<()> {
         mode_number(self.k, spec.length)?;
@@ -100,19 +110,24 @@ impl Protocol {
         if self.imperfection2 > 0.0 {
             resolves(spec, "imperfection2-waves", 2.0 * PI / k2)?;
         }
-        for (name, value) in [
-            ("imperfection", self.imperfection),
-            ("imperfection2", self.imperfection2),
-        ] {
-            if !(value.is_finite() && (0.0..1.0).contains(&value)) {
-                return Err(Error::invalid(name, value, "[0, 1)"));
-            }
+        if !(self.imperfection.is_finite() && self.imperfection.abs() < 1.0) {
+            return Err(Error::invalid(
+                "imperfection",
+                self.imperfection,
+                "(-1, 1): negative puts a trough on each symmetry plane",
+            ));
         }
-        if !(self.d_max.is_finite() && self.d_max > STAGE_ONE_COMPRESSION && self.d_max < 1.0) {
+        if !(self.imperfection2.is_finite() && (0.0..1.0).contains(&self.imperfection2)) {
+            return Err(Error::invalid("imperfection2", self.imperfection2, "[0, 1)"));
+        }
+        if !(self.d_start.is_finite() && self.d_start > 0.0 && self.d_start < 1.0) {
+            return Err(Error::invalid("d-start", self.d_start, "(0, 1)"));
+        }
+        if !(self.d_max.is_finite() && self.d_max > self.d_start && self.d_max < 1.0) {
             return Err(Error::invalid(
                 "d-max",
                 self.d_max,
-                "(0.005, 1): beyond stage 1's d = 0.005",
+                &format!("({}, 1): beyond stage 1's d = {}", self.d_start, self.d_start),
             ));
         }
         if self.method == ContinuationMethod::ArcLength && (self.contact || self.crossing != SnapCrossing::None) {
@@ -235,7 +250,7 @@ pub fn run_resumable(
         Event::Stage(_) | Event::Step { .. } if quiet.get() => Ok(()),
         _ => observer(event),
     };
-    let d0 = STAGE_ONE_COMPRESSION;
+    let d0 = protocol.d_start;
     let mut newton = Newton::new();
     let start = Instant::now();
     observer(Event::Stage(&format!(
@@ -246,7 +261,7 @@ pub fn run_resumable(
     // From the homogeneous state itself (eq. 4), which the perfect mesh reproduces to round-off.
     let bc = system.load_to(d0)?;
     let mut u = homogeneous_unknowns(&system, materials, &homogeneous_state(materials, d0)?)?;
-    let imperfect = protocol.imperfection > 0.0 || protocol.imperfection2 > 0.0;
+    let imperfect = protocol.imperfection != 0.0 || protocol.imperfection2 > 0.0;
     // Stages 1 and 2 are single solves, which no step cut can rescue: they iterate without
     // the load steps' early give-ups (a layer prestressed by growth near its own onset needs
     // a few more steps on the imperfect geometry). Stage 2 reports the inertia of its own
@@ -261,7 +276,7 @@ pub fn run_resumable(
         ..single_solve
     };
     let mut report = equilibrium::solve(&mut newton, &mut system, &mut u, &bc, &stage_one)
-        .map_err(|e| stage_failure(1, e.into()))?;
+        .map_err(|e| stage_failure(1, d0, e.into()))?;
     if imperfect {
         observer(Event::Stage(&format!(
             "stage 2: imperfection {} cos({:.6} X){} of the reference geometry, equilibrium at d = {d0}",
@@ -286,13 +301,34 @@ pub fn run_resumable(
             k: wavenumber_of_waves(protocol.imperfection2_waves, spec.length)?,
             depth: spec.depth,
         };
-        let mesh = perfect.perturbed(|x| {
-            let ([_, a], [_, b]) = (imperfection.displacement(x), long_wave.displacement(x));
-            [0.0, a + b]
-        });
-        system = system.with_moved_nodes(mesh, materials)?;
-        report = equilibrium::solve(&mut newton, &mut system, &mut u, &bc, &single_solve)
-            .map_err(|e| stage_failure(2, e.into()))?;
+        let seeded = |fraction: f64| {
+            perfect.clone().perturbed(move |x| {
+                let ([_, a], [_, b]) = (imperfection.displacement(x), long_wave.displacement(x));
+                [0.0, fraction * (a + b)]
+            })
+        };
+        system = system.with_moved_nodes(seeded(1.0), materials)?;
+        report = match equilibrium::solve(&mut newton, &mut system, &mut u, &bc, &single_solve) {
+            Ok(report) => report,
+            // A stiff layer's response to the whole imperfection at once may lie beyond Newton's
+            // reach from the flat state: the imperfection is then grown from a small fraction,
+            // each equilibrium solved from the one before (a failed solve leaves `u` as it was).
+            Err(_) => {
+                observer(Event::Stage(&format!(
+                    "stage 2: the imperfection grown in {} steps",
+                    IMPERFECTION_RAMP.len()
+                )))?;
+                let mut solved = None;
+                for fraction in IMPERFECTION_RAMP {
+                    system = system.with_moved_nodes(seeded(fraction), materials)?;
+                    solved = Some(
+                        equilibrium::solve(&mut newton, &mut system, &mut u, &bc, &single_solve)
+                            .map_err(|e| stage_failure(2, d0, e.into()))?,
+                    );
+                }
+                solved.expect("the ramp ends at the whole imperfection")
+            }
+        };
     }
     let mut record = StepRecord::new((d0, d0), &report, start.elapsed().as_secs_f64());
     measure_all(&bilayer_measures(), &system, &u, &mut record)?;
@@ -362,7 +398,11 @@ fn displacement_control(
     Ok(continuation)
 }
 
-/// A failure of stage 1 or 2, named.
-fn stage_failure(stage: usize, e: Error) -> Error {
-    Error::Solver(format!("stage {stage} at d = {STAGE_ONE_COMPRESSION} failed: {e}"))
+/// A failure of stage 1 or 2 at `d`, named.
+fn stage_failure(stage: usize, d: f64, e: Error) -> Error {
+    let hint = match stage {
+        2 => " (an onset near this d, as of a very stiff layer, needs a lower --d-start or a smaller imperfection)",
+        _ => "",
+    };
+    Error::Solver(format!("stage {stage} at d = {d} failed: {e}{hint}"))
 }

@@ -364,11 +364,14 @@ fn nonlinear(
 /// [`post_buckling`], as any later one whose troughs keep that lead.
 fn seeded_run(parameters: &Parameters, study: &SimulateStudy, stop_at_closed_fold: bool) -> Result<(Solution, bool)> {
     let closed = AtomicBool::new(false);
-    let k = study.protocol.k;
+    let (k, imperfection) = (study.protocol.k, study.protocol.imperfection);
     let mut observer = |observed: Observed<'_>, _: &_| {
         if let Observed::Event(Event::Step { record, system, u }) = observed {
             let in_contact = record.augmented.as_ref().is_some_and(|a| a.in_contact);
-            if stop_at_closed_fold && in_contact && branch(system.mesh(), u, k).kind == BranchKind::Localised {
+            if stop_at_closed_fold
+                && in_contact
+                && branch(system.mesh(), u, k, imperfection).kind == BranchKind::Localised
+            {
                 closed.store(true, Ordering::Relaxed);
             }
         }
@@ -387,7 +390,7 @@ fn seeded_run(parameters: &Parameters, study: &SimulateStudy, stop_at_closed_fol
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::protocol::secondary::trough_depths;
+    use crate::protocol::secondary::{first_trough, trough_depths};
 
     #[test]
     fn the_rule_names_constructed_surfaces() {
@@ -402,11 +405,16 @@ mod tests {
         let classify = |y: &dyn Fn(f64) -> f64, contact: bool| {
             let s = surface(y);
             let xs: Vec<f64> = s.iter().map(|p| p.0 / 0.8).collect();
-            post_buckling(&trough_depths(&xs, &s, k, length), doubling(&s, k, 0.2), false, contact)
+            post_buckling(
+                &trough_depths(&xs, &s, k, first_trough(k, 1.0), length),
+                doubling(&s, k, 0.2),
+                false,
+                contact,
+            )
         };
         let wrinkle = |x: f64| 0.3 * (k * x).cos();
         assert_eq!(
-            trough_depths(&[0.0, 2.0, 4.0], &[(0.0, 1.0), (1.6, -1.0), (3.2, 1.0)], k, 4.0),
+            trough_depths(&[0.0, 2.0, 4.0], &[(0.0, 1.0), (1.6, -1.0), (3.2, 1.0)], k, 2.0, 4.0),
             vec![2.0]
         );
         assert!(doubling(&surface(&wrinkle), k, 0.2) < 1e-6);
@@ -432,6 +440,27 @@ mod tests {
         // A 5 % modulation is still a periodic wrinkle.
         let mild = |x: f64| 0.3 * (k * x).cos() + 0.015 * (0.5 * k * x).cos();
         assert_eq!(classify(&mild, false), PostBuckling::Wrinkle);
+    }
+
+    #[test]
+    fn a_wrinkle_seeded_with_troughs_on_the_symmetry_planes_has_its_alternate_troughs_measured() {
+        // Four waves of length 4 with a trough at X = 0: troughs at X = 0, 4, 8, 12, 16, those
+        // on the planes included. The period doubling cos(k X / 2) then deepens every other one:
+        // y = -0.3 cos(k X) + 0.1 cos(k X / 2) is 0.2 low at X = 0, 8, 16 and 0.4 low at 4, 12.
+        let (k, length) = (std::f64::consts::PI / 2.0, 16.0);
+        let xs: Vec<f64> = (0..=1600).map(|i| length * i as f64 / 1600.0).collect();
+        let surface: Vec<(f64, f64)> = xs
+            .iter()
+            .map(|&x| (x, -0.3 * (k * x).cos() + 0.1 * (0.5 * k * x).cos()))
+            .collect();
+        let top = surface.iter().fold(f64::NEG_INFINITY, |m, p| m.max(p.1));
+        let depths = trough_depths(&xs, &surface, k, first_trough(k, -1.0), length);
+        let expected = [top + 0.2, top + 0.4, top + 0.2, top + 0.4, top + 0.2];
+        assert_eq!(depths.len(), expected.len());
+        for (depth, expected) in depths.iter().zip(expected) {
+            assert!((depth - expected).abs() < 1e-9, "{depths:?}");
+        }
+        assert_eq!(post_buckling(&depths, 0.0, false, false), PostBuckling::PeriodDoubling);
     }
 
     #[test]

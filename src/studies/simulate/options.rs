@@ -10,14 +10,14 @@ use crate::fem::ElementKind;
 use crate::mesh::{MeshPreset, MeshSpec, XRefinement};
 use crate::protocol::{
     mode_number, wavenumber_of_waves, CheckpointInterval, ContinuationMethod, Protocol, SnapCrossing, SnapSettings,
-    StabilisationSettings, StepControl,
+    StabilisationSettings, StepControl, STAGE_ONE_COMPRESSION,
 };
 use crate::studies::keywords::{default_keywords, from_keywords};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
 /// The mesh of a run as a user chooses it: a preset, and the numbers that replace its own. As
-/// command-line flags, the mesh of the half domain 0 <= X <= 50, -50 <= Y <= 1.
+/// command-line flags, the mesh of the half domain 0 <= X <= L, -D <= Y <= 1 (L = D = 50).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize, clap::Args)]
 #[serde(default)]
 pub struct MeshChoice {
@@ -46,13 +46,13 @@ pub struct MeshChoice {
     /// incompressible = true. displacement, the paper's element, locks above K/mu ~ 100.
     #[arg(long, value_enum, default_value_t = ElementKind::default())]
     pub element: ElementKind,
-    /// Length and depth of the half domain, where a study sets them (the presets' 50 H
-    /// otherwise; not a user's option).
-    #[serde(skip)]
-    #[arg(skip)]
+    /// Length L of the half domain between its symmetry planes, in H [default: 50] (the
+    /// presets' element counts are kept: set --nx with it).
+    #[arg(long, allow_negative_numbers = true)]
     pub length: Option<f64>,
-    #[serde(skip)]
-    #[arg(skip)]
+    /// Depth D of the substrate, in H [default: 50]; keep it above the longest wavelength
+    /// seeded so that the bottom does not hold the mode.
+    #[arg(long, allow_negative_numbers = true)]
     pub depth: Option<f64>,
 }
 
@@ -92,22 +92,30 @@ pub struct SimulateOptions {
     #[command(flatten)]
     pub mesh: MeshChoice,
 
-    /// Waves N of the seeded mode across the half domain, 2N a positive integer: k = 2 pi N / 50.
+    /// Waves N of the seeded mode across the half domain, 2N a positive integer: k = 2 pi N / L.
     #[arg(long, allow_negative_numbers = true)]
     pub waves: Option<f64>,
 
-    /// Referential wavenumber of the seeded mode, k = m pi / 50 with m a positive integer.
+    /// Referential wavenumber of the seeded mode, k = m pi / L with m a positive integer.
     #[arg(long, allow_negative_numbers = true)]
     pub k: Option<f64>,
 
-    /// Final end-shortening d, in (0.005, 1); under --load growth the strain d = 1 - 1/g of the
-    /// final growth g (0.2: g = 1.25).
+    /// Final end-shortening d, in (d-start, 1); under --load growth the strain d = 1 - 1/g of
+    /// the final growth g (0.2: g = 1.25).
     #[arg(long, default_value_t = defaults().d_max, allow_negative_numbers = true)]
     pub d_max: f64,
 
-    /// Amplitude A_init of the seeded imperfection, in [0, 1) (0: the perfect system). The
+    /// End-shortening of stage 1 (the perfect bilayer compressed homogeneously) where the
+    /// imperfection is seeded, in (0, 1); keep it below the onset d_c (a layer a thousand
+    /// times stiffer than the substrate wrinkles at d_c = 0.005: take about d_c / 2).
+    #[arg(long, default_value_t = defaults().d_start, allow_negative_numbers = true)]
+    pub d_start: f64,
+
+    /// Amplitude A_init of the seeded imperfection, in (-1, 1) (0: the perfect system). The
     /// reference geometry is perturbed by Delta Y = A_init cos(k X) s(Y), s = 1 in the layer and
-    /// sinh(k (Y + 50)) / sinh(50 k) in the substrate, after stage 1 (homogeneous to d = 0.005).
+    /// sinh(k (Y + D)) / sinh(D k) in the substrate, after stage 1 (homogeneous to d-start).
+    /// Negative puts a trough on each symmetry plane, so that a period doubling of the troughs
+    /// (seeded by --imperfection2-waves N/2) fits the half domain.
     #[arg(long, default_value_t = defaults().imperfection, allow_negative_numbers = true)]
     pub imperfection: f64,
 
@@ -134,14 +142,15 @@ pub struct SimulateOptions {
     #[arg(long, default_value_t = defaults().refine_width, allow_negative_numbers = true)]
     pub refine_width: f64,
 
-    /// Amplitude A2 of the long-wave imperfection -A2 cos(2 pi N2 X / 50) of the reference
+    /// Amplitude A2 of the long-wave imperfection -A2 cos(2 pi N2 X / L) of the reference
     /// geometry, in [0, 1): it lets the pattern leave an unstable periodic branch (use the
     /// shape of the first secondary mode: its N2 is printed at the end of a periodic run).
     #[arg(long, default_value_t = defaults().imperfection2, allow_negative_numbers = true)]
     pub imperfection2: f64,
 
     /// Waves N2 of the long-wave imperfection across the domain, 2 N2 a positive integer
-    /// (0.5: one half wave, deepest at X = 0; N/2: a period doubling).
+    /// (0.5: one half wave, deepest at X = 0; N/2: a period doubling, of the troughs when
+    /// --imperfection is negative and of the crests otherwise).
     #[arg(long, value_name = "N2", default_value_t = defaults().imperfection2_waves, allow_negative_numbers = true)]
     pub imperfection2_waves: f64,
 
@@ -252,6 +261,7 @@ impl Default for SimulateOptions {
             waves: None,
             k: None,
             d_max: 0.3,
+            d_start: STAGE_ONE_COMPRESSION,
             imperfection: 0.05,
             max_step: 0.005,
             min_step: 1e-7,
@@ -313,6 +323,7 @@ impl SimulateOptions {
             ));
         }
         let mut protocol = Protocol::new(k, self.imperfection, self.d_max);
+        protocol.d_start = self.d_start;
         protocol.control = StepControl {
             initial: self.max_step,
             max: self.max_step,
@@ -380,10 +391,18 @@ mod tests {
         assert!(message(r#"{"bogus": 1}"#).contains("bogus for `keyword`"));
         assert!(message(r#"{"d_max": "far"}"#).contains("`d_max` takes a number"));
         assert!(message(r#"{"mesh": "huge"}"#).contains("`coarse`, `fine`, `extra`"));
+        let domain = SimulateOptions::from_keywords(r#"{"waves": 2, "length": 40.4, "depth": 80}"#).unwrap();
+        assert_eq!((domain.mesh.length, domain.mesh.depth), (Some(40.4), Some(80.0)));
+        let negative = SimulateOptions::from_keywords(r#"{"waves": 2, "length": -3}"#).unwrap();
+        assert!(negative.study().unwrap_err().to_string().contains("`mesh.length`"));
+        let late = SimulateOptions::from_keywords(r#"{"waves": 2, "d_start": 0.25, "d_max": 0.2}"#).unwrap();
+        let message = late.study().unwrap_err().to_string();
         assert!(
-            message(r#"{"length": 20}"#).contains("`keyword`"),
-            "length is not a user's option"
+            message.contains("`d-max`") && message.contains("(0.25, 1)"),
+            "{message}"
         );
+        let start = SimulateOptions::from_keywords(r#"{"waves": 2, "d_start": 0}"#).unwrap();
+        assert!(start.study().unwrap_err().to_string().contains("`d-start`"));
     }
 
     #[test]
@@ -422,6 +441,21 @@ mod tests {
         assert_eq!(
             (chosen.contact, chosen.inertia, chosen.crossing),
             (false, false, Crossing::Snap)
+        );
+        let domain = parse(&[
+            "--waves",
+            "2",
+            "--length",
+            "40.4",
+            "--depth",
+            "80",
+            "--imperfection",
+            "-0.05",
+        ])
+        .unwrap();
+        assert_eq!(
+            (domain.mesh.length, domain.mesh.depth, domain.imperfection),
+            (Some(40.4), Some(80.0), -0.05)
         );
         assert!(parse(&[]).is_err(), "a seeded wave is required");
         assert!(parse(&["--waves", "4", "--k", "0.5"]).is_err());

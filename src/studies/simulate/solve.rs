@@ -191,7 +191,7 @@ fn finish(
     let (secondary, modes) = tracker.finish(
         &curve.records,
         &mut system,
-        branch(&mesh, &u, p.k),
+        branch(&mesh, &u, p.k, p.imperfection),
         (p.imperfection2, p.imperfection2_waves),
         analysed,
     )?;

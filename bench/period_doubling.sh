@@ -1,0 +1,156 @@
+#!/usr/bin/env bash
+# Writes the table of the guide's page "What the wrinkle becomes at high contrast"
+# (docs/guide/src/results/period-doubling-table.md) from `fiberfold simulate` runs of isotropic
+# bilayers (phi_m = 1, phi_f = 0) at stiffness contrasts mu_l / mu_s of 5, 10, 30, 100 and 1000,
+# each with K / mu = 3 (Table 1's Poisson ratio), K / mu = 100, and exactly incompressible.
+#
+# Each case runs on a half domain two natural wavelengths long (2 pi / k0 of `fiberfold onset`),
+# seeded with a trough on each symmetry plane (--imperfection -0.05), so that the doubled period
+# of the troughs fits it; the substrate is at least as deep as the domain is long. Steps are at
+# most 0.001 in d, so that the path stays on the stable branch past the onset. Two runs a case:
+#   1. the periodic wrinkle: its secondary bifurcation (the change of the tangent's inertia after
+#      which it stays unstable; counts that return to zero are listed apart) and that mode's half
+#      waves across the domain (2: the period doubles);
+#   2. the same seeded with 0.01 of that mode: what the path becomes (the troughs at its end).
+# On two meshes: 20 elements a wavelength with 2 through the layer, and 40 with 4.
+#
+#   bench/period_doubling.sh        (after cargo build --release; about an hour on 2 cores, most
+#                                    of it the contrasts 5 and 10 followed through contact)
+#   bench/period_doubling.sh table  (the table of the runs done so far, running none)
+#
+# Runs are kept in $PD_WORK (default results/period-doubling-study): a run whose secondary.json is
+# there is not run again.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+binary=${FIBERFOLD:-$root/target/release/fiberfold}
+work=${PD_WORK:-$root/results/period-doubling-study}
+table=$root/docs/guide/src/results/period-doubling-table.md
+[ -x "$binary" ] || { echo "no $binary: run cargo build --release first (or set FIBERFOLD)" >&2; exit 1; }
+mkdir -p "$work"
+mode=${1:-all}
+
+# The stiff layers first: the literature's period doubling is theirs.
+CONTRASTS=(100 1000 30 10 5)
+# name, then the bulk moduli's parameters given mu_l = $ratio
+compressibility() {
+  case $1 in
+    K3) echo "--set K_l=$(python3 -c "print(3 * $2)") --set K_s=3" ;;
+    K100) echo "--set K_l=$(python3 -c "print(100 * $2)") --set K_s=100" ;;
+    incompressible) echo "--set incompressible=true" ;;
+  esac
+}
+# mesh name, elements per wavelength, layer elements, substrate elements, h0
+MESHES=("coarse 20 2 25 0.5" "fine 40 4 45 0.25")
+
+json() { python3 -c "import json, sys; print(json.load(open(sys.argv[1]))$2)" "$1"; }
+
+# One run (unless done): out folder, then simulate's flags. A run that stops early keeps its path.
+run() {
+  local out=$1
+  shift
+  if [ -f "$out/secondary.json" ] || [ "$mode" = table ]; then return 0; fi
+  timeout 900 "$binary" simulate "$@" --out "$out" >"$out.log" 2>&1 || true
+}
+
+rows=()
+for ratio in "${CONTRASTS[@]}"; do
+  for bulk in K3 K100 incompressible; do
+    name=mu$ratio-$bulk
+    params="--set mu_l=$ratio --set phi_m=1 --set phi_f=0 $(compressibility $bulk "$ratio")"
+    # shellcheck disable=SC2086
+    "$binary" onset $params --out "$work/$name-onset" >/dev/null
+    k0=$(json "$work/$name-onset/onset.json" "['k0']")
+    d_c=$(json "$work/$name-onset/onset.json" "['d_c']")
+    length=$(python3 -c "import math; print(2 * 2 * math.pi / $k0)")
+    depth=$(python3 -c "print(max(50.0, $length))")
+    d_max=$(python3 -c "print(round(min($d_c + 0.3, 0.6), 4))")
+    # Stage 1 below the onset (a contrast of 1000 wrinkles at d_c = 0.005, stage 1's default).
+    d_start=$(python3 -c "print(round(min(0.005, $d_c / 2), 5))")
+    for mesh in "${MESHES[@]}"; do
+      read -r mesh_name per_wave layer substrate h0 <<<"$mesh"
+      domain="--waves 2 --length $length --depth $depth --nx $((2 * per_wave)) --layer-elements $layer \
+        --substrate-elements $substrate --h0 $h0 --imperfection -0.05 --max-step 0.001 --d-max $d_max \
+        --d-start $d_start"
+      periodic=$work/$name-$mesh_name-periodic
+      echo "$name ($mesh_name): k0 = $k0, d_c = $d_c, L = $length, to d = $d_max"
+      # shellcheck disable=SC2086
+      run "$periodic" $params $domain
+      half_waves=$(python3 - "$periodic/secondary.json" <<'EOF'
+import json, sys
+try:
+    changes = json.load(open(sys.argv[1]))["changes"]
+except FileNotFoundError:
+    changes = []
+# The change after which the tangent stays unstable (a count that returns to zero was not one).
+lasting = [c for i, c in enumerate(changes) if all(later["negative_after"] > 0 for later in changes[i:])]
+print(lasting[0]["mode_half_waves"] or "" if lasting else "")
+EOF
+      )
+      seeded=$work/$name-$mesh_name-seeded
+      if [ -n "$half_waves" ]; then
+        # shellcheck disable=SC2086
+        run "$seeded" $params $domain --imperfection2 0.01 --imperfection2-waves \
+          "$(python3 -c "print($half_waves / 2)")"
+      fi
+      rows+=("$ratio $bulk $mesh_name $k0 $d_c $periodic $seeded")
+    done
+  done
+done
+
+python3 - "$table" "${rows[@]}" <<'EOF'
+import json, os, sys
+
+def load(path):
+    try:
+        return json.load(open(path))
+    except FileNotFoundError:
+        return None
+
+def stop(folder):
+    log = folder + ".log"
+    if not os.path.exists(log):
+        return ""
+    lines = [l for l in open(log) if l.startswith("error:")]
+    return lines[-1].strip().split(" with ")[0].replace("error: ", "") if lines else ""
+
+out = [
+    "| mu_l/mu_s | K/mu | mesh | k0 | d_c | d_secondary | mode (half waves; 4 is the wrinkle) | changes that returned to zero before it | seeded run ends at d | its troughs (plane, middle, plane) | branch |",
+    "|---:|---|---|---:|---:|---|---:|---|---:|---|---|",
+]
+order = {"K3": 0, "K100": 1, "incompressible": 2}
+rows = sorted(sys.argv[2:], key=lambda r: (float(r.split()[0]), order[r.split()[1]], r.split()[2] != "coarse"))
+for row in rows:
+    ratio, bulk, mesh, k0, d_c, periodic, seeded = row.split()
+    bulk = {"K3": "3", "K100": "100", "incompressible": "inf"}[bulk]
+    first = load(periodic + "/secondary.json")
+    changes = (first or {}).get("changes", [])
+    lasting = [i for i, c in enumerate(changes) if all(later["negative_after"] > 0 for later in changes[i:])]
+    transient = ", ".join(
+        f"{c['d_before']:.4f}-{c['d_after']:.4f} ({c['negative_after']})"
+        for c in changes[: lasting[0] if lasting else len(changes)]
+    )
+    if first is None:
+        secondary, mode = "run failed: " + stop(periodic), ""
+    elif lasting:
+        c = changes[lasting[0]]
+        secondary, mode = f"{c['d_before']:.4f}-{c['d_after']:.4f}", str(c["mode_half_waves"] or "")
+    else:
+        ends = load(periodic + "/simulate.json")
+        secondary, mode = "none to " + (f"{ends['d_reached']:.3f}" if ends else "the end"), ""
+    path = load(seeded + "/secondary.json")
+    summary = load(seeded + "/simulate.json")
+    if path is None:
+        ends, troughs, kind = "", "", ""
+    else:
+        ends = f"{summary['d_reached']:.4f}" if summary else ""
+        troughs = ", ".join(f"{t:.2f}" for t in path["branch"]["trough_depths"])
+        kind = path["branch"]["kind"]
+        why = stop(seeded)
+        if why:
+            kind += f" ({why})"
+    out.append(
+        f"| {ratio} | {bulk} | {mesh} | {float(k0):.4f} | {float(d_c):.4f} | {secondary} | {mode} | {transient or '-'} | {ends} | {troughs} | {kind} |"
+    )
+open(sys.argv[1], "w").write("\n".join(out) + "\n")
+print("\n".join(out))
+EOF

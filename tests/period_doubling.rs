@@ -1,0 +1,128 @@
+//! The period doubling of a stiff layer's wrinkles, against the literature: a stiff film's
+//! wrinkles double their period at a compressive strain of about 0.17-0.2 (Cao and Hutchinson,
+//! J. Appl. Mech. 2012, finite elements; Cai and Fu, Int. J. Non-Linear Mech. 2019, 0.17 for an
+//! incompressible neo-Hookean bilayer whose layer is much stiffer than the substrate; observed by
+//! Brau et al., Nature Physics 2011). Here an isotropic bilayer of contrast 100, nearly
+//! incompressible (K = 100 mu), on a half domain two natural wavelengths long with a trough on
+//! each symmetry plane: the only domain between symmetry planes on which every other trough can
+//! deepen (with a crest on each plane, the doubled period alternates the crests instead).
+//!
+//! The periodic wrinkle's first secondary bifurcation is a mode of two half waves across the
+//! domain (the doubled period) in that range of strain; seeded with it, the path's troughs
+//! alternate deep and shallow.
+
+mod common;
+
+use common::isotropic;
+use fiberfold::material::Bilayer;
+use fiberfold::protocol::secondary::BranchKind;
+use fiberfold::protocol::{stages, Event};
+use fiberfold::stability::{Method, StabilityAnalysis};
+use fiberfold::studies::simulate::{solve, solve_to_secondary, MeshChoice, SimulateOptions, ToSecondary};
+
+/// Two natural wavelengths of the contrast-100 bilayer, 20 elements each, troughs on the
+/// planes, steps of at most 0.001 to `d = 0.25`.
+fn two_wavelengths() -> SimulateOptions {
+    let onset = StabilityAnalysis::new(&isotropic(100.0), Method::Exact)
+        .unwrap()
+        .onset()
+        .unwrap();
+    let wavelength = 2.0 * std::f64::consts::PI / onset.k0;
+    println!(
+        "k0 = {:.5}, d_c = {:.5}, wavelength {wavelength:.3}",
+        onset.k0, onset.d_c
+    );
+    SimulateOptions {
+        mesh: MeshChoice {
+            nx: Some(40),
+            length: Some(2.0 * wavelength),
+            ..MeshChoice::default()
+        },
+        waves: Some(2.0),
+        imperfection: -0.05,
+        max_step: 0.001,
+        d_max: 0.25,
+        ..SimulateOptions::default()
+    }
+}
+
+#[test]
+fn a_stiff_layers_wrinkles_double_their_period_near_a_fifth_compression() {
+    let options = two_wavelengths();
+    let params = isotropic(100.0);
+    let study = options.study().unwrap();
+    let ToSecondary::Changed(mode) = solve_to_secondary(&params, &study).unwrap() else {
+        panic!("the periodic wrinkle stays stable to d = 0.25");
+    };
+    println!(
+        "first secondary bifurcation at d = {:.4}: {} half waves",
+        mode.d, mode.half_waves
+    );
+    assert_eq!(mode.half_waves, 2, "the doubled period");
+    assert!((0.15..0.25).contains(&mode.d), "{}", mode.d);
+
+    let seeded = SimulateOptions {
+        imperfection2: 0.01,
+        imperfection2_waves: 1.0,
+        ..options
+    };
+    let solution = solve(&params, &seeded.study().unwrap(), &|_| Ok(())).unwrap();
+    assert!(solution.curve.stopped.is_none(), "{:?}", solution.curve.stopped);
+    let branch = solution.secondary.branch;
+    println!("seeded: {:?} {:?}", branch.kind, branch.trough_depths);
+    // The troughs on the planes (which the seed lowers) against the one between them.
+    let [plane, middle, far_plane] = branch.trough_depths[..] else {
+        panic!("three troughs: {:?}", branch.trough_depths);
+    };
+    assert_eq!(branch.kind, BranchKind::Modulated);
+    assert!(plane > middle && far_plane > middle);
+}
+
+/// A layer a thousand times stiffer than the substrate wrinkles at `d_c = 0.0052`, next to
+/// stage 1's default `d = 0.005`. Seeded at `d_c / 2` instead, its imperfection is beyond one
+/// Newton solve from the flat state, and stage 2 grows it in steps. The equilibrium reached is
+/// the imperfect bilayer's below its onset: the seeded mode amplified by `1 / (1 - d / d_c)`
+/// (the classical amplification of an imperfection in the buckling mode).
+#[test]
+fn a_layer_a_thousand_times_stiffer_is_seeded_below_its_onset_in_steps() {
+    let params = isotropic(1000.0);
+    let onset = StabilityAnalysis::new(&params, Method::Exact).unwrap().onset().unwrap();
+    let length = 2.0 * 2.0 * std::f64::consts::PI / onset.k0;
+    let d_start = 0.5 * onset.d_c;
+    let options = SimulateOptions {
+        mesh: MeshChoice {
+            nx: Some(40),
+            length: Some(length),
+            depth: Some(length),
+            ..MeshChoice::default()
+        },
+        waves: Some(2.0),
+        imperfection: -0.05,
+        d_start,
+        d_max: d_start + 0.001,
+        max_step: 0.001,
+        ..SimulateOptions::default()
+    };
+    let study = options.study().unwrap();
+    let mut stages = Vec::new();
+    let mut first = None;
+    stages::run(&Bilayer::new(&params), study.mesh, &study.protocol, &mut |event| {
+        match event {
+            Event::Stage(text) => stages.push(text.to_string()),
+            Event::Step { record, .. } if first.is_none() => first = Some(record.clone()),
+            _ => {}
+        }
+        Ok(())
+    })
+    .unwrap();
+    println!("{stages:#?}");
+    assert!(stages.iter().any(|s| s.contains("grown in")), "{stages:?}");
+    let first = first.unwrap();
+    let amplified = 0.05 / (1.0 - d_start / onset.d_c);
+    println!(
+        "A = {} at d = {}, amplified imperfection {amplified}",
+        first.amplitude, first.d
+    );
+    assert_eq!(first.d, d_start);
+    assert!((first.amplitude / amplified - 1.0).abs() < 0.05);
+}
