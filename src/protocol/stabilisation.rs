@@ -8,9 +8,9 @@
 //! so that `eta / h` is the damping relative to the elastic tangent at every scale of the mesh
 //! (the cusp of a closing trough is an element-scale instability). The damper engages only
 //! where the step control has cut the step below `engage_below` (`1e-3`, a fifth of the usual
-//! step; a last step shortened only to land on the end of the path is not damped): where the
-//! path is smooth it is not damped at all (so the onset and `A(d)` are those of the elastic
-//! problem); across a snap the step is cut and `eta / h` grows until the damped step is well
+//! step, or a fifth of a shorter largest step; a last step shortened only to land on the end of
+//! the path is not damped): where the path is smooth it is not damped at all (so the onset and
+//! `A(d)` are those of the elastic problem); across a snap the step is cut and `eta / h` grows until the damped step is well
 //! posed, so the damper carries the jump. The work of the damping forces, `eta / h |du|_c^2`
 //! per step, is summed and reported against the strain energy; `eta` is cut whenever that
 //! fraction would exceed the budget, and the step is redone.
@@ -49,6 +49,16 @@ impl Default for StabilisationSettings {
             min_eta: 1e-9,
             engage_below: 1e-3,
         }
+    }
+}
+
+impl StabilisationSettings {
+    /// The same settings for a path whose steps are at most `max_step`: the damper engages only
+    /// on steps cut below a fifth of it (and below `engage_below`), so that a path asked for
+    /// short steps throughout is not damped where it is smooth.
+    pub fn for_largest_step(mut self, max_step: f64) -> Self {
+        self.engage_below = self.engage_below.min(0.2 * max_step);
+        self
     }
 }
 
