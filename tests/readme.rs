@@ -247,6 +247,15 @@ fn every_documented_example_runs_and_gives_an_independently_known_number() {
                 let (_, stdout) = run(command, &[("--coarse-only", "")]);
                 assert!(stdout.contains("coarse") && stdout.contains("22110"), "{stdout}");
             }
+            "simulate" if command.contains("--imperfection -") => {
+                // A stiff layer on two natural wavelengths with a trough on each symmetry plane:
+                // the periodic wrinkle loses stability to its doubled period near d = 0.19 (the
+                // literature's 0.17-0.2 for stiff films).
+                let (dir, _) = run(command, &[("--d-max", "0.2")]);
+                let change = &json(dir.join("secondary.json"))["changes"][0];
+                let d = change["d_after"].as_f64().unwrap();
+                assert!((0.15..0.2).contains(&d) && change["mode_half_waves"] == 2, "{change}");
+            }
             "simulate" if command.contains("law=") => {
                 // Another tissue law on the coarse mesh: the path reaches its end without
                 // inverting an element.
