@@ -164,3 +164,28 @@ fn short_steps_are_not_damped_where_the_path_is_smooth() {
     assert!((a.d - b.d).abs() < 1e-12);
     assert!((a.amplitude / b.amplitude - 1.0).abs() < 1e-6);
 }
+
+/// The default steps (0.005) follow the stable wrinkle through its onset to the period doubling
+/// too. Just past the onset a step is cut there because Newton's iteration needs a closer
+/// start, not because the path snaps: that step is not damped (a damped one held the wrinkle
+/// back and the path went on along an unstable branch, with changes of the inertia from
+/// d = 0.03), and the inertia of a step whose predictor's count differs from the last state's
+/// is the solution's (a predictor a hundredth of a step off had five negative pivots where its
+/// solution had none).
+#[test]
+fn the_default_steps_follow_the_stable_wrinkle_to_its_period_doubling() {
+    let options = SimulateOptions {
+        max_step: SimulateOptions::default().max_step,
+        d_max: 0.22,
+        ..two_wavelengths()
+    };
+    let ToSecondary::Changed(mode) = solve_to_secondary(&isotropic(100.0), &options.study().unwrap()).unwrap() else {
+        panic!("the periodic wrinkle stays stable to d = 0.22");
+    };
+    println!(
+        "first secondary bifurcation at d = {:.4}: {} half waves",
+        mode.d, mode.half_waves
+    );
+    assert_eq!(mode.half_waves, 2);
+    assert!((0.15..0.22).contains(&mode.d), "{}", mode.d);
+}

@@ -21,13 +21,18 @@ pub struct Augmentation {
     pub stabilisation: Option<Stabilisation>,
     /// The inertia of states whose tangent Newton did not factorise.
     inertia: BackgroundInertia,
+    /// The negative pivots of the last accepted state whose count is known: a predictor's count
+    /// is taken for a solution's only where it is the same.
+    accepted_negative_pivots: Option<usize>,
 }
 
 /// Largest Newton correction `|u - u_predicted|`, relative to the step `|u - u_0|`, for which the
-/// inertia of the predicted state's tangent is taken for the solution's: an eigenvalue can then
-/// have changed sign in between only within about this fraction of a step of a singular
-/// tangent. Measured: a predictor a tenth of a step off near a limit point (mu_l = 3) had a
-/// count one lower than its solution's.
+/// inertia of the predicted state's tangent is taken for the solution's, when it is the last
+/// accepted state's: an eigenvalue can then have changed sign in between only within about
+/// this fraction of a step of a singular tangent. Measured: a predictor a tenth of a step off
+/// near a limit point (mu_l = 3) had a count one lower than its solution's; one within this
+/// fraction, just past a stiff layer's onset where several modes are nearly critical, had five
+/// negative pivots where its solution had none (a change, now counted at the solution).
 const PREDICTOR_CLOSENESS: f64 = 1e-2;
 
 /// Largest absolute difference of two states.
@@ -94,6 +99,7 @@ impl Augmentation {
                 .map(|s| Stabilisation::new(system, materials, s))
                 .transpose()?,
             inertia: BackgroundInertia::default(),
+            accepted_negative_pivots: None,
         })
     }
 
@@ -124,6 +130,14 @@ impl Augmentation {
             }
         }
         Ok(())
+    }
+
+    /// Notes the negative pivots of the state the path accepted (`None` where not yet known:
+    /// the last known count is kept, and replaced once this one is in).
+    pub fn note_accepted(&mut self, negative_pivots: Option<usize>) {
+        if negative_pivots.is_some() {
+            self.accepted_negative_pivots = negative_pivots;
+        }
     }
 
     /// The inertia of the oldest accepted state whose count was pending (waiting for it).
@@ -165,16 +179,31 @@ impl Augmentation {
             let other: &dyn AddedEnergy = damper.as_ref().map_or(&NoAddedEnergy, |damper| damper);
             let step_policy = policy_of_step(policy, plain);
             let loaded_at_start = prepare_contact((&mut self.contact, &mut self.inertia), system, u, (bc, d));
-            let mut report = match &mut self.contact {
-                Some(contact) => solve_with_contact(newton, system, u, bc, contact, other, &step_policy)?,
-                None => solve_with(newton, system, u, bc, other, &step_policy)?,
+            let solved = match &mut self.contact {
+                Some(contact) => solve_with_contact(newton, system, u, bc, contact, other, &step_policy),
+                None => solve_with(newton, system, u, bc, other, &step_policy),
             };
+            // An undamped step the damper may carry failed: a snap, carried from here by the
+            // damper (this step again, damped).
+            let snap =
+                solved.is_err() && !damped && self.stabilisation.as_ref().is_some_and(|s| s.engages(control_step));
+            if snap {
+                drop(damper);
+                if let Some(s) = &mut self.stabilisation {
+                    s.engage();
+                }
+                u.copy_from_slice(&predictor);
+                self.contact.clone_from(&saved_contact);
+                continue;
+            }
+            let mut report = solved?;
             let dissipation = damper.as_ref().map_or(0.0, |damper| damper.dissipation(u));
             // The predictor's inertia is the solution's for an undamped step without contact
             // forces, solved in one pass from close by.
             let close = distance(u, &predictor) <= PREDICTOR_CLOSENESS * distance(u, u0);
-            let from_start = report.start_negative_pivots.filter(|_| {
+            let from_start = report.start_negative_pivots.filter(|&count| {
                 close
+                    && Some(count) == self.accepted_negative_pivots
                     && !damped
                     && report.updates == Updates::default()
                     && !loaded_at_start
@@ -205,6 +234,7 @@ impl Augmentation {
                     self.contact.clone_from(&saved_contact);
                     continue;
                 };
+                s.release(control_step);
                 record.stabilisation_energy_fraction = fraction;
                 record.dissipated_energy = s.dissipated();
                 record.eta = s.eta();

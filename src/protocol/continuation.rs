@@ -412,6 +412,9 @@ impl<S: Followed> Continuation<S> {
             in_contact: augmented.as_ref().is_some_and(|a| a.in_contact),
         };
         record.augmented = augmented;
+        if let Some(augmentation) = &mut self.augmentation {
+            augmentation.note_accepted(if pending { None } else { report.negative_pivots });
+        }
         record.failed_seconds = clock.failed_seconds;
         let by_newton = matches!(reached, Reached::Newton);
         record.minimised = matches!(reached, Reached::Minimisation);
@@ -491,6 +494,7 @@ impl<S: Followed> Continuation<S> {
         let augmentation = self.augmentation.as_mut().expect("only augmented steps are pending");
         let waited = std::time::Instant::now();
         record.negative_pivots = augmentation.next_inertia();
+        augmentation.note_accepted(record.negative_pivots);
         self.last.stable = record.negative_pivots == Some(0);
         self.last.unstable = record.negative_pivots.is_some_and(|n| n > 0);
         if let Some(augmented) = &mut record.augmented {

@@ -7,10 +7,12 @@
 //! damped). The damping is proportional to the stiffness, `c_i = K_ii` of the reference state,
 //! so that `eta / h` is the damping relative to the elastic tangent at every scale of the mesh
 //! (the cusp of a closing trough is an element-scale instability). The damper engages only
-//! where the step control has cut the step below `engage_below` (`1e-3`, a fifth of the usual
-//! step, or a fifth of a shorter largest step; a last step shortened only to land on the end of
-//! the path is not damped): where the path is smooth it is not damped at all (so the onset and
-//! `A(d)` are those of the elastic problem); across a snap the step is cut and `eta / h` grows until the damped step is well
+//! where an undamped step that the step control has cut below `engage_below` (`1e-3`, a fifth of
+//! the usual step, or a fifth of a shorter largest step) has failed, and from there on cut steps
+//! until a step of full length converges; a last step shortened only to land on the end of the
+//! path is not damped. Where the path is smooth it is not damped at all (so the onset and `A(d)`
+//! are those of the elastic problem, also where a step was cut only because Newton's iteration
+//! needed a closer start, as just past a stiff layer's onset); across a snap the step is cut and `eta / h` grows until the damped step is well
 //! posed, so the damper carries the jump. The work of the damping forces, `eta / h |du|_c^2`
 //! per step, is summed and reported against the strain energy; `eta` is cut whenever that
 //! fraction would exceed the budget, and the step is redone.
@@ -68,6 +70,9 @@ impl StabilisationSettings {
 pub struct StabilisationMemory {
     pub eta: f64,
     pub dissipated: f64,
+    /// Whether a snap is being crossed ([`Stabilisation::engage`]).
+    #[serde(default)]
+    pub engaged: bool,
 }
 
 /// The damper of one system and the energy it has dissipated.
@@ -79,6 +84,9 @@ pub struct Stabilisation {
     stiffness: Vec<f64>,
     eta: f64,
     dissipated: f64,
+    /// Whether an undamped cut step has failed since the last step of full length: a snap is
+    /// being crossed, and cut steps are damped.
+    engaged: bool,
 }
 
 impl Stabilisation {
@@ -94,6 +102,7 @@ impl Stabilisation {
             stiffness,
             eta: settings.eta,
             dissipated: 0.0,
+            engaged: false,
         })
     }
 
@@ -102,6 +111,7 @@ impl Stabilisation {
         StabilisationMemory {
             eta: self.eta,
             dissipated: self.dissipated,
+            engaged: self.engaged,
         }
     }
 
@@ -109,6 +119,7 @@ impl Stabilisation {
     pub fn recall(&mut self, memory: StabilisationMemory) {
         self.eta = memory.eta;
         self.dissipated = memory.dissipated;
+        self.engaged = memory.engaged;
     }
 
     /// The current `eta`.
@@ -121,9 +132,30 @@ impl Stabilisation {
         self.dissipated
     }
 
+    /// Whether a step made by a step control at `control_step` is one the damper may carry: cut
+    /// below `engage_below`.
+    pub fn engages(&self, control_step: f64) -> bool {
+        control_step < self.settings.engage_below
+    }
+
+    /// Notes that an undamped step the damper may carry failed: cut steps are damped from here
+    /// until a step of full length succeeds ([`Stabilisation::release`]).
+    pub fn engage(&mut self) {
+        self.engaged = true;
+    }
+
+    /// Notes a converged step made at `control_step`: one the damper would not carry ends the
+    /// snap.
+    pub fn release(&mut self, control_step: f64) {
+        if !self.engages(control_step) {
+            self.engaged = false;
+        }
+    }
+
     /// The damper of the step from `(d0, u0)` to `d` on `system`'s mesh, made by a step control
-    /// whose current step is `control_step`: zero damping unless that is below `engage_below`
-    /// (a step shortened only to land on the end of the path is not damped).
+    /// whose current step is `control_step`: zero damping unless a snap is being crossed and
+    /// that step is below `engage_below` (a step shortened only to land on the end of the path
+    /// is not damped).
     pub fn damper(&self, system: &System, (d0, u0): (f64, &[f64]), d: f64, control_step: f64) -> Result<Damper<'_>> {
         let mesh = system.mesh();
         let before = homogeneous_displacement(mesh, &homogeneous_state(&self.materials, d0)?);
@@ -136,7 +168,7 @@ impl Stabilisation {
         Ok(Damper {
             stiffness: &self.stiffness,
             reference,
-            factor: if control_step < self.settings.engage_below {
+            factor: if self.engaged && self.engages(control_step) {
                 self.eta / (d - d0)
             } else {
                 0.0
@@ -216,16 +248,21 @@ mod tests {
     use crate::mesh::{Mesh, MeshSpec};
     use crate::Parameters;
 
-    /// The damper engages by the step control's step, not by the step's length: the last step
-    /// shortened to land on `d_max` is as undamped as the full steps before it, and a cut step
-    /// is damped with `eta / h` of its own length `h`.
+    /// The damper engages by the step control's step, not by the step's length, and only once
+    /// an undamped cut step has failed (a snap): the last step shortened to land on `d_max` is
+    /// as undamped as the full steps before it, a cut step is damped with `eta / h` of its own
+    /// length `h` once engaged, and a converged step of full length releases it.
     #[test]
-    fn only_steps_the_control_has_cut_are_damped() {
+    fn only_steps_the_control_has_cut_are_damped_and_only_across_a_snap() {
         let materials = Bilayer::new(&Parameters::default());
         let system = System::new(Mesh::new(MeshSpec::new(4, 1, 2, 0.5, 4.0, 4.0)).unwrap(), &materials).unwrap();
-        let stabilisation = Stabilisation::new(&system, &materials, StabilisationSettings::default()).unwrap();
+        let mut stabilisation = Stabilisation::new(&system, &materials, StabilisationSettings::default()).unwrap();
         let u0 = vec![0.0; system.num_dofs()];
         let (d0, h) = (0.1, 2.5e-4);
+        assert!(!stabilisation.damper(&system, (d0, &u0), d0 + h, h).unwrap().damps());
+        assert!(stabilisation.engages(h) && !stabilisation.engages(5e-3));
+        stabilisation.engage();
+        stabilisation.release(h);
         let landing = stabilisation.damper(&system, (d0, &u0), d0 + h, 5e-3).unwrap();
         assert!(!landing.damps());
         let cut = stabilisation.damper(&system, (d0, &u0), d0 + h, h).unwrap();
@@ -236,5 +273,10 @@ mod tests {
         let ratio = shorter.dissipation(&moved(&shorter)) / cut.dissipation(&moved(&cut));
         assert!((ratio - 2.0).abs() < 1e-12, "{ratio}");
         assert_eq!(landing.dissipation(&moved(&cut)), 0.0);
+        let memory = stabilisation.memory();
+        stabilisation.release(5e-3);
+        assert!(!stabilisation.damper(&system, (d0, &u0), d0 + h, h).unwrap().damps());
+        stabilisation.recall(memory);
+        assert!(stabilisation.damper(&system, (d0, &u0), d0 + h, h).unwrap().damps());
     }
 }

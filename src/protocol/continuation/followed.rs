@@ -101,6 +101,8 @@ pub trait Augmenting {
     type Saved;
     /// The inertia counted in the background for the last accepted state.
     fn next_inertia(&mut self) -> Option<usize>;
+    /// Notes the negative pivots of the state the path accepted (`None` where not yet known).
+    fn note_accepted(&mut self, _negative_pivots: Option<usize>) {}
     /// Frees the factorisations it holds.
     fn release_factorisation(&mut self);
     /// The state a trial may change.
@@ -118,6 +120,10 @@ impl Augmenting for Augmentation {
 
     fn next_inertia(&mut self) -> Option<usize> {
         Augmentation::next_inertia(self)
+    }
+
+    fn note_accepted(&mut self, negative_pivots: Option<usize>) {
+        Augmentation::note_accepted(self, negative_pivots)
     }
 
     fn release_factorisation(&mut self) {
