@@ -16,6 +16,8 @@ d_max=${2:-0.2}
 case $mesh in coarse | fine) ;; *) echo "mesh: coarse or fine" >&2; exit 2 ;; esac
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
+# shellcheck source=bench/fenicsx/timing.sh
+. "$here/timing.sh"
 binary=${FIBERFOLD:-$root/target/release/fiberfold}
 venv=${FENICSX_DIR:-$HOME/.cache/fiberfold-fenicsx-bench}/venv
 [ -x "$binary" ] || { echo "no $binary: run cargo build --release first (or set FIBERFOLD)" >&2; exit 1; }
@@ -30,15 +32,7 @@ case_flags=(--set beta=0.785398 --waves 4.5 --element displacement --no-contact)
   >"$work/fiberfold.log" 2>&1
 reference=("$venv/bin/python" "$here/wrinkle.py" --mesh-vtu "$work/fiberfold/simulate_0000.vtu"
   --beta 0.785398 --quiet)
-# Form compilation is cached after a first call: warm it, so that the solve alone is timed.
-OMP_NUM_THREADS=1 "${reference[@]}" --d-max 0.005 --out "$work/warm.csv" >/dev/null 2>&1
-OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 /usr/bin/time -f "%e %M" -o "$work/fenicsx.time" \
-  "${reference[@]}" --d-max "$d_max" --out "$work/fenicsx.csv" >"$work/fenicsx.log" 2>&1 || true
-
-read -r ff_seconds ff_kb <"$work/fiberfold.time"
-read -r fx_seconds fx_kb <"$work/fenicsx.time"
-reached() { tail -1 "$1" | cut -d, -f1; }
+time_reference "$d_max"
 echo "mesh $mesh, displacement element, to d = $d_max"
-printf "fiberfold: %7.1f s  %5d MB  reached d = %s\n" "$ff_seconds" $((ff_kb / 1024)) "$(reached "$work/fiberfold/amplitude.csv")"
-printf "FEniCSx:   %7.1f s  %5d MB  reached d = %s\n" "$fx_seconds" $((fx_kb / 1024)) "$(reached "$work/fenicsx.csv")"
+print_times "$work/fiberfold/amplitude.csv"
 "$venv/bin/python" "$here/reference.py" compare "$work/fiberfold/amplitude.csv" "$work/fenicsx.csv" "$ff_seconds" "$fx_seconds"

@@ -19,6 +19,8 @@ epw=${1:-4}
 d_max=${2:-0.12}
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
+# shellcheck source=bench/fenicsx/timing.sh
+. "$here/timing.sh"
 binary=${FIBERFOLD:-$root/target/release/fiberfold}
 venv=${FENICSX_DIR:-$HOME/.cache/fiberfold-fenicsx-bench}/venv
 [ -x "$binary" ] || { echo "no $binary: run cargo build --release first (or set FIBERFOLD)" >&2; exit 1; }
@@ -32,15 +34,7 @@ trap 'rm -rf "$work"' EXIT
   --follow-to "$d_max" --out "$work/fiberfold" >"$work/fiberfold.log" 2>&1
 unknowns=$(sed -n 's/.* \([0-9]*\) unknowns;.*/\1/p' "$work/fiberfold.log" | head -1)
 reference=("$venv/bin/python" "$here/patch.py" --mesh-vtu "$work/fiberfold/state.vtu" --beta 0.7853982 --quiet)
-# Form compilation is cached after a first call: warm it, so that the solve alone is timed.
-OMP_NUM_THREADS=1 "${reference[@]}" --d-max 0.005 --out "$work/warm.csv" >/dev/null 2>&1
-OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 /usr/bin/time -f "%e %M" -o "$work/fenicsx.time" \
-  "${reference[@]}" --d-max "$d_max" --out "$work/fenicsx.csv" >"$work/fenicsx.log" 2>&1 || true
-
-read -r ff_seconds ff_kb <"$work/fiberfold.time"
-read -r fx_seconds fx_kb <"$work/fenicsx.time"
-reached() { tail -1 "$1" | cut -d, -f1; }
+time_reference "$d_max"
 echo "patch with symmetry sides, $epw hexahedra per wavelength ($unknowns unknowns), displacement element, to d = $d_max"
-printf "fiberfold: %7.1f s  %5d MB  reached d = %s\n" "$ff_seconds" $((ff_kb / 1024)) "$(reached "$work/fiberfold/pattern.csv")"
-printf "FEniCSx:   %7.1f s  %5d MB  reached d = %s\n" "$fx_seconds" $((fx_kb / 1024)) "$(reached "$work/fenicsx.csv")"
+print_times "$work/fiberfold/pattern.csv"
 "$venv/bin/python" "$here/reference.py" compare "$work/fiberfold/pattern.csv" "$work/fenicsx.csv" "$ff_seconds" "$fx_seconds"

@@ -26,6 +26,8 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
+# shellcheck source=bench/fenicsx/timing.sh
+. "$here/timing.sh"
 binary=${FIBERFOLD:-$root/target/release/fiberfold}
 venv=${FENICSX_DIR:-$HOME/.cache/fiberfold-fenicsx-bench}/venv
 [ -x "$binary" ] || { echo "no $binary: run cargo build --release first (or set FIBERFOLD)" >&2; exit 1; }
@@ -49,16 +51,8 @@ rm -rf "$work/fiberfold"
 reference=("$venv/bin/python" "$here/wrinkle.py" --mesh-vtu "$work/fiberfold/simulate_0000.vtu"
   --element mixed --inertia --mu_l 100 --K_l 10000 --mu_s 1 --K_s 100 --phi_m 1 --phi_f 0
   --d-first 0.005 --step "$step" --quiet)
-# Form compilation is cached after a first call: warm it, so that the solve alone is timed.
-OMP_NUM_THREADS=1 "${reference[@]}" --d-max 0.005 --out "$work/warm.csv" >/dev/null 2>&1
-OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 /usr/bin/time -f "%e %M" -o "$work/fenicsx.time" \
-  "${reference[@]}" --d-max "$d_max" --out "$work/fenicsx.csv" >"$work/fenicsx.log" 2>&1 || true
-
-read -r ff_seconds ff_kb <"$work/fiberfold.time"
-read -r fx_seconds fx_kb <"$work/fenicsx.time"
-reached() { tail -1 "$1" | cut -d, -f1; }
+time_reference "$d_max"
 echo "period doubling: contrast 100, L = 42.2142 (2 wavelengths), nx = 40, mixed element, steps $step to d = $d_max"
-printf "fiberfold: %7.1f s  %5d MB  reached d = %s\n" "$ff_seconds" $((ff_kb / 1024)) "$(reached "$work/fiberfold/amplitude.csv")"
-printf "FEniCSx:   %7.1f s  %5d MB  reached d = %s (with the inertia of every state)\n" "$fx_seconds" $((fx_kb / 1024)) "$(reached "$work/fenicsx.csv")"
+print_times "$work/fiberfold/amplitude.csv" " (with the inertia of every state)"
 "$venv/bin/python" "$here/reference.py" inertia "$work/fiberfold/secondary.json" \
   "$work/fiberfold/amplitude.csv" "$work/fenicsx.csv" "$work/fiberfold.log"
