@@ -15,14 +15,8 @@ mesh=${1:-coarse}
 d_max=${2:-0.2}
 case $mesh in coarse | fine) ;; *) echo "mesh: coarse or fine" >&2; exit 2 ;; esac
 here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../.." && pwd)
 # shellcheck source=bench/fenicsx/timing.sh
 . "$here/timing.sh"
-binary=${FIBERFOLD:-$root/target/release/fiberfold}
-venv=${FENICSX_DIR:-$HOME/.cache/fiberfold-fenicsx-bench}/venv
-[ -x "$binary" ] || { echo "no $binary: run cargo build --release first (or set FIBERFOLD)" >&2; exit 1; }
-[ -x "$venv/bin/python" ] || { echo "FEniCSx is not installed: run $here/install.sh" >&2; exit 1; }
-[ -x /usr/bin/time ] || { echo "needs /usr/bin/time (Debian package time)" >&2; exit 1; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 case_flags=(--set beta=0.785398 --waves 4.5 --element displacement --no-contact)

@@ -25,14 +25,8 @@
 # keeps both runs' files there.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../.." && pwd)
 # shellcheck source=bench/fenicsx/timing.sh
 . "$here/timing.sh"
-binary=${FIBERFOLD:-$root/target/release/fiberfold}
-venv=${FENICSX_DIR:-$HOME/.cache/fiberfold-fenicsx-bench}/venv
-[ -x "$binary" ] || { echo "no $binary: run cargo build --release first (or set FIBERFOLD)" >&2; exit 1; }
-[ -x "$venv/bin/python" ] || { echo "FEniCSx is not installed: run $here/install.sh" >&2; exit 1; }
-[ -x /usr/bin/time ] || { echo "needs /usr/bin/time (Debian package time)" >&2; exit 1; }
 if [ $# -ge 1 ]; then
   work=$1
   mkdir -p "$work"

@@ -1,6 +1,15 @@
-# Shared by the scripts that time fiberfold against the FEniCSx reference (sourced, not run).
-# They set `work` (a scratch folder holding fiberfold.time from /usr/bin/time -f "%e %M") and
-# `reference` (the reference's command line without --d-max and --out).
+# Shared by the scripts that time fiberfold against the FEniCSx reference (sourced, not run,
+# after setting `here` to bench/fenicsx): fiberfold's `binary` (FIBERFOLD, or the release build)
+# and the reference's `venv` (FENICSX_DIR), both checked. The scripts then set `work` (a scratch
+# folder holding fiberfold.time from /usr/bin/time -f "%e %M") and `reference` (the reference's
+# command line without --d-max and --out).
+
+root=$(cd "$here/../.." && pwd)
+binary=${FIBERFOLD:-$root/target/release/fiberfold}
+venv=${FENICSX_DIR:-$HOME/.cache/fiberfold-fenicsx-bench}/venv
+[ -x "$binary" ] || { echo "no $binary: run cargo build --release first (or set FIBERFOLD)" >&2; exit 1; }
+[ -x "$venv/bin/python" ] || { echo "FEniCSx is not installed: run $here/install.sh" >&2; exit 1; }
+[ -x /usr/bin/time ] || { echo "needs /usr/bin/time (Debian package time)" >&2; exit 1; }
 
 # Runs the reference to D_MAX into $work/fenicsx.csv, timed into $work/fenicsx.time. Form
 # compilation is cached after a first call: it is warmed first, so that the solve alone is timed.
