@@ -120,9 +120,13 @@ out = [
 ]
 order = {"K3": 0, "K100": 1, "incompressible": 2}
 rows = sorted(sys.argv[2:], key=lambda r: (float(r.split()[0]), order[r.split()[1]], r.split()[2] != "coarse"))
+missing = []
 for row in rows:
     ratio, bulk, mesh, k0, d_c, periodic, seeded = row.split()
     bulk = {"K3": "3", "K100": "100", "incompressible": "inf"}[bulk]
+    if not os.path.exists(periodic + ".log"):
+        missing.append(f"{ratio} (K/mu = {bulk}, {mesh})")
+        continue
     first = load(periodic + "/secondary.json")
     changes = (first or {}).get("changes", [])
     lasting = [i for i, c in enumerate(changes) if all(later["negative_after"] > 0 for later in changes[i:])]
@@ -141,7 +145,7 @@ for row in rows:
     path = load(seeded + "/secondary.json")
     summary = load(seeded + "/simulate.json")
     if path is None:
-        ends, troughs, kind = "", "", ""
+        ends, troughs, kind = "", "", "(no seeded run: no lasting change)" if not lasting else "(seeded run not finished)"
     else:
         ends = f"{summary['d_reached']:.4f}" if summary else ""
         troughs = ", ".join(f"{t:.2f}" for t in path["branch"]["trough_depths"])
@@ -152,6 +156,8 @@ for row in rows:
     out.append(
         f"| {ratio} | {bulk} | {mesh} | {float(k0):.4f} | {float(d_c):.4f} | {secondary} | {mode} | {transient or '-'} | {ends} | {troughs} | {kind} |"
     )
+if missing:
+    out += ["", "Not run yet (`bench/period_doubling.sh` runs them): " + "; ".join(missing) + "."]
 open(sys.argv[1], "w").write("\n".join(out) + "\n")
 print("\n".join(out))
 EOF
