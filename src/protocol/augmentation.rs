@@ -188,7 +188,6 @@ impl Augmentation {
             let snap =
                 solved.is_err() && !damped && self.stabilisation.as_ref().is_some_and(|s| s.engages(control_step));
             if snap {
-                drop(damper);
                 if let Some(s) = &mut self.stabilisation {
                     s.engage();
                 }

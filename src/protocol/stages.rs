@@ -376,7 +376,10 @@ fn displacement_control(
     materials: &Bilayer,
     protocol: &Protocol,
 ) -> Result<Continuation> {
-    let damping = protocol.crossing.damping();
+    let damping = protocol
+        .crossing
+        .damping()
+        .map(|settings| settings.for_largest_step(protocol.control.max));
     let augmentation = (protocol.contact || damping.is_some())
         .then(|| Augmentation::new(&system, materials, protocol.contact, damping))
         .transpose()?;

@@ -342,13 +342,10 @@ impl SimulateOptions {
         }
         protocol.crossing = match self.crossing {
             Crossing::Snap => SnapCrossing::Minimised(SnapSettings::default()),
-            Crossing::Viscous => SnapCrossing::Viscous(
-                StabilisationSettings {
-                    eta: self.eta,
-                    ..StabilisationSettings::default()
-                }
-                .for_largest_step(self.max_step),
-            ),
+            Crossing::Viscous => SnapCrossing::Viscous(StabilisationSettings {
+                eta: self.eta,
+                ..StabilisationSettings::default()
+            }),
             Crossing::None => SnapCrossing::None,
         };
         let study = SimulateStudy {
