@@ -15,7 +15,8 @@ mod common;
 
 use common::isotropic;
 use fiberfold::material::Bilayer;
-use fiberfold::protocol::secondary::BranchKind;
+use fiberfold::parameters::Parameters;
+use fiberfold::protocol::secondary::{inertia_changes, BranchKind, InertiaChange};
 use fiberfold::protocol::{stages, Event};
 use fiberfold::stability::{Method, StabilityAnalysis};
 use fiberfold::studies::simulate::{solve, solve_to_secondary, MeshChoice, SimulateOptions, ToSecondary};
@@ -188,4 +189,66 @@ fn the_default_steps_follow_the_stable_wrinkle_to_its_period_doubling() {
     );
     assert_eq!(mode.half_waves, 2);
     assert!((0.15..0.22).contains(&mode.d), "{}", mode.d);
+}
+
+/// An exactly incompressible bilayer of contrast 100 (the mixed element's multipliers), seeded
+/// with one half wave of the domain as a new user seeds the doubled period: it reaches d = 0.3
+/// with its tangent's count of negative pivots zero along the stable wrinkle and changing only
+/// near the path's end, never back. (Its stability was once counted with the iteration's
+/// pressure at the stability tangent's large penalty, `lambda + kappa M^-1 g`: the constraint's
+/// 1e-7 residual made that pressure wrong by up to 10 in the layer, and the count went
+/// 1 -> 4 -> 0 just past the onset and flickered later.)
+#[test]
+fn an_incompressible_stiff_layer_reaches_a_third_compression_with_a_sane_inertia() {
+    let params = Parameters {
+        incompressible: true,
+        ..isotropic(100.0)
+    };
+    let options = SimulateOptions {
+        waves: Some(2.0),
+        imperfection2: 0.05,
+        imperfection2_waves: 1.0,
+        d_max: 0.3,
+        ..SimulateOptions::default()
+    };
+    let solution = solve(&params, &options.study().unwrap(), &|_| Ok(())).unwrap();
+    assert!(solution.curve.stopped.is_none(), "{:?}", solution.curve.stopped);
+    assert_eq!(solution.d_reached, 0.3);
+    let changes = inertia_changes(&solution.curve.records);
+    println!("{changes:#?}");
+    assert_lasting(&changes, 0.2);
+}
+
+/// The count of negative pivots is zero before `stable_to` and, once it has changed, never
+/// returns to zero.
+fn assert_lasting(changes: &[InertiaChange], stable_to: f64) {
+    let Some(first) = changes.first() else { return };
+    assert!(
+        first.d_before > stable_to,
+        "a change at d = {} < {stable_to}",
+        first.d_before
+    );
+    assert!(changes.iter().all(|c| c.negative_after > 0), "{changes:?}");
+}
+
+/// The period doubling of the nearly incompressible bilayer above, exactly incompressible: one
+/// change of the inertia, to the doubled period, at the same d (the two bulk moduli differ by
+/// a Poisson ratio of 0.495 against 0.5).
+#[test]
+fn an_incompressible_stiff_layer_doubles_its_period_with_one_change_of_the_inertia() {
+    let params = Parameters {
+        incompressible: true,
+        ..isotropic(100.0)
+    };
+    let solution = solve(&params, &two_wavelengths().study().unwrap(), &|_| Ok(())).unwrap();
+    assert!(solution.curve.stopped.is_none(), "{:?}", solution.curve.stopped);
+    let changes = inertia_changes(&solution.curve.records);
+    println!("{changes:#?}");
+    assert_lasting(&changes, 0.15);
+    let [change] = &solution.secondary.changes[..] else {
+        panic!("one change: {changes:?}");
+    };
+    assert_eq!(change.change.negative_after, 1);
+    assert!(change.change.d_before < 0.25);
+    assert_eq!(change.mode_half_waves, Some(2), "the doubled period");
 }

@@ -15,8 +15,8 @@
 use super::added::{AddedEnergy, Block, NoAddedEnergy};
 use super::boundary::Dirichlet;
 use super::element::{
-    pressures, ElementGeometry, ElementMatrix, ElementState, ElementVector, FiniteElement, Pressures, Registry, DOFS,
-    GAUSS_POINTS, NODES,
+    pressures, ElementGeometry, ElementMatrix, ElementState, ElementVector, FiniteElement, Penalty, Pressures,
+    Registry, DOFS, GAUSS_POINTS, NODES,
 };
 use crate::error::{Error, Result};
 use crate::material::{Bilayer, Tissue};
@@ -258,18 +258,18 @@ where
     }
 
     /// Element `e`'s force, energy and smallest `J` at its nodal displacements `u` (and
-    /// multipliers `lambda`, used by incompressible elements only, whose constraint's penalty
-    /// is multiplied by `penalty_scale`), and its tangent into `stiffness` when given, by the
+    /// multipliers `lambda`, used by incompressible elements only, whose constraint is
+    /// penalised as `penalty` says), and its tangent into `stiffness` when given, by the
     /// mesh's element.
     pub fn element_state(
         &self,
         e: usize,
         u: &ElementVector<U>,
         lambda: &Pressures,
-        penalty_scale: f64,
+        penalty: Penalty,
         stiffness: Option<&mut ElementMatrix<U>>,
     ) -> Result<ElementState<U>> {
-        self.elements[e].evaluate(&self.geometry[e], u, lambda, penalty_scale, stiffness)
+        self.elements[e].evaluate(&self.geometry[e], u, lambda, penalty, stiffness)
     }
 
     /// Number of unknowns: the displacements of every node, then, for incompressible tissue,
@@ -342,10 +342,10 @@ where
         with_tangent: bool,
         added: &dyn AddedEnergy,
     ) -> Result<Assembled> {
-        self.assemble_penalised(u, bc, lift, with_tangent, added, 1.0)
+        self.assemble_penalised(u, bc, lift, with_tangent, added, Penalty::Augmentation(1.0))
     }
 
-    /// [`System::assemble_with`] with the multipliers' penalty multiplied by `penalty_scale`
+    /// [`System::assemble_with`] with the multipliers' constraint penalised as `penalty` says
     /// ([`crate::fem::element::mixed`]; the method of multipliers raises it where they converge slowly).
     pub fn assemble_penalised(
         &mut self,
@@ -354,7 +354,7 @@ where
         lift: Option<&[f64]>,
         with_tangent: bool,
         added: &dyn AddedEnergy,
-        penalty_scale: f64,
+        penalty: Penalty,
     ) -> Result<Assembled> {
         assert_eq!(u.len(), self.num_dofs(), "displacement vector length");
         assert!(
@@ -378,7 +378,7 @@ where
             .into_par_iter()
             .enumerate()
             .with_min_len(32)
-            .map(|(e, chunk)| self.element_contribution(pattern, e, (u, penalty_scale), lift, chunk))
+            .map(|(e, chunk)| self.element_contribution(pattern, e, (u, penalty), lift, chunk))
             .collect::<Result<Vec<_>>>()?;
         let added_results: Vec<(Block, Vec<f64>)> = group_chunks
             .into_par_iter()
@@ -468,13 +468,13 @@ where
         }
     }
 
-    /// Element `e`'s state at `u` (with the multipliers' penalty scaled by `penalty_scale`), its
+    /// Element `e`'s state at `u` (with the multipliers' constraint penalised by `penalty`), its
     /// lifting force `K_e lift_e`, and its free-free block into `chunk`.
     fn element_contribution(
         &self,
         pattern: &Pattern,
         e: usize,
-        (u, penalty_scale): (&[f64], f64),
+        (u, penalty): (&[f64], Penalty),
         lift: Option<&[f64]>,
         chunk: &mut [f64],
     ) -> Result<(ElementState<U>, ElementVector<U>)> {
@@ -486,7 +486,7 @@ where
             e,
             &self.element_displacements(e, u),
             &self.element_multipliers(e, u),
-            penalty_scale,
+            penalty,
             needs_tangent.then_some(&mut k),
         )?;
         let mut lifted = [0.0; U];

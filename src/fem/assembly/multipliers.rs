@@ -6,7 +6,7 @@ use super::{Assembled, System};
 use crate::error::Result;
 use crate::fem::added::AddedEnergy;
 use crate::fem::boundary::Dirichlet;
-use crate::fem::element::{pressures, Pressures, Registry, Volumetric, MAX_PRESSURES};
+use crate::fem::element::{pressures, Penalty, Pressures, Registry, Volumetric, MAX_PRESSURES};
 use crate::material::{Bilayer, Tissue};
 use crate::mesh::{ElementKind, Region};
 use rayon::prelude::*;
@@ -19,9 +19,10 @@ const AUGMENTATION_PENALTY: f64 = 1e2;
 
 /// The factor on the augmentation penalty with which the tangent's inertia is counted (at most
 /// the bulk modulus, where the tangent is then exact): `fem::element::mixed` explains why it must be
-/// large. The coarse-mesh incompressible bifurcation moves between 1e2 and 1e3 and not from
-/// 1e3 to 1e5; 1e4 keeps a factor of ten in hand.
-const STABILITY_PENALTY: f64 = 1e4;
+/// large, and not too large. The period doubling of a contrast-100 bilayer on the coarse mesh
+/// is bracketed by the same step of 0.001 at 1e2 and 1e3; at 1e4 (a penalty of 1e8 in the
+/// layer) the count flickered in round-off about it.
+const STABILITY_PENALTY: f64 = 1e3;
 
 /// How `tissue`'s mixed element resists volume change: through multipliers for exact
 /// incompressibility and for bulk moduli above [`AUGMENTED_BULK`] times its shear modulus (the
@@ -121,7 +122,7 @@ where
     /// stability of `u`: [`System::assemble_with`], with multipliers at the stability penalty
     /// ([`crate::fem::element::mixed`]).
     pub fn assemble_for_stability(&mut self, u: &[f64], bc: &Dirichlet, added: &dyn AddedEnergy) -> Result<Assembled> {
-        self.assemble_penalised(u, bc, None, true, added, STABILITY_PENALTY)
+        self.assemble_penalised(u, bc, None, true, added, Penalty::Stability(STABILITY_PENALTY))
     }
 
     /// Whether multipliers follow the displacements in the unknowns' vector.

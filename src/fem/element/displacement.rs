@@ -3,7 +3,7 @@
 //! as `K / mu` grows). One code for both dimensions: the law is called at each point through
 //! [`point_response`] (plane strain in two dimensions, the full response in three).
 
-use super::{ElementGeometry, ElementMatrix, ElementState, ElementVector, FiniteElement, Pressures};
+use super::{ElementGeometry, ElementMatrix, ElementState, ElementVector, FiniteElement, Penalty, Pressures};
 use crate::error::Result;
 use crate::material::{point_cauchy, point_response, point_stress, Hyperelastic, Tissue};
 use crate::mesh::DofMap;
@@ -26,7 +26,7 @@ impl<const D: usize, const N: usize, const Q: usize, const U: usize> FiniteEleme
         geometry: &ElementGeometry<D, N, Q>,
         u: &ElementVector<U>,
         _lambda: &Pressures,
-        _penalty_scale: f64,
+        _penalty: Penalty,
         stiffness: Option<&mut ElementMatrix<U>>,
     ) -> Result<ElementState<U>> {
         evaluate(geometry, &self.tissue, u, stiffness)

@@ -50,10 +50,14 @@
 //! than that matrix, which tends to the exact saddle point `[[K_uu, B^T], [B, 0]]` as `kappa`
 //! grows: its inertia is that of the constrained displacements once `kappa` exceeds the
 //! curvature of `K_uu` off the constraint (Finsler's lemma), of the order of the stresses. The
-//! inertia is therefore counted on the tangent with a penalty 10^6 times the tissue's shear
+//! inertia is therefore counted on the tangent with a penalty 10^5 times the tissue's shear
 //! modulus, or `K` where that is smaller (then the exact condensed tangent;
-//! [`crate::fem::System::assemble_for_stability`]); the coarse-mesh bifurcation no longer
-//! moves beyond 10^5 times. Each tissue's penalty is scaled by its own shear modulus: scaled by
+//! [`crate::fem::System::assemble_for_stability`]); a bifurcation no longer moves beyond 10^4
+//! times, and 10^6 times loses small eigenvalues in round-off. That tangent is the Hessian of
+//! the Lagrangian `int W_rest + lambda . g` at the multipliers plus `kappa B^T M^-1 B`
+//! ([`Penalty::Stability`]): its pressure is `lambda`, not the iteration's
+//! `lambda + kappa M^-1 g`, whose residual violation times this large `kappa` is no pressure of
+//! the tissue. Each tissue's penalty is scaled by its own shear modulus: scaled by
 //! the stiffer layer's, a substrate a hundred times softer carries a penalty 10^8 times its
 //! stiffness, whose round-off in the factorisation misses or invents negative pivots.
 
@@ -79,13 +83,38 @@ pub const MAX_PRESSURES: usize = pressures(3);
 /// One element's pressures or multipliers, the first [`pressures`]`(D)` used.
 pub type Pressures = [f64; MAX_PRESSURES];
 
+/// How one evaluation penalises an element's volume constraint (elements without one ignore it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Penalty {
+    /// The method of multipliers: the augmentation penalty times this scale, and the pressure
+    /// `(1 - kappa/K) lambda + kappa M^-1 g` whose force is the gradient of the energy for fixed
+    /// `lambda`.
+    Augmentation(f64),
+    /// The tangent whose inertia is the stability: the Hessian of the Lagrangian at the
+    /// multipliers, whose pressure is `lambda` itself, plus the constraint's stiffness
+    /// `kappa B^T M^-1 B` with the augmentation penalty times this scale. The iteration's
+    /// pressure would add `kappa M^-1 g` at this large `kappa`: with the constraint met to the
+    /// solver's 1e-7, a pressure error of 10 in a layer a hundred times stiffer than the
+    /// substrate, which made the count of negative pivots flicker.
+    Stability(f64),
+}
+
+impl Penalty {
+    /// The factor on the augmentation penalty.
+    pub fn scale(self) -> f64 {
+        match self {
+            Penalty::Augmentation(scale) | Penalty::Stability(scale) => scale,
+        }
+    }
+}
+
 /// How an element's volume change is resisted.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Volumetric {
     /// By the bulk term `kappa/2 (ln J)^2`, condensed exactly.
     Bulk(f64),
-    /// By multipliers and an augmentation penalty (times the scale [`MixedElement::evaluate`]
-    /// is given): the constraint `J = 1` when `bulk` is infinite, else the bulk term
+    /// By multipliers and an augmentation penalty (times the [`Penalty`]'s scale
+    /// [`MixedElement::evaluate`] is given): the constraint `J = 1` when `bulk` is infinite, else the bulk term
     /// `bulk/2 (ln J)^2`, reached by the same iteration (a bulk modulus far above the shear
     /// modulus makes Newton's method on the condensed energy converge only from very close).
     Augmented { penalty: f64, bulk: f64 },
@@ -166,14 +195,14 @@ impl<const D: usize, const Q: usize, const P: usize> MixedElement<D, Q, P> {
 
     /// Force, energy and pressure at nodal displacements `u` (and multipliers `lambda` under the
     /// constraint; unused otherwise), and the condensed tangent into `stiffness` when given
-    /// (overwritten, symmetric); the constraint's penalty is multiplied by `penalty_scale`.
+    /// (overwritten, symmetric); the constraint is penalised as `penalty` says.
     /// `J <= 0` at a Gauss point is an error.
     pub fn evaluate<const N: usize, const U: usize>(
         &self,
         geometry: &ElementGeometry<D, N, Q>,
         u: &ElementVector<U>,
         lambda: &Pressures,
-        penalty_scale: f64,
+        penalty: Penalty,
         mut stiffness: Option<&mut ElementMatrix<U>>,
     ) -> Result<MixedState<U, P>> {
         let dofs = DofMap::of_dimension(D);
@@ -223,11 +252,24 @@ impl<const D: usize, const Q: usize, const P: usize> MixedElement<D, Q, P> {
             // gradient the force is, the augmented one for fixed lambda (a minimisation
             // measured by the true energy finds it rising along directions its force says lower
             // it: the snaps of K / mu = 1e4 stopped so).
-            Volumetric::Augmented { penalty, bulk } => {
-                let kappa = (penalty * penalty_scale).min(bulk);
+            Volumetric::Augmented {
+                penalty: augmentation,
+                bulk,
+            } => {
+                let kappa = (augmentation * penalty.scale()).min(bulk);
                 let relaxation = 1.0 - kappa / bulk;
-                let p: [f64; P] = std::array::from_fn(|i| relaxation * lambda[i] + kappa * projected_log_j[i]);
-                let potential = relaxation * dot(&lambda, &moments) + 0.5 * kappa * dot(&moments, &projected_log_j);
+                let p: [f64; P] = match penalty {
+                    Penalty::Augmentation(_) => {
+                        std::array::from_fn(|i| relaxation * lambda[i] + kappa * projected_log_j[i])
+                    }
+                    Penalty::Stability(_) => lambda,
+                };
+                let potential = match penalty {
+                    Penalty::Augmentation(_) => {
+                        relaxation * dot(&lambda, &moments) + 0.5 * kappa * dot(&moments, &projected_log_j)
+                    }
+                    Penalty::Stability(_) => dot(&lambda, &moments),
+                };
                 let energy = match bulk.is_finite() {
                     true => 0.5 * bulk * dot(&moments, &projected_log_j),
                     false => potential,
@@ -298,10 +340,10 @@ impl<const D: usize, const N: usize, const Q: usize, const U: usize, const P: us
         geometry: &ElementGeometry<D, N, Q>,
         u: &ElementVector<U>,
         lambda: &Pressures,
-        penalty_scale: f64,
+        penalty: Penalty,
         stiffness: Option<&mut ElementMatrix<U>>,
     ) -> Result<ElementState<U>> {
-        Ok(MixedElement::evaluate(self, geometry, u, lambda, penalty_scale, stiffness)?.state)
+        Ok(MixedElement::evaluate(self, geometry, u, lambda, penalty, stiffness)?.state)
     }
 
     /// Under multipliers, of the energy without its volumetric part: that part's penalty would
@@ -310,7 +352,14 @@ impl<const D: usize, const N: usize, const Q: usize, const U: usize, const P: us
         let lambda = [0.0; MAX_PRESSURES];
         match self.volumetric {
             Volumetric::Augmented { .. } => displacement::evaluate(geometry, &self.rest, &[0.0; U], Some(stiffness)),
-            Volumetric::Bulk(_) => FiniteElement::evaluate(self, geometry, &[0.0; U], &lambda, 1.0, Some(stiffness)),
+            Volumetric::Bulk(_) => FiniteElement::evaluate(
+                self,
+                geometry,
+                &[0.0; U],
+                &lambda,
+                Penalty::Augmentation(1.0),
+                Some(stiffness),
+            ),
         }
         .map(|_| ())
     }
@@ -324,7 +373,7 @@ impl<const D: usize, const N: usize, const Q: usize, const U: usize, const P: us
         lambda: &Pressures,
     ) -> Result<[[f64; 3]; 3]> {
         let f = geometry.gradient_at(g, u);
-        let pressure = MixedElement::evaluate(self, geometry, u, lambda, 1.0, None)?.pressure;
+        let pressure = MixedElement::evaluate(self, geometry, u, lambda, Penalty::Augmentation(1.0), None)?.pressure;
         let p: f64 = self.basis[g].iter().zip(&pressure).map(|(a, b)| a * b).sum();
         let mut sigma = point_cauchy(&self.rest, &f)?;
         for (i, row) in sigma.iter_mut().enumerate() {
@@ -344,7 +393,7 @@ impl<const D: usize, const N: usize, const Q: usize, const U: usize, const P: us
         lambda: &Pressures,
         penalty_scale: f64,
     ) -> Result<(f64, Pressures)> {
-        let state = MixedElement::evaluate(self, geometry, u, lambda, penalty_scale, None)?;
+        let state = MixedElement::evaluate(self, geometry, u, lambda, Penalty::Augmentation(penalty_scale), None)?;
         let violation = state.violation.iter().fold(0.0f64, |v, x| v.max(x.abs()));
         let change: Pressures = match self.volumetric {
             Volumetric::Augmented { .. } => std::array::from_fn(|i| match i < P {

@@ -22,7 +22,7 @@ mod quad9;
 pub use displacement::DisplacementElement;
 pub use hex27::Hex27;
 pub use kind::{ElementKind, Registry, LOCKING_RATIO};
-pub use mixed::{pressures, MixedElement, PressureUpdate, Pressures, Volumetric, MAX_PRESSURES, PRESSURES};
+pub use mixed::{pressures, MixedElement, Penalty, PressureUpdate, Pressures, Volumetric, MAX_PRESSURES, PRESSURES};
 pub use quad9::Quad9;
 
 /// A shape on its reference domain, in `D` dimensions with `N` nodes and a quadrature rule of
@@ -220,22 +220,28 @@ pub trait FiniteElement<
 >: Send + Sync + std::fmt::Debug
 {
     /// Force, energy and smallest `J`, and the tangent into `stiffness` when given
-    /// (overwritten, symmetric); a constraint's penalty is multiplied by `penalty_scale`.
+    /// (overwritten, symmetric); a constraint is penalised as `penalty` says.
     /// `J <= 0` at a quadrature point is an error.
     fn evaluate(
         &self,
         geometry: &ElementGeometry<D, N, Q>,
         u: &ElementVector<U>,
         lambda: &Pressures,
-        penalty_scale: f64,
+        penalty: Penalty,
         stiffness: Option<&mut ElementMatrix<U>>,
     ) -> Result<ElementState<U>>;
 
     /// The tangent at `u = 0` of the energy whose stiffness scales each unknown (the viscous
     /// damper's, the minimiser's shift) into `stiffness`.
     fn reference_stiffness(&self, geometry: &ElementGeometry<D, N, Q>, stiffness: &mut ElementMatrix<U>) -> Result<()> {
-        self.evaluate(geometry, &[0.0; U], &[0.0; MAX_PRESSURES], 1.0, Some(stiffness))
-            .map(|_| ())
+        self.evaluate(
+            geometry,
+            &[0.0; U],
+            &[0.0; MAX_PRESSURES],
+            Penalty::Augmentation(1.0),
+            Some(stiffness),
+        )
+        .map(|_| ())
     }
 
     /// The Cauchy stress at quadrature point `g` (a full symmetric 3x3 tensor; in plane strain

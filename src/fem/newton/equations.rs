@@ -4,7 +4,7 @@
 use crate::fem::added::AddedEnergy;
 use crate::fem::assembly::{Assembled, System};
 use crate::fem::boundary::Dirichlet;
-use crate::fem::element::{Registry, DOFS, GAUSS_POINTS, NODES};
+use crate::fem::element::{Penalty, Registry, DOFS, GAUSS_POINTS, NODES};
 #[cfg(doc)]
 use crate::fem::Newton;
 use crate::mesh::ElementKind;
@@ -73,8 +73,14 @@ where
     }
 
     fn assemble(&mut self, u: &[f64], lift: Option<&[f64]>, with_tangent: bool) -> crate::Result<Assembled> {
-        self.system
-            .assemble_penalised(u, self.bc, lift, with_tangent, self.added, self.penalty_scale)
+        self.system.assemble_penalised(
+            u,
+            self.bc,
+            lift,
+            with_tangent,
+            self.added,
+            Penalty::Augmentation(self.penalty_scale),
+        )
     }
 
     fn tolerance_scale(&self) -> f64 {

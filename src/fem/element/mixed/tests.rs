@@ -35,7 +35,7 @@ fn condensed_force_and_tangent_are_the_derivatives_of_the_energy() {
     let (geometry, mixed, u) = mixed_on_distorted(&substrate(), None);
     assert_consistent_derivatives(&u, |v, k| {
         mixed
-            .evaluate(&geometry, v, &[0.0; MAX_PRESSURES], 1.0, k)
+            .evaluate(&geometry, v, &[0.0; MAX_PRESSURES], Penalty::Augmentation(1.0), k)
             .unwrap()
             .state
     });
@@ -56,7 +56,9 @@ fn homogeneous_deformation_gives_the_displacement_element_s_energy_and_pressure(
             + (f[PLANE_TENSOR.dof(c, 1)] - if c == 1 { 1.0 } else { 0.0 }) * x[1]
     });
     let displacement = displacement::evaluate(&geometry, &tissue, &u, None).unwrap();
-    let condensed = mixed.evaluate(&geometry, &u, &[0.0; MAX_PRESSURES], 1.0, None).unwrap();
+    let condensed = mixed
+        .evaluate(&geometry, &u, &[0.0; MAX_PRESSURES], Penalty::Augmentation(1.0), None)
+        .unwrap();
     assert!((displacement.energy - condensed.state.energy).abs() < 1e-12 * displacement.energy.abs());
     for (a, b) in displacement.force.iter().zip(&condensed.state.force) {
         assert!((a - b).abs() < 1e-11, "{a} vs {b}");
@@ -87,7 +89,13 @@ fn saddle_point_inertia_is_the_condensed_plus_pressures() {
     });
     let mut condensed = [[0.0; DOFS]; DOFS];
     let evaluated = mixed
-        .evaluate(&geometry, &u, &[0.0; MAX_PRESSURES], 1.0, Some(&mut condensed))
+        .evaluate(
+            &geometry,
+            &u,
+            &[0.0; MAX_PRESSURES],
+            Penalty::Augmentation(1.0),
+            Some(&mut condensed),
+        )
         .unwrap();
     // The uncondensed blocks at the same state, built here from their definitions.
     let (mut k_uu, mut b) = (DMatrix::zeros(DOFS, DOFS), DMatrix::zeros(PRESSURES, DOFS));
@@ -161,10 +169,77 @@ fn constraint_mode_derivatives_match_central_differences() {
     };
     let (geometry, mixed, u) = mixed_on_distorted(&substrate(), Some(constraint));
     let lambda = [0.7, -0.3, 0.2, 0.0];
-    let state = mixed.evaluate(&geometry, &u, &lambda, 2.5, None).unwrap();
+    let state = mixed
+        .evaluate(&geometry, &u, &lambda, Penalty::Augmentation(2.5), None)
+        .unwrap();
     let expected: [f64; PRESSURES] = std::array::from_fn(|i| lambda[i] + 2.5 * 40.0 * state.violation[i]);
     assert!(state.pressure.iter().zip(&expected).all(|(a, b)| (a - b).abs() < 1e-12));
-    assert_consistent_derivatives(&u, |v, k| mixed.evaluate(&geometry, v, &lambda, 2.5, k).unwrap().state);
+    assert_consistent_derivatives(&u, |v, k| {
+        mixed
+            .evaluate(&geometry, v, &lambda, Penalty::Augmentation(2.5), k)
+            .unwrap()
+            .state
+    });
+}
+
+/// The stability tangent at a state that meets the constraint only approximately: the
+/// Hessian of the Lagrangian `int W_rest + lambda . g` at the multipliers (the pressure is
+/// `lambda` whatever the penalty), plus `kappa B^T M^-1 B`, positive semi-definite of rank
+/// `P`. Were the pressure `lambda + kappa M^-1 g`, raising `kappa` would add the indefinite
+/// `kappa (M^-1 g) . d2g` as well.
+#[test]
+fn the_stability_tangent_is_the_lagrangian_s_hessian_plus_the_constraint_s_stiffness() {
+    let constraint = Volumetric::Augmented {
+        penalty: 40.0,
+        bulk: f64::INFINITY,
+    };
+    let (geometry, mixed, u) = mixed_on_distorted(&substrate(), Some(constraint));
+    let lambda = [0.7, -0.3, 0.2, 0.0];
+    let met = mixed
+        .evaluate(&geometry, &u, &lambda, Penalty::Augmentation(1.0), None)
+        .unwrap();
+    assert!(
+        met.violation.iter().any(|v| v.abs() > 1e-4),
+        "the constraint is not met"
+    );
+    let tangent = |scale: f64| {
+        let mut k = [[0.0; DOFS]; DOFS];
+        let state = mixed
+            .evaluate(&geometry, &u, &lambda, Penalty::Stability(scale), Some(&mut k))
+            .unwrap();
+        assert_eq!(&state.pressure[..], &lambda[..PRESSURES]);
+        DMatrix::from_fn(DOFS, DOFS, |i, j| k[i][j])
+    };
+    let (k_1, k_2) = (tangent(1e3), tangent(2e3));
+    let scale = k_2.amax();
+    // K(2s) - K(s) = kappa(s) B^T M^-1 B.
+    let constraint_stiffness = SymmetricEigen::new(&k_2 - &k_1).eigenvalues;
+    assert!(constraint_stiffness.min() > -1e-12 * scale, "{constraint_stiffness}");
+    let positive = constraint_stiffness.iter().filter(|&&e| e > 1e-9 * scale).count();
+    assert_eq!(positive, PRESSURES);
+    // 2 K(s) - K(2s), the Lagrangian's Hessian: the derivative of the force at the multipliers.
+    let hessian = 2.0 * &k_1 - &k_2;
+    let h = 1e-6;
+    for j in 0..DOFS {
+        let force = |s: f64| {
+            let mut v = u;
+            v[j] += s * h;
+            mixed
+                .evaluate(&geometry, &v, &lambda, Penalty::Stability(1e3), None)
+                .unwrap()
+                .state
+                .force
+        };
+        let (plus, minus) = (force(1.0), force(-1.0));
+        for i in 0..DOFS {
+            let difference = (plus[i] - minus[i]) / (2.0 * h);
+            assert!(
+                (difference - hessian[(i, j)]).abs() < 1e-6 * (1.0 + difference.abs()),
+                "({i}, {j}): {difference} vs {}",
+                hessian[(i, j)]
+            );
+        }
+    }
 }
 
 /// A finite bulk modulus above the penalty (`K / mu = 1e4`): for fixed multipliers the force and
@@ -180,16 +255,28 @@ fn augmented_mode_with_a_finite_bulk_has_the_force_of_its_potential() {
     };
     let (geometry, mixed, u) = mixed_on_distorted(&substrate(), Some(constraint));
     let lambda = [0.7, -0.3, 0.2, 0.0];
-    assert_consistent_derivatives(&u, |v, k| mixed.evaluate(&geometry, v, &lambda, 1.0, k).unwrap().state);
+    assert_consistent_derivatives(&u, |v, k| {
+        mixed
+            .evaluate(&geometry, v, &lambda, Penalty::Augmentation(1.0), k)
+            .unwrap()
+            .state
+    });
     // The reported energy's own derivative is not the force there.
-    let state = mixed.evaluate(&geometry, &u, &lambda, 1.0, None).unwrap().state;
+    let state = mixed
+        .evaluate(&geometry, &u, &lambda, Penalty::Augmentation(1.0), None)
+        .unwrap()
+        .state;
     let h = 1e-6;
     let worst = (0..DOFS)
         .map(|j| {
             let energy = |s: f64| {
                 let mut v = u;
                 v[j] += s * h;
-                mixed.evaluate(&geometry, &v, &lambda, 1.0, None).unwrap().state.energy
+                mixed
+                    .evaluate(&geometry, &v, &lambda, Penalty::Augmentation(1.0), None)
+                    .unwrap()
+                    .state
+                    .energy
             };
             ((energy(1.0) - energy(-1.0)) / (2.0 * h) - state.force[j]).abs()
         })
@@ -227,7 +314,12 @@ fn the_mixed_hexahedron_s_force_and_tangent_are_the_derivatives_of_its_potential
     ] {
         let mixed = MixedElement::<3, 27, 4>::new(&geometry, &tissue, constraint);
         let lambda = [0.7, -0.3, 0.2, 0.4];
-        assert_consistent_derivatives(&u, |v, k| mixed.evaluate(&geometry, v, &lambda, 2.5, k).unwrap().state);
+        assert_consistent_derivatives(&u, |v, k| {
+            mixed
+                .evaluate(&geometry, v, &lambda, Penalty::Augmentation(2.5), k)
+                .unwrap()
+                .state
+        });
     }
 }
 
@@ -246,7 +338,9 @@ fn a_homogeneous_3d_deformation_gives_the_displacement_hexahedron_s_energy_and_p
         (0..3).map(|l| (f[c][l] - if c == l { 1.0 } else { 0.0 }) * x[l]).sum()
     });
     let displacement = displacement::evaluate(&geometry, &tissue, &u, None).unwrap();
-    let condensed = mixed.evaluate(&geometry, &u, &[0.0; MAX_PRESSURES], 1.0, None).unwrap();
+    let condensed = mixed
+        .evaluate(&geometry, &u, &[0.0; MAX_PRESSURES], Penalty::Augmentation(1.0), None)
+        .unwrap();
     assert!((displacement.energy - condensed.state.energy).abs() < 1e-12 * displacement.energy.abs());
     for (a, b) in displacement.force.iter().zip(&condensed.state.force) {
         assert!((a - b).abs() < 1e-11, "{a} vs {b}");
@@ -279,7 +373,13 @@ fn explore_hex_eigenvalues() {
         if mixed {
             let element = MixedElement::<3, 27, 4>::new(&geometry, &tissue, None);
             element
-                .evaluate(&geometry, &[0.0; 81], &[0.0; MAX_PRESSURES], 1.0, Some(&mut k))
+                .evaluate(
+                    &geometry,
+                    &[0.0; 81],
+                    &[0.0; MAX_PRESSURES],
+                    Penalty::Augmentation(1.0),
+                    Some(&mut k),
+                )
                 .unwrap();
         } else {
             displacement::evaluate(&geometry, &tissue, &[0.0; 81], Some(&mut k)).unwrap();
