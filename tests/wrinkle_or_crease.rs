@@ -95,3 +95,24 @@ fn a_stiff_layer_goes_on_to_a_period_doubling_or_a_fold() {
     let d = point.d_secondary.unwrap();
     assert!(d > point.d_wrinkle.unwrap() && d < point.d_reached.unwrap(), "{d}");
 }
+
+/// A layer 30 times stiffer than a nearly incompressible substrate (`K = 100 mu`): the crease
+/// search's seeded fold loses strong ellipticity at its tip (singular by construction) well
+/// before the wrinkle's onset. That is the fold's, reported apart (`d_ellipticity_loss_fold`);
+/// the tissue's, from the nonlinear run, is not before the onset.
+#[test]
+fn the_crease_search_s_fold_tip_is_not_the_tissue_s_loss_of_ellipticity() {
+    let settings = MapSettings {
+        post_buckling_range: 0.02,
+        ..MapSettings::default()
+    };
+    let point = compute_point(&settings, &settings.crease_study(), (0, 0, 0, 30.0, 0.0), isotropic(30.0)).unwrap();
+    println!(
+        "d_wrinkle {:?}; ellipticity lost: nonlinear run {:?}, crease search {:?}",
+        point.d_wrinkle, point.d_ellipticity_loss_fe, point.d_ellipticity_loss_fold
+    );
+    let d_wrinkle = point.d_wrinkle.unwrap();
+    assert!(point.d_ellipticity_loss_fold.unwrap() < d_wrinkle);
+    assert!(point.d_ellipticity_loss_fe.is_none_or(|d| d > d_wrinkle));
+    assert!(point.d_reached.unwrap() > d_wrinkle);
+}

@@ -237,8 +237,9 @@ const MAP_NOTE: &str = "d_wrinkle: minimum of the linear theory's d_c(k) (minimu
     differ by less than d_crease_error. d_wrinkle_biaxial and theta0 (with --biaxial R): the onset over \
     wavenumbers and directions of the surface under d_3 = R d, and the direction of its wave vector from X towards \
     Z (radians; the crests run perpendicular to it; empty where no direction is preferred). d_ellipticity_loss_fe: \
-    the first d at which a finite-element state (crease search or nonlinear run) has a Gauss point without strong \
-    ellipticity; beyond it the answer depends on the mesh. becomes (where the wrinkle has a wavelength and comes first): a nonlinear run of `waves` \
+    the first d at which a state of the nonlinear run has a Gauss point without strong ellipticity; beyond it the \
+    answer depends on the mesh. d_ellipticity_loss_fold: the same in the crease search's states, at the tip of its \
+    seeded fold (singular by construction: the fold's, not the tissue's). becomes (where the wrinkle has a wavelength and comes first): a nonlinear run of `waves` \
     wavelengths 2 pi / k0 to d_wrinkle + post_buckling_range; if the tangent's inertia changes along it \
     (d_secondary), the run is repeated seeded with that change's mode (secondary_half_waves across the domain), and \
     ends where a fold closes on itself (in contact, one trough more than 20 % deeper than all others; d_reached; \
@@ -290,6 +291,7 @@ fn write_csv(report: &MapReport, out: &Path) -> Result<PathBuf> {
             "d_wrinkle_biaxial",
             "theta0",
             "d_ellipticity_loss_fe",
+            "d_ellipticity_loss_fold",
             "seconds",
         ],
     )?;
@@ -319,6 +321,7 @@ fn write_csv(report: &MapReport, out: &Path) -> Result<PathBuf> {
             number(p.d_wrinkle_biaxial),
             number(p.theta0),
             number(p.d_ellipticity_loss_fe),
+            number(p.d_ellipticity_loss_fold),
             Cell::Number(p.seconds.iter().sum()),
         ])?;
     }

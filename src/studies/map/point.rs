@@ -127,11 +127,14 @@ pub struct MapPoint {
     pub d_wrinkle_biaxial: Option<f64>,
     #[serde(default)]
     pub theta0: Option<f64>,
-    /// The first `d` at which a finite-element state of the crease search or of the nonlinear
-    /// run has a Gauss point without strong ellipticity (beyond it the answer depends on the
-    /// mesh; `crease` and `simulate` report each layer).
+    /// The first `d` at which a state of the nonlinear run has a Gauss point without strong
+    /// ellipticity (beyond it the answer depends on the mesh; `simulate` reports each layer).
     #[serde(default)]
     pub d_ellipticity_loss_fe: Option<f64>,
+    /// The same in the crease search's states, whose seeded fold has a tip singular by
+    /// construction: a loss there is the fold's, not the tissue's.
+    #[serde(default)]
+    pub d_ellipticity_loss_fold: Option<f64>,
     /// Why a part is missing or ended early.
     pub notes: Vec<String>,
     /// Wall time of the linear theory, the crease search and the nonlinear run (s).
@@ -185,7 +188,7 @@ pub fn compute(
     point.seconds[2] = clock.elapsed().as_secs_f64();
     if let Some(d) = point.d_ellipticity_loss_fe {
         point.notes.push(format!(
-            "a finite-element state loses strong ellipticity at a Gauss point from d = {d:.4}: beyond it the answer \
+            "the nonlinear run loses strong ellipticity at a Gauss point from d = {d:.4}: beyond it the answer \
              depends on the mesh"
         ));
     }
@@ -279,7 +282,8 @@ pub fn first_instability(crease_study: &CreaseStudy, parameters: Parameters) -> 
         d_reached: None,
         d_wrinkle_biaxial: None,
         theta0: None,
-        d_ellipticity_loss_fe: report.ellipticity.d_loss(),
+        d_ellipticity_loss_fe: None,
+        d_ellipticity_loss_fold: report.ellipticity.d_loss(),
         notes,
         seconds: [linear_seconds, crease_seconds, 0.0],
     })
@@ -349,11 +353,8 @@ fn nonlinear(
     point.doubling = Some(doubled);
     point.trough_depths = depths;
     point.d_first_contact = solution.contact.d_first_contact;
-    let run_loss = EllipticityReport::new(solution.curve.records.iter().map(|r| (r.d, r.ellipticity))).d_loss();
-    point.d_ellipticity_loss_fe = [point.d_ellipticity_loss_fe, run_loss]
-        .into_iter()
-        .flatten()
-        .reduce(f64::min);
+    point.d_ellipticity_loss_fe =
+        EllipticityReport::new(solution.curve.records.iter().map(|r| (r.d, r.ellipticity))).d_loss();
     point.d_reached = Some(d);
     Ok(())
 }
