@@ -2,7 +2,8 @@
 # Writes the table of the guide's page "What the wrinkle becomes at high contrast"
 # (docs/guide/src/results/period-doubling-table.md) from `fiberfold simulate` runs of isotropic
 # bilayers (phi_m = 1, phi_f = 0) at stiffness contrasts mu_l / mu_s of 5, 10, 30, 100 and 1000,
-# each with K / mu = 3 (Table 1's Poisson ratio), K / mu = 100, and exactly incompressible.
+# each with K / mu = 3 (Table 1's Poisson ratio), K / mu = 100, and exactly incompressible; then
+# Table 1's tissue with its fibres at beta = 0, pi/4 and pi/2.
 #
 # Each case runs on a half domain two natural wavelengths long (2 pi / k0 of `fiberfold onset`),
 # seeded with a trough on each symmetry plane (--imperfection -0.05), so that the doubled period
@@ -53,11 +54,12 @@ run() {
 }
 
 rows=()
-# The compressible cases of every contrast first: the exactly incompressible ones are the slowest.
-for bulk in K3 K100 incompressible; do
-  for ratio in "${CONTRASTS[@]}"; do
-    name=mu$ratio-$bulk
-    params="--set mu_l=$ratio --set phi_m=1 --set phi_f=0 $(compressibility $bulk "$ratio")"
+# One case on both meshes: its name, the number in its table row's first column, its label in
+# the second, then its parameters.
+study_case() {
+    local name=$1 ratio=$2 label=$3
+    shift 3
+    local params="$*"
     # shellcheck disable=SC2086
     "$binary" onset $params --out "$work/$name-onset" >/dev/null
     k0=$(json "$work/$name-onset/onset.json" "['k0']")
@@ -93,9 +95,22 @@ EOF
         run "$seeded" $params $domain --imperfection2 0.01 --imperfection2-waves \
           "$(python3 -c "print($half_waves / 2)")"
       fi
-      rows+=("$ratio $bulk $mesh_name $k0 $d_c $periodic $seeded")
+      rows+=("$ratio $label $mesh_name $k0 $d_c $periodic $seeded")
     done
+}
+
+# The compressible cases of every contrast first: the exactly incompressible ones are the slowest.
+for bulk in K3 K100 incompressible; do
+  for ratio in "${CONTRASTS[@]}"; do
+    # shellcheck disable=SC2046
+    study_case "mu$ratio-$bulk" "$ratio" "$bulk" \
+      --set mu_l="$ratio" --set phi_m=1 --set phi_f=0 $(compressibility $bulk "$ratio")
   done
+done
+# Table 1 (contrast 10, K / mu = 3) with its fibres along, at 45 degrees to and across the
+# compression.
+for beta in 0 0.7854 1.5708; do
+  study_case "table1-beta$beta" 10 "table1-beta$beta" --set beta="$beta"
 done
 
 python3 - "$table" "${rows[@]}" <<'EOF'
@@ -119,11 +134,11 @@ out = [
     "|---:|---|---|---:|---:|---|---:|---|---:|---|---|",
 ]
 order = {"K3": 0, "K100": 1, "incompressible": 2}
-rows = sorted(sys.argv[2:], key=lambda r: (float(r.split()[0]), order[r.split()[1]], r.split()[2] != "coarse"))
+rows = sorted(sys.argv[2:], key=lambda r: (float(r.split()[0]), order.get(r.split()[1], 3), r.split()[1], r.split()[2] != "coarse"))
 missing = []
 for row in rows:
     ratio, bulk, mesh, k0, d_c, periodic, seeded = row.split()
-    bulk = {"K3": "3", "K100": "100", "incompressible": "inf"}[bulk]
+    bulk = {"K3": "3", "K100": "100", "incompressible": "inf"}.get(bulk) or "3 (Table 1, fibres at beta = " + bulk.removeprefix("table1-beta") + ")"
     if not os.path.exists(periodic + ".log"):
         missing.append(f"{ratio} (K/mu = {bulk}, {mesh})")
         continue

@@ -106,7 +106,13 @@ fn the_crease_search_s_fold_tip_is_not_the_tissue_s_loss_of_ellipticity() {
         post_buckling_range: 0.02,
         ..MapSettings::default()
     };
-    let point = compute_point(&settings, &settings.crease_study(), (0, 0, 0, 30.0, 0.0), isotropic(30.0)).unwrap();
+    let point = compute_point(
+        &settings,
+        &settings.crease_study(),
+        (0, 0, 0, 30.0, 0.0),
+        isotropic(30.0),
+    )
+    .unwrap();
     println!(
         "d_wrinkle {:?}; ellipticity lost: nonlinear run {:?}, crease search {:?}",
         point.d_wrinkle, point.d_ellipticity_loss_fe, point.d_ellipticity_loss_fold
