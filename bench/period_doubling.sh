@@ -9,9 +9,9 @@
 # seeded with a trough on each symmetry plane (--imperfection -0.05), so that the doubled period
 # of the troughs fits it; the substrate is at least as deep as the domain is long. Steps are at
 # most 0.001 in d, so that the path stays on the stable branch past the onset. Two runs a case:
-#   1. the periodic wrinkle: its secondary bifurcation (the change of the tangent's inertia after
-#      which it stays unstable; counts that return to zero are listed apart) and that mode's half
-#      waves across the domain (2: the period doubles);
+#   1. the periodic wrinkle: its secondary bifurcation (the first change of the tangent's
+#      inertia) and that mode's half waves across the domain (2: the period doubles); where the
+#      count later returns to zero, the path has left the unstable periodic branch (listed apart);
 #   2. the same seeded with 0.01 of that mode: what the path becomes (the troughs at its end).
 # On two meshes: 20 elements a wavelength with 2 through the layer, and 40 with 4.
 #
@@ -50,7 +50,9 @@ run() {
   local out=$1
   shift
   if [ -f "$out/secondary.json" ] || [ "$mode" = table ]; then return 0; fi
-  timeout 900 "$binary" simulate "$@" --out "$out" >"$out.log" 2>&1 || true
+  timeout 900 "$binary" simulate "$@" --out "$out" >"$out.log" 2>&1 || {
+    [ $? -ne 124 ] || echo "error: stopped at the study's limit of 900 s" >>"$out.log"
+  }
 }
 
 rows=()
@@ -84,9 +86,8 @@ try:
     changes = json.load(open(sys.argv[1]))["changes"]
 except FileNotFoundError:
     changes = []
-# The change after which the tangent stays unstable (a count that returns to zero was not one).
-lasting = [c for i, c in enumerate(changes) if all(later["negative_after"] > 0 for later in changes[i:])]
-print(lasting[0]["mode_half_waves"] or "" if lasting else "")
+# The first change: the periodic wrinkle's secondary bifurcation.
+print(changes[0]["mode_half_waves"] or "" if changes else "")
 EOF
       )
       seeded=$work/$name-$mesh_name-seeded
@@ -130,7 +131,7 @@ def stop(folder):
     return lines[-1].strip().split(" with ")[0].replace("error: ", "") if lines else ""
 
 out = [
-    "| mu_l/mu_s | K/mu | mesh | k0 | d_c | d_secondary | mode (half waves; 4 is the wrinkle) | changes that returned to zero before it | seeded run ends at d | its troughs (plane, middle, plane) | branch |",
+    "| mu_l/mu_s | K/mu | mesh | k0 | d_c | d_secondary | mode (half waves; 4 is the wrinkle) | the count back to zero after it (the path left the periodic branch) | seeded run ends at d | its troughs (plane, middle, plane) | branch |",
     "|---:|---|---|---:|---:|---|---:|---|---:|---|---|",
 ]
 order = {"K3": 0, "K100": 1, "incompressible": 2}
@@ -144,15 +145,16 @@ for row in rows:
         continue
     first = load(periodic + "/secondary.json")
     changes = (first or {}).get("changes", [])
-    lasting = [i for i, c in enumerate(changes) if all(later["negative_after"] > 0 for later in changes[i:])]
-    transient = ", ".join(
-        f"{c['d_before']:.4f}-{c['d_after']:.4f} ({c['negative_after']})"
-        for c in changes[: lasting[0] if lasting else len(changes)]
+    returns = ", ".join(
+        f"{c['d_before']:.4f}-{c['d_after']:.4f} (from {c['negative_before']})"
+        for c in changes[1:]
+        if c["negative_after"] == 0
     )
     if first is None:
-        secondary, mode = "run failed: " + stop(periodic), ""
-    elif lasting:
-        c = changes[lasting[0]]
+        why = stop(periodic)
+        secondary, mode = ("run failed: " + why if why else "not finished"), ""
+    elif changes:
+        c = changes[0]
         secondary, mode = f"{c['d_before']:.4f}-{c['d_after']:.4f}", str(c["mode_half_waves"] or "")
     else:
         ends = load(periodic + "/simulate.json")
@@ -160,7 +162,12 @@ for row in rows:
     path = load(seeded + "/secondary.json")
     summary = load(seeded + "/simulate.json")
     if path is None:
-        ends, troughs, kind = "", "", "(no seeded run: no lasting change)" if not lasting else "(seeded run not finished)"
+        why = stop(seeded)
+        ends, troughs, kind = "", "", (
+            "(no seeded run: no change)"
+            if first is not None and not changes
+            else f"(seeded run {why})" if why else "(seeded run not finished)"
+        )
     else:
         ends = f"{summary['d_reached']:.4f}" if summary else ""
         troughs = ", ".join(f"{t:.2f}" for t in path["branch"]["trough_depths"])
@@ -169,7 +176,7 @@ for row in rows:
         if why:
             kind += f" ({why})"
     out.append(
-        f"| {ratio} | {bulk} | {mesh} | {float(k0):.4f} | {float(d_c):.4f} | {secondary} | {mode} | {transient or '-'} | {ends} | {troughs} | {kind} |"
+        f"| {ratio} | {bulk} | {mesh} | {float(k0):.4f} | {float(d_c):.4f} | {secondary} | {mode} | {returns or '-'} | {ends} | {troughs} | {kind} |"
     )
 if missing:
     out += ["", "Not run yet (`bench/period_doubling.sh` runs them): " + "; ".join(missing) + "."]
