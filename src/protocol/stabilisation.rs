@@ -13,9 +13,10 @@
 //! path is not damped. Where the path is smooth it is not damped at all (so the onset and `A(d)`
 //! are those of the elastic problem, also where a step was cut only because Newton's iteration
 //! needed a closer start, as just past a stiff layer's onset); across a snap the step is cut and
-//! `eta / h` grows until the damped step is well posed, so the damper carries the jump. The work of the damping forces, `eta / h |du|_c^2`
-//! per step, is summed and reported against the strain energy; `eta` is cut whenever that
-//! fraction would exceed the budget, and the step is redone.
+//! `eta / h` grows until the damped step is well posed, so the damper carries the jump. The
+//! work of the damping forces, `eta / h |du|_c^2` per step, is summed and reported against the
+//! strain energy; `eta` is cut whenever that fraction would exceed the budget, and the step is
+//! redone.
 
 use crate::error::{Error, Result};
 use crate::fem::added::{AddedEnergy, Block, Diagonal};

@@ -114,9 +114,10 @@ pub enum Volumetric {
     /// By the bulk term `kappa/2 (ln J)^2`, condensed exactly.
     Bulk(f64),
     /// By multipliers and an augmentation penalty (times the [`Penalty`]'s scale
-    /// [`MixedElement::evaluate`] is given): the constraint `J = 1` when `bulk` is infinite, else the bulk term
-    /// `bulk/2 (ln J)^2`, reached by the same iteration (a bulk modulus far above the shear
-    /// modulus makes Newton's method on the condensed energy converge only from very close).
+    /// [`MixedElement::evaluate`] is given): the constraint `J = 1` when `bulk` is infinite,
+    /// else the bulk term `bulk/2 (ln J)^2`, reached by the same iteration (a bulk modulus far
+    /// above the shear modulus makes Newton's method on the condensed energy converge only from
+    /// very close).
     Augmented { penalty: f64, bulk: f64 },
 }
 
@@ -258,17 +259,12 @@ impl<const D: usize, const Q: usize, const P: usize> MixedElement<D, Q, P> {
             } => {
                 let kappa = (augmentation * penalty.scale()).min(bulk);
                 let relaxation = 1.0 - kappa / bulk;
-                let p: [f64; P] = match penalty {
-                    Penalty::Augmentation(_) => {
-                        std::array::from_fn(|i| relaxation * lambda[i] + kappa * projected_log_j[i])
-                    }
-                    Penalty::Stability(_) => lambda,
-                };
-                let potential = match penalty {
-                    Penalty::Augmentation(_) => {
-                        relaxation * dot(&lambda, &moments) + 0.5 * kappa * dot(&moments, &projected_log_j)
-                    }
-                    Penalty::Stability(_) => dot(&lambda, &moments),
+                let (p, potential): ([f64; P], f64) = match penalty {
+                    Penalty::Augmentation(_) => (
+                        std::array::from_fn(|i| relaxation * lambda[i] + kappa * projected_log_j[i]),
+                        relaxation * dot(&lambda, &moments) + 0.5 * kappa * dot(&moments, &projected_log_j),
+                    ),
+                    Penalty::Stability(_) => (lambda, dot(&lambda, &moments)),
                 };
                 let energy = match bulk.is_finite() {
                     true => 0.5 * bulk * dot(&moments, &projected_log_j),

@@ -30,15 +30,26 @@ fn mixed_on_distorted(
     (geometry, mixed, u)
 }
 
+/// The element's state under the method of multipliers with the penalty scaled by `scale`, as a
+/// function of the displacements (for the derivative checks).
+fn augmented<'a, const D: usize, const N: usize, const Q: usize, const U: usize, const P: usize>(
+    mixed: &'a MixedElement<D, Q, P>,
+    geometry: &'a ElementGeometry<D, N, Q>,
+    lambda: &'a Pressures,
+    scale: f64,
+) -> impl Fn(&ElementVector<U>, Option<&mut ElementMatrix<U>>) -> ElementState<U> + 'a {
+    move |v, k| {
+        mixed
+            .evaluate(geometry, v, lambda, Penalty::Augmentation(scale), k)
+            .unwrap()
+            .state
+    }
+}
+
 #[test]
 fn condensed_force_and_tangent_are_the_derivatives_of_the_energy() {
     let (geometry, mixed, u) = mixed_on_distorted(&substrate(), None);
-    assert_consistent_derivatives(&u, |v, k| {
-        mixed
-            .evaluate(&geometry, v, &[0.0; MAX_PRESSURES], Penalty::Augmentation(1.0), k)
-            .unwrap()
-            .state
-    });
+    assert_consistent_derivatives(&u, augmented(&mixed, &geometry, &[0.0; MAX_PRESSURES], 1.0));
 }
 
 /// Under a uniform `F` the projection of `ln J` is exact, so the mixed element's energy, force
@@ -174,12 +185,7 @@ fn constraint_mode_derivatives_match_central_differences() {
         .unwrap();
     let expected: [f64; PRESSURES] = std::array::from_fn(|i| lambda[i] + 2.5 * 40.0 * state.violation[i]);
     assert!(state.pressure.iter().zip(&expected).all(|(a, b)| (a - b).abs() < 1e-12));
-    assert_consistent_derivatives(&u, |v, k| {
-        mixed
-            .evaluate(&geometry, v, &lambda, Penalty::Augmentation(2.5), k)
-            .unwrap()
-            .state
-    });
+    assert_consistent_derivatives(&u, augmented(&mixed, &geometry, &lambda, 2.5));
 }
 
 /// The stability tangent at a state that meets the constraint only approximately: the
@@ -255,12 +261,7 @@ fn augmented_mode_with_a_finite_bulk_has_the_force_of_its_potential() {
     };
     let (geometry, mixed, u) = mixed_on_distorted(&substrate(), Some(constraint));
     let lambda = [0.7, -0.3, 0.2, 0.0];
-    assert_consistent_derivatives(&u, |v, k| {
-        mixed
-            .evaluate(&geometry, v, &lambda, Penalty::Augmentation(1.0), k)
-            .unwrap()
-            .state
-    });
+    assert_consistent_derivatives(&u, augmented(&mixed, &geometry, &lambda, 1.0));
     // The reported energy's own derivative is not the force there.
     let state = mixed
         .evaluate(&geometry, &u, &lambda, Penalty::Augmentation(1.0), None)
@@ -314,12 +315,7 @@ fn the_mixed_hexahedron_s_force_and_tangent_are_the_derivatives_of_its_potential
     ] {
         let mixed = MixedElement::<3, 27, 4>::new(&geometry, &tissue, constraint);
         let lambda = [0.7, -0.3, 0.2, 0.4];
-        assert_consistent_derivatives(&u, |v, k| {
-            mixed
-                .evaluate(&geometry, v, &lambda, Penalty::Augmentation(2.5), k)
-                .unwrap()
-                .state
-        });
+        assert_consistent_derivatives(&u, augmented(&mixed, &geometry, &lambda, 2.5));
     }
 }
 
