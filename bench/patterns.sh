@@ -62,7 +62,7 @@ follow() {
   to=$(python3 -c "print(round($d_c + ${AFTER[-1]}, 6))")
   echo "$name: d_c = $d_c, following to $to" >&2
   "$binary" pattern --load "$load" "$@" --periods "$periods" --elements-per-wavelength "$epw" \
-    --follow-to "$to" --out "$out" >"$work/$name.log" 2>&1 || echo "  $name stopped: $(tail -1 "$work/$name.log")" >&2
+    --follow-to "$to" --resume --out "$out" >>"$work/$name.log" 2>&1 || echo "  $name stopped: $(tail -1 "$work/$name.log")" >&2
 }
 
 if [ "$what" = all ] || [ "$what" = table ]; then
@@ -73,7 +73,7 @@ if [ "$what" = all ] || [ "$what" = table ]; then
   done
 fi
 if [ "$what" = all ] || [ "$what" = boxes ]; then
-  for periods in 1 2; do
+  for periods in 1 2 3; do
     follow "boxes-compression-beta0-p$periods" "$periods" 4 compression --set beta=0
   done
 fi
@@ -182,7 +182,7 @@ for c in ["compression-beta0", "compression-beta22", "compression-beta45", "comp
             shutil.copy(picture, os.path.join(figures, f"pattern-{c}.png"))
 lines += ["", "The box-size study (compression, beta = 0, 4 hexahedra per wavelength):", ""]
 lines += ["| " + " | ".join(["periods"] + header[1:]) + " |", "|" + "---|" * len(header)]
-for periods in (1, 2):
+for periods in (1, 2, 3):
     cells = row(f"boxes-compression-beta0-p{periods}", f"{periods} x {periods}")
     if cells is not None:
         lines.append("| " + " | ".join(cells) + " |")

@@ -347,6 +347,24 @@ fn every_documented_example_runs_and_gives_an_independently_known_number() {
                 assert_eq!(last["pattern"], "stripes", "{last}");
                 assert!((last["directions"][0]["wave"]["theta_degrees"].as_f64().unwrap() - 90.0).abs() < 0.5);
             }
+            "pattern" if command.contains("--biaxial 0.5") => {
+                // An onset 1 deg from X: Z, which would take the mode's period of about 60
+                // wavelengths, is one wavelength long, and the patch holds the wave along X, the
+                // theory's d_c there barely above the onset's.
+                let (dir, _) = run(command, &[("--elements-per-wavelength", "3")]);
+                let report = json(dir.join("pattern.json"));
+                let capped = &report["capped_sides"][0];
+                assert_eq!(capped["side"], "Z", "{report}");
+                let wavelength = 2.0 * std::f64::consts::PI / report["onset_theory"]["k0"].as_f64().unwrap();
+                assert!(capped["period"].as_f64().unwrap() > 50.0 * wavelength, "{capped}");
+                let excess =
+                    report["d_c_admissible"].as_f64().unwrap() - report["onset_theory"]["d_c"].as_f64().unwrap();
+                assert!((0.0..1e-4).contains(&excess), "{excess}");
+                let mode = report["mode_wave_vectors"][0]["theta_degrees"].as_f64().unwrap();
+                assert!(mode.abs() < 0.5 || (mode - 180.0).abs() < 0.5, "{mode}");
+                let difference = report["relative_difference"].as_f64().unwrap();
+                assert!(difference > 0.0 && difference < 0.05, "{difference}");
+            }
             "pattern" if command.contains("--follow-to") => {
                 // Fibres in the surface: the seeded mirror pair's checkerboard turns unstable
                 // past the onset and the path leaves it for a stable state, releasing energy.

@@ -265,6 +265,7 @@ def pattern(
     out: Optional[str] = None,
     follow_past: Optional[float] = None,
     resume: bool = False,
+    max_side: float = 4.0,
 ) -> Dict[str, Any]:
     """A patch of tissue in three dimensions under ``d_3 = biaxial * d`` (``fiberfold
     pattern``): the content of ``pattern.json`` (``d_bifurcation``, ``negative_pivots``, the
@@ -277,11 +278,13 @@ def pattern(
     ``changes``, the ``last`` state) and ``pattern.csv`` one row per state. Its files (VTU,
     spectra, top views) go to ``out``, or to a temporary folder that is removed. The path writes
     checkpoints into ``out``; ``resume=True`` continues it from the last one there, as
-    ``fiberfold pattern --resume`` does."""
+    ``fiberfold pattern --resume`` does. A side along which the onset mode's period exceeds
+    ``max_side`` wavelengths is one wavelength per period (``capped_sides``), as
+    ``--max-side`` says."""
     params = _check_parameters(params)
     if resume and out is None:
         raise ValueError("resume=True continues the checkpoint of a folder: give out")
-    arguments = (biaxial, periods, elements_per_wavelength, follow_to, imperfection, follow_past, resume)
+    arguments = (biaxial, periods, elements_per_wavelength, follow_to, imperfection, follow_past, resume, max_side)
     if out is not None:
         return json.loads(_fiberfold.pattern_run(params, str(out), *arguments))
     with tempfile.TemporaryDirectory() as folder:

@@ -348,7 +348,7 @@ fn bifurcation_run(
 /// `pattern.json` as JSON text. The path is followed to `follow_to`, or to the theory's onset
 /// plus `follow_past` (not both), from the checkpoint in `out` if `resume`.
 #[pyfunction]
-#[pyo3(signature = (params, out, biaxial=1.0, periods=1, elements_per_wavelength=6, follow_to=None, imperfection=0.01, follow_past=None, resume=false))]
+#[pyo3(signature = (params, out, biaxial=1.0, periods=1, elements_per_wavelength=6, follow_to=None, imperfection=0.01, follow_past=None, resume=false, max_side=4.0))]
 #[allow(clippy::too_many_arguments)]
 fn pattern_run(
     py: Python<'_>,
@@ -361,6 +361,7 @@ fn pattern_run(
     imperfection: f64,
     follow_past: Option<f64>,
     resume: bool,
+    max_side: f64,
 ) -> PyResult<String> {
     use fiberfold::studies::pattern::{run, PathEnd, PathStudy, PatternStudy};
     let end = match (follow_to, follow_past) {
@@ -379,6 +380,7 @@ fn pattern_run(
         biaxial,
         periods,
         elements_per_wavelength,
+        max_side,
         path: end.map(|end| PathStudy {
             imperfection,
             end,

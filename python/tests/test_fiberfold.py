@@ -442,6 +442,20 @@ def test_a_patch_in_three_dimensions_bifurcates_at_the_exact_theorys_onset():
         fiberfold.pattern(fiberfold.Parameters(), periods=0)
 
 
+def test_a_patch_side_the_onset_mode_would_make_too_long_is_one_wavelength():
+    # Fibres in the surface at 30 deg under d_3 = d / 2: the onset lies 1 deg from X, and Z would
+    # take some sixty wavelengths. Capped, it holds the wave along X.
+    p = fiberfold.Parameters(beta=0.0, psi=0.5235988)
+    r = fiberfold.pattern(p, biaxial=0.5, elements_per_wavelength=3)
+    (capped,) = r["capped_sides"]
+    wavelength = 2 * np.pi / r["onset_theory"]["k0"]
+    assert capped["side"] == "Z" and capped["period"] > 50 * wavelength
+    assert np.isclose(r["patch"]["length_z"], wavelength)
+    assert r["mode_wave_vectors"][0]["n"] == 0
+    with pytest.raises(ValueError, match="max-side"):
+        fiberfold.pattern(p, biaxial=0.5, max_side=0.5)
+
+
 def test_the_pattern_past_the_onset_of_inclined_fibres_is_stripes_along_them():
     # One critical wave vector (at 120 deg for fibres at psi = 30 deg): the path past the onset
     # keeps it alone, growing from the seed, with no unstable branch to leave.

@@ -53,6 +53,7 @@ pub fn run(args: &PatternArgs) -> Result<()> {
         Progress::Patch {
             spec,
             azimuth,
+            capped,
             unknowns,
             modes,
             memory: (memory, available),
@@ -77,6 +78,13 @@ pub fn run(args: &PatternArgs) -> Result<()> {
                     "the load is the same in every direction of the surface: the patch's X runs along the fibres' projection, \
                      {:.2} deg from the load's X (every theta below is from the load's X)",
                     azimuth.to_degrees()
+                );
+            }
+            for side in capped {
+                println!(
+                    "the onset mode's period along {} is {:.1} H, more than --max-side {} wavelengths: {} is one wavelength \
+                     per period, and the patch holds the wave vectors below, not the theory's",
+                    side.side, side.period, study.max_side, side.side
                 );
             }
             println!("admissible wave vectors nearest the onset (k = 2 pi (m / Lx, n / Lz)):");

@@ -61,7 +61,7 @@ pub fn run(params: &Parameters, biaxial: f64, largest: usize) -> Result<PatchBen
             biaxial,
             ..defaults
         };
-        let (_, spec) = size_patch(params, &study)?;
+        let (_, spec, _) = size_patch(params, &study)?;
         let mut patch = BiaxialPatch::new(
             PatchSystem::on_patch(Mesh::patch(spec)?, &materials)?,
             biaxial,

@@ -56,6 +56,12 @@ pub struct PatternStudy {
     pub periods: usize,
     /// Elements per onset wavelength along X and Z.
     pub elements_per_wavelength: usize,
+    /// The longest side, in onset wavelengths per period. Where the onset mode's period along a
+    /// side (`lambda / |cos theta0|` along X, `lambda / |sin theta0|` along Z) is longer, an
+    /// onset direction within `asin(1 / max_side)` of the other axis, that side is one
+    /// wavelength per period and holds the mode's nearest wave vector along the other axis.
+    #[serde(default = "default_max_side")]
+    pub max_side: f64,
     pub layer_elements: usize,
     pub substrate_elements: usize,
     /// Thickness `h0` of the top substrate element.
@@ -90,6 +96,7 @@ impl Default for PatternStudy {
             biaxial: 1.0,
             periods: 1,
             elements_per_wavelength: 6,
+            max_side: default_max_side(),
             layer_elements: 2,
             substrate_elements: 12,
             top_substrate_thickness: 0.35,
@@ -108,11 +115,29 @@ impl Default for PatternStudy {
     }
 }
 
+/// [`PatternStudy::max_side`]'s default: an onset direction within 14.5 deg of an axis is held
+/// along it.
+fn default_max_side() -> f64 {
+    4.0
+}
+
+/// A side the onset mode's period along it did not fit ([`PatternStudy::max_side`]): one onset
+/// wavelength per period, so that the theory's wave vector is not admissible and the patch holds
+/// the nearest ones (`d_c_admissible` above the theory's `d_c`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct CappedSide {
+    /// `"X"` or `"Z"`.
+    pub side: &'static str,
+    /// The onset mode's period along it (H), which holding its wave vector would take.
+    pub period: f64,
+}
+
 /// What a patch too large for the memory can lower.
 const TOO_LARGE: &str = "fewer --periods or --elements-per-wavelength; ";
 
-/// The patch of `study` for `params`: the theory's onset and the patch that holds it.
-pub fn size_patch(params: &Parameters, study: &PatternStudy) -> Result<(SurfaceOnset, PatchSpec)> {
+/// The patch of `study` for `params`: the theory's onset, the patch that holds it and the sides
+/// too long for [`PatternStudy::max_side`].
+pub fn size_patch(params: &Parameters, study: &PatternStudy) -> Result<(SurfaceOnset, PatchSpec, Vec<CappedSide>)> {
     for (name, count, least) in [
         ("periods", study.periods, 1),
         ("elements-per-wavelength", study.elements_per_wavelength, 2),
@@ -128,6 +153,13 @@ pub fn size_patch(params: &Parameters, study: &PatternStudy) -> Result<(SurfaceO
         if count < 1 {
             return Err(Error::invalid(name, count, "an integer >= 1"));
         }
+    }
+    if study.max_side.is_nan() || study.max_side < 1.0 {
+        return Err(Error::invalid(
+            "max-side",
+            study.max_side,
+            "[1, inf] onset wavelengths per period",
+        ));
     }
     if !(study.depth_wavelengths.is_finite() && study.depth_wavelengths > 0.0) {
         return Err(Error::invalid("depth", study.depth_wavelengths, "(0, inf) wavelengths"));
@@ -152,14 +184,24 @@ pub fn size_patch(params: &Parameters, study: &PatternStudy) -> Result<(SurfaceO
         )
     })?;
     // The onset mode's period along each side: lambda / |cos theta0| along X, lambda / |sin
-    // theta0| along Z (one wavelength along a side the mode runs along).
+    // theta0| along Z; one wavelength along a side the mode runs along, or nearly along (a
+    // period longer than max_side wavelengths: the box would grow without bound as theta0
+    // nears an axis).
     let theta = if onset.theta0.is_nan() { 0.0 } else { onset.theta0 };
-    let along = |c: f64| match c.abs() < 1e-6 {
-        true => wavelength,
-        false => wavelength / c.abs(),
+    let mut capped = Vec::new();
+    let mut along = |side: &'static str, c: f64| {
+        let period = wavelength / c.abs();
+        if c.abs() < 1e-6 {
+            wavelength
+        } else if period > study.max_side * wavelength {
+            capped.push(CappedSide { side, period });
+            wavelength
+        } else {
+            period
+        }
     };
     let periods = study.periods as f64;
-    let (length_x, length_z) = (periods * along(theta.cos()), periods * along(theta.sin()));
+    let (length_x, length_z) = (periods * along("X", theta.cos()), periods * along("Z", theta.sin()));
     let elements = |length: f64| {
         let n = (length / wavelength * study.elements_per_wavelength as f64 - 1e-9).ceil() as usize;
         n.max(2)
@@ -190,7 +232,7 @@ pub fn size_patch(params: &Parameters, study: &PatternStudy) -> Result<(SurfaceO
         element: study.element,
     };
     spec.validate()?;
-    Ok((onset, spec))
+    Ok((onset, spec, capped))
 }
 
 /// The theory's onset in the surface.
@@ -210,6 +252,10 @@ pub struct PatternReport {
     /// `R = d_3 / d`.
     pub biaxial: f64,
     pub patch: PatchSpec,
+    /// Its sides one onset wavelength per period because the mode's period along them was
+    /// longer than `max_side` wavelengths ([`PatternStudy::max_side`]): the theory's wave
+    /// vector is then not admissible, and `d_c_admissible` is the nearest ones'.
+    pub capped_sides: Vec<CappedSide>,
     /// The patch's X axis from the load's X axis towards Z (degrees): `psi` where the load is
     /// the same in every direction of the surface and the patch is built along the fibres'
     /// projection ([`PatchFrame`]), else 0. Every `theta` reported is in the load's frame;
@@ -282,7 +328,7 @@ pub fn compute(
     // The patch's frame: turned along the fibres' projection under a load the same in every
     // direction of the surface, where the tissue is computed with psi = 0 ([`PatchFrame`]).
     let frame = PatchFrame::of(params, study.biaxial);
-    let (onset, spec) = size_patch(&frame.parameters, study)?;
+    let (onset, spec, capped) = size_patch(&frame.parameters, study)?;
     let d_end = study.path.map(|path| path.validate(onset.onset.d_c)).transpose()?;
     // A checkpoint of another run is refused before anything in the folder is touched.
     let request = checkpoint::request(params, study)?;
@@ -333,6 +379,7 @@ pub fn compute(
     progress(Progress::Patch {
         spec: &spec,
         azimuth: frame.azimuth,
+        capped: &capped,
         unknowns: mesh.num_dofs(),
         modes: &modes,
         memory: (&memory, available),
@@ -390,6 +437,7 @@ pub fn compute(
         parameters: params.clone(),
         biaxial: study.biaxial,
         patch: spec,
+        capped_sides: capped,
         patch_azimuth_degrees: frame.azimuth.to_degrees(),
         unknowns: found.unknowns,
         onset_theory: TheoryOnset {
@@ -422,6 +470,8 @@ pub enum Progress<'a> {
         spec: &'a PatchSpec,
         /// The patch's X axis from the load's (radians; [`PatchFrame`]).
         azimuth: f64,
+        /// Its sides shorter than the onset mode's period along them.
+        capped: &'a [CappedSide],
         unknowns: usize,
         modes: &'a [BoxMode],
         /// What its factorisations will need, and the memory available (bytes), if known.
@@ -474,4 +524,68 @@ fn write_mode(out: &Path, mesh: &Mesh<3, 27>, found: &PatchBifurcation) -> Resul
     let path = out.join("mode.vtu");
     write_vtu(&path, &points, &cell_type, &cells, &[mode, height], &[])?;
     Ok(path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_side_longer_than_max_side_holds_the_nearest_wave_vector() {
+        // Fibres in the surface at 30 deg under d_3 = d / 2: the onset's wave vector lies about
+        // one degree from X, and the mode's period along Z is some sixty wavelengths.
+        let params = Parameters {
+            beta: 0.0,
+            psi: 30f64.to_radians(),
+            ..Parameters::default()
+        };
+        let study = PatternStudy {
+            biaxial: 0.5,
+            ..PatternStudy::default()
+        };
+        let (onset, spec, capped) = size_patch(&params, &study).unwrap();
+        let (wavelength, theta0) = (onset.onset.wavelength().unwrap(), onset.theta0);
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
+        assert_eq!(capped.len(), 1);
+        assert_eq!(capped[0].side, "Z");
+        assert!(close(capped[0].period, wavelength / theta0.sin().abs()));
+        assert!(capped[0].period > study.max_side * wavelength);
+        assert!(close(spec.length_z, wavelength) && close(spec.length_x, wavelength / theta0.cos().abs()));
+        // Without the cap the patch is the mode's own, and holds it.
+        let whole = PatternStudy {
+            max_side: f64::INFINITY,
+            ..study
+        };
+        let (_, long, none) = size_patch(&params, &whole).unwrap();
+        assert!(none.is_empty() && close(long.length_z, capped[0].period));
+        // Capped, the nearest admissible wave vector runs along X, and the theory's d_c there is
+        // above the onset's, by what the direction's degree costs.
+        let modes = box_modes(
+            &params,
+            Method::Exact,
+            0.5,
+            (spec.length_x, spec.length_z),
+            3.0 * onset.onset.k0,
+        )
+        .unwrap();
+        let nearest = modes[0];
+        assert_eq!(nearest.n, 0);
+        let excess = nearest.d_c - onset.onset.d_c;
+        assert!(
+            (0.0..1e-4).contains(&excess),
+            "d_c {} against the onset's {}",
+            nearest.d_c,
+            onset.onset.d_c
+        );
+        // Table 1's oblique pair (36 deg) needs no cap.
+        let in_surface = Parameters {
+            beta: 0.0,
+            ..Parameters::default()
+        };
+        let (_, _, pair) = size_patch(&in_surface, &PatternStudy::default()).unwrap();
+        assert!(pair.is_empty());
+        let mut wide = study;
+        wide.max_side = 0.5;
+        assert!(size_patch(&params, &wide).unwrap_err().to_string().contains("max-side"));
+    }
 }

@@ -23,6 +23,13 @@ pub struct PatternOptions {
     #[arg(long, default_value_t = study().elements_per_wavelength)]
     pub elements_per_wavelength: usize,
 
+    /// The longest side of the patch, in onset wavelengths per period, in [1, inf]: where the
+    /// onset mode's period along a side is longer (its wave vector within asin(1 / MAX_SIDE)
+    /// of the other axis), that side is one wavelength per period and the patch holds the
+    /// nearest wave vector along the other axis (printed, with its d_c).
+    #[arg(long, default_value_t = study().max_side)]
+    pub max_side: f64,
+
     /// Hexahedra through the layer (an integer >= 1).
     #[arg(long, default_value_t = study().layer_elements)]
     pub layer_elements: usize,
@@ -133,6 +140,7 @@ impl PatternOptions {
             biaxial: self.biaxial,
             periods: self.periods,
             elements_per_wavelength: self.elements_per_wavelength,
+            max_side: self.max_side,
             layer_elements: self.layer_elements,
             substrate_elements: self.substrate_elements,
             top_substrate_thickness: self.h0,
