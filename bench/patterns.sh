@@ -4,11 +4,12 @@
 # from `fiberfold pattern` runs: Table 1 under equibiaxial compression and under the layer's area
 # growth in its surface, for fibres at beta = 0, pi/8, pi/4, pi/2 (psi = 0) and beta = pi/4,
 # psi = 30 deg, each followed from its onset to d_c + 0.1 on the periodic patch one onset period
-# square; then the box-size study of one case (1 x 1 against 2 x 2 periods); then the map of
+# square; then the box-size study of one case (1 x 1, 2 x 2 and 3 x 3 periods); then the map of
 # patterns over the fibres' inclination beta and azimuth psi (docs/guide/src/results/patterns-map.md
 # and figures/pattern-map.png).
 #
-#   bench/patterns.sh            (after cargo build --release; about an hour and a half on 2 cores)
+#   bench/patterns.sh            (after cargo build --release; hours on 2 cores, most of them the
+#                                 3 x 3 box: 109,620 unknowns, a 3.3 GB factor)
 #   bench/patterns.sh table      (the ten paths only)
 #   bench/patterns.sh boxes      (the box-size study only)
 #   bench/patterns.sh map        (the map of patterns only)

@@ -11,11 +11,11 @@ mod common;
 use common::files::check_complete;
 use common::resume::{assert_same_files, rows, run_args};
 use common::{fiberfold, map_points, quick_simulate, scratch, tiny_map_of};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
 /// A file system mounted on a scratch folder, unmounted when dropped.
-struct Mounted(PathBuf);
+struct Mounted(common::Scratch);
 
 impl Mounted {
     /// A tmpfs of `kib` KiB.
@@ -44,7 +44,7 @@ impl Mounted {
 
 impl Drop for Mounted {
     fn drop(&mut self) {
-        let _ = Command::new("umount").arg("-l").arg(&self.0).status();
+        let _ = Command::new("umount").arg("-l").arg(self.0.as_os_str()).status();
         let _ = std::fs::remove_dir_all(&self.0);
     }
 }

@@ -3,11 +3,10 @@
 mod common;
 
 use common::{fiberfold, scratch};
-use std::path::PathBuf;
 
 /// `fiberfold pattern` with `args` into a scratch folder named `name`, which must succeed: the
 /// folder and `pattern.json`.
-fn pattern(name: &str, args: &[&str]) -> (PathBuf, serde_json::Value) {
+fn pattern(name: &str, args: &[&str]) -> (common::Scratch, serde_json::Value) {
     let out = scratch(name);
     let output = fiberfold(&[&["pattern"][..], args, &["--out", out.to_str().unwrap()]].concat());
     let stdout = String::from_utf8_lossy(&output.stdout);

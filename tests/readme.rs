@@ -68,7 +68,7 @@ fn documented_commands() -> Vec<String> {
 /// Runs a documented command with its `--out` redirected to a scratch folder and the `(flag, value)`
 /// pairs of `extra` replacing or extending its own (to shrink long runs); returns the output
 /// folder and stdout.
-fn run(command: &str, extra: &[(&str, &str)]) -> (PathBuf, String) {
+fn run(command: &str, extra: &[(&str, &str)]) -> (common::Scratch, String) {
     let name: String = command.replace([' ', '/', '=', ','], "_").chars().take(200).collect();
     let dir = scratch(&name);
     let mut args: Vec<String> = command.split_whitespace().skip(1).map(String::from).collect();
@@ -172,7 +172,7 @@ fn every_documented_example_runs_and_gives_an_independently_known_number() {
             "onset" if command.contains("--load growth") => {
                 // A growing layer: the discrete solver, from the same grown moduli, agrees, and
                 // g_c is the growth of the strain d_c = 1 - 1/g_c.
-                let onset = |dir: PathBuf| json(dir.join("onset.json"));
+                let onset = |dir: common::Scratch| json(dir.join("onset.json"));
                 let exact = onset(run(command, &[]).0);
                 let discrete = onset(run(command, &[("--method", "discrete")]).0);
                 let g_c = |o: &serde_json::Value| o["g_c"].as_f64().unwrap();
@@ -188,7 +188,7 @@ fn every_documented_example_runs_and_gives_an_independently_known_number() {
                 // Any other tissue (laws, fibres, prestress): the discrete solver, from the same
                 // moduli, agrees with the exact one. (Both runs share one scratch folder: read
                 // each before the next.)
-                let d_c = |dir: PathBuf| json(dir.join("onset.json"))["d_c"].as_f64().unwrap();
+                let d_c = |dir: common::Scratch| json(dir.join("onset.json"))["d_c"].as_f64().unwrap();
                 let exact = d_c(run(command, &[]).0);
                 let discrete = d_c(run(command, &[("--method", "discrete")]).0);
                 assert!((exact - discrete).abs() < 1e-4, "{exact} vs {discrete}");

@@ -304,7 +304,7 @@ fn vtu_snapshots_read_back_with_the_mesh_sizes_and_finite_fields() {
     // d = 0.005 (first), 0.055 and 0.1 (marks every 0.05; the last is the final state).
     assert_eq!(files.len(), 3, "{pvd}");
     for file in files {
-        let (points, cells, connectivity, arrays) = read_vtu(&Path::new(&dir).join(file));
+        let (points, cells, connectivity, arrays) = read_vtu(&dir.join(file));
         assert_eq!((points, cells), (mesh.num_nodes(), mesh.elements().len()));
         let array = |name: &str| {
             let (_, components, values) = arrays

@@ -157,6 +157,7 @@ mod tests {
         assert!(read_checkpoint::<u8>(&path.with_file_name("absent.bin"))
             .unwrap()
             .is_none());
+        std::fs::remove_dir_all(path.parent().unwrap()).unwrap();
     }
 
     #[test]
@@ -181,5 +182,6 @@ mod tests {
         let checksum = crc32fast::hash(&other_version[..body]).to_le_bytes();
         other_version[body..].copy_from_slice(&checksum);
         assert!(refused(&other_version).contains("format 2"));
+        std::fs::remove_dir_all(path.parent().unwrap()).unwrap();
     }
 }

@@ -134,6 +134,7 @@ mod tests {
         w.append(&[1.0, 2.5]).unwrap();
         assert!(w.append(&[f64::NAN, 1.0]).is_err());
         assert_eq!(std::fs::read_to_string(&path).unwrap(), "a,b\n1,2.5\n");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

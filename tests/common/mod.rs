@@ -25,11 +25,43 @@ pub fn homogeneous_material() -> Bilayer {
     })
 }
 
-/// An empty scratch folder name under the temporary directory, unique to this test process.
-pub fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("fiberfold-test-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
+/// A path under the temporary directory, unique to this test process, that nothing occupies
+/// yet; what a test writes there is removed when the test is done with it, and kept where the
+/// test fails (to be looked at).
+pub struct Scratch(PathBuf);
+
+impl std::ops::Deref for Scratch {
+    type Target = PathBuf;
+
+    fn deref(&self) -> &PathBuf {
+        &self.0
+    }
+}
+
+impl AsRef<std::path::Path> for Scratch {
+    fn as_ref(&self) -> &std::path::Path {
+        &self.0
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            eprintln!("kept for a look: {}", self.0.display());
+        } else if self.0.is_dir() {
+            let _ = std::fs::remove_dir_all(&self.0);
+        } else {
+            let _ = std::fs::remove_file(&self.0);
+        }
+    }
+}
+
+/// A [`Scratch`] path named after `name`.
+pub fn scratch(name: &str) -> Scratch {
+    let path = std::env::temp_dir().join(format!("fiberfold-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&path);
+    let _ = std::fs::remove_file(&path);
+    Scratch(path)
 }
 
 /// `fiberfold bifurcation --element mixed` with `args`: its JSON summary.
