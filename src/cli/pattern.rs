@@ -82,9 +82,14 @@ pub fn run(args: &PatternArgs) -> Result<()> {
             }
             for side in capped {
                 println!(
-                    "the onset mode's period along {} is {:.1} H, more than --max-side {} wavelengths: {} is one wavelength \
-                     per period, and the patch holds the wave vectors below, not the theory's",
-                    side.side, side.period, study.max_side, side.side
+                    "the onset mode's period along {} is {:.1} H, {:.2} wavelengths, more than --max-side {}: {} is one \
+                     wavelength per period, and the patch holds the wave vectors below, not the theory's (--max-side {:.2} holds it)",
+                    side.side,
+                    side.period,
+                    side.wavelengths,
+                    study.max_side,
+                    side.side,
+                    (side.wavelengths * 100.0).ceil() / 100.0
                 );
             }
             println!("admissible wave vectors nearest the onset (k = 2 pi (m / Lx, n / Lz)):");

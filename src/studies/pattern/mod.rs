@@ -130,6 +130,8 @@ pub struct CappedSide {
     pub side: &'static str,
     /// The onset mode's period along it (H), which holding its wave vector would take.
     pub period: f64,
+    /// That period in onset wavelengths: the `max_side` that holds it.
+    pub wavelengths: f64,
 }
 
 /// What a patch too large for the memory can lower.
@@ -194,7 +196,11 @@ pub fn size_patch(params: &Parameters, study: &PatternStudy) -> Result<(SurfaceO
         if c.abs() < 1e-6 {
             wavelength
         } else if period > study.max_side * wavelength {
-            capped.push(CappedSide { side, period });
+            capped.push(CappedSide {
+                side,
+                period,
+                wavelengths: period / wavelength,
+            });
             wavelength
         } else {
             period
@@ -550,6 +556,7 @@ mod tests {
         assert_eq!(capped[0].side, "Z");
         assert!(close(capped[0].period, wavelength / theta0.sin().abs()));
         assert!(capped[0].period > study.max_side * wavelength);
+        assert!(close(capped[0].wavelengths * wavelength, capped[0].period));
         assert!(close(spec.length_z, wavelength) && close(spec.length_x, wavelength / theta0.cos().abs()));
         // Without the cap the patch is the mode's own, and holds it.
         let whole = PatternStudy {
