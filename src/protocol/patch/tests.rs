@@ -328,19 +328,24 @@ fn measure_patch_onset_against_the_linear_theory() {
     }
 }
 
-/// A homogeneous, nearly incompressible neo-Hookean half-space (`K / mu = 100`) on a periodic
-/// patch 12 H square, 8 hexahedra each way, 2 + 6 through a depth of 12 H: its first
-/// bifurcation under equibiaxial compression, with `element`, and the mesh.
-fn half_space_bifurcation(element: ElementKind) -> (PatchBifurcation, Mesh<3, 27>) {
-    let p = Parameters {
+/// A homogeneous, nearly incompressible neo-Hookean half-space: layer and substrate alike,
+/// `K / mu = 100`, no fibres.
+fn half_space() -> Parameters {
+    Parameters {
         mu_l: 1.0,
         K_l: 100.0,
         K_s: 100.0,
         phi_m: 1.0,
         phi_f: 0.0,
         ..Parameters::default()
-    };
-    let materials = Bilayer::new(&p);
+    }
+}
+
+/// The [`half_space`] on a periodic patch 12 H square, 8 hexahedra each way, 2 + 6 through a
+/// depth of 12 H: its first bifurcation under equibiaxial compression, with `element`, and the
+/// mesh.
+fn half_space_bifurcation(element: ElementKind) -> (PatchBifurcation, Mesh<3, 27>) {
+    let materials = Bilayer::new(&half_space());
     let spec = PatchSpec {
         nx: 8,
         nz: 8,
@@ -371,24 +376,20 @@ fn half_space_bifurcation(element: ElementKind) -> (PatchBifurcation, Mesh<3, 27
 /// within the mesh's error: 8 hexahedra to the 12 H wavelength put it 0.75 % above.
 #[test]
 fn a_half_space_bifurcates_at_the_exact_theorys_strain_along_both_axes_together() {
-    let p = Parameters {
-        mu_l: 1.0,
-        K_l: 100.0,
-        K_s: 100.0,
-        phi_m: 1.0,
-        phi_f: 0.0,
-        ..Parameters::default()
-    };
     let surface = crate::stability::Surface {
         biaxial: 1.0,
         theta: 0.0,
     };
-    let theory = crate::stability::StabilityAnalysis::with_surface(&p, crate::stability::Method::Exact, Some(surface))
-        .unwrap()
-        .surface_onset()
-        .unwrap()
-        .onset
-        .d_c;
+    let theory = crate::stability::StabilityAnalysis::with_surface(
+        &half_space(),
+        crate::stability::Method::Exact,
+        Some(surface),
+    )
+    .unwrap()
+    .surface_onset()
+    .unwrap()
+    .onset
+    .d_c;
     let z = (1.0 - crate::stability::biot_compression()).powi(2);
     let biot = 1.0 - z.cbrt();
     assert!((theory - biot).abs() < 1e-4, "theory {theory}, Biot {biot}");
