@@ -43,10 +43,12 @@ pub struct MapSettings {
     /// the run crosses the snaps a wrinkle makes into a fold or a period doubling (a `simulate`
     /// run stops at 1 %, where the path stops being quasi-static).
     pub snap_budget: f64,
-    /// Follow a fold past the state where it closes on itself (in contact, one trough more
-    /// than 20 % deeper than all others) to the run's end. Without, the run ends there: the
-    /// classification of the last state is then `fold` whatever follows, since a closed fold
-    /// only deepens. Maps written before this setting followed every fold (`true`).
+    /// Follow a fold or a doubled period past the state where it closes on itself (in contact,
+    /// one trough more than 20 % deeper than all others, or deep troughs alternating with
+    /// shallower ones by more than 20 %) to the run's end. Without, the run ends there: the
+    /// classification of the last state is then `fold` or `period_doubling` whatever follows,
+    /// since a closed trough only deepens. Maps written before this setting followed every run
+    /// (`true`).
     #[serde(default = "followed_before")]
     pub follow_closed_folds: bool,
 
@@ -242,8 +244,9 @@ const MAP_NOTE: &str = "d_wrinkle: minimum of the linear theory's d_c(k) (minimu
     seeded fold (singular by construction: the fold's, not the tissue's). becomes (where the wrinkle has a wavelength and comes first): a nonlinear run of `waves` \
     wavelengths 2 pi / k0 to d_wrinkle + post_buckling_range; if the tangent's inertia changes along it \
     (d_secondary), the run is repeated seeded with that change's mode (secondary_half_waves across the domain), and \
-    ends where a fold closes on itself (in contact, one trough more than 20 % deeper than all others; d_reached; \
-    --follow-closed-folds follows it on); the last state is classified: 'fold' if one trough is more than 20 % deeper than all others, \
+    ends where a fold or a doubled period closes on itself (in contact, one trough more than 20 % deeper than all \
+    others, or deep troughs alternating with shallower ones by more than 20 %; d_reached; --follow-closed-folds \
+    follows it on); the last state is classified: 'fold' if one trough is more than 20 % deeper than all others, \
     'period_doubling' if deep and shallow troughs alternate (spread above 20 %) or the surface's k/2 component is \
     at least 20 % of its k component, 'unresolved' if the path stayed periodic but its last state is unstable, 'crease' if the troughs stay alike but close on themselves, 'wrinkle' otherwise.";
 

@@ -87,9 +87,11 @@ pub struct MapOptions {
     /// d_wrinkle + this, at most 0.7).
     #[arg(long, default_value_t = 0.2, allow_negative_numbers = true)]
     pub post_buckling_range: f64,
-    /// Nonlinear run: follow a fold past the state where it closes on itself (in contact, one
-    /// trough more than 20 % deeper than all others) to d_wrinkle + --post-buckling-range. By
-    /// default the run ends there: a closed fold only deepens, so the answer is `fold` either way.
+    /// Nonlinear run: follow a fold or a doubled period past the state where it closes on itself
+    /// (in contact, one trough more than 20 % deeper than all others, or deep troughs alternating
+    /// with shallower ones by more than 20 %) to d_wrinkle + --post-buckling-range. By default the
+    /// run ends there: a closed trough only deepens, so the answer is `fold` or `period_doubling`
+    /// either way.
     #[arg(long)]
     pub follow_closed_folds: bool,
 

@@ -16,7 +16,7 @@ use crate::studies::simulate::{
     ToSecondary,
 };
 use serde::{Deserialize, Serialize};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Mutex;
 use std::time::Instant;
 
 /// What the wrinkle becomes in the nonlinear run ([`post_buckling`]).
@@ -313,7 +313,7 @@ fn nonlinear(
         damper.budget = settings.snap_budget;
     }
     let (solution, closed) = match solve_to_secondary(parameters, &study)? {
-        ToSecondary::Whole(solution) => (*solution, false),
+        ToSecondary::Whole(solution) => (*solution, None),
         ToSecondary::Changed(mode) => {
             point.d_secondary = Some(mode.d);
             point.secondary_half_waves = Some(mode.half_waves);
@@ -328,9 +328,13 @@ fn nonlinear(
         }
     };
     match &solution.curve.stopped {
-        Some(_) if closed => point.notes.push(format!(
-            "the nonlinear run ends at d = {:.4}, where a fold closed on itself (--follow-closed-folds follows it on)",
-            solution.d_reached
+        Some(_) if closed.is_some() => point.notes.push(format!(
+            "the nonlinear run ends at d = {:.4}, where {} closed on itself (--follow-closed-folds follows it on)",
+            solution.d_reached,
+            match closed {
+                Some(BranchKind::Modulated) => "a doubled period",
+                _ => "a fold",
+            }
         )),
         Some(why) => point.notes.push(format!("nonlinear run stopped early: {why}")),
         None => {}
@@ -360,31 +364,38 @@ fn nonlinear(
 }
 
 /// The seeded run of `study`; with `stop_at_closed_fold` it ends at the first state whose
-/// surface is in contact with one trough more than [`crate::protocol::secondary::LOCALISED_SPREAD`]
-/// deeper than all others (and says so: `true`). That state is classified a fold by
-/// [`post_buckling`], as any later one whose troughs keep that lead.
-fn seeded_run(parameters: &Parameters, study: &SimulateStudy, stop_at_closed_fold: bool) -> Result<(Solution, bool)> {
-    let closed = AtomicBool::new(false);
+/// surface is in contact and whose troughs are no longer alike: one trough more than
+/// [`crate::protocol::secondary::LOCALISED_SPREAD`] deeper than all others (a fold), or deep
+/// troughs alternating with shallower ones by more than that (a doubled period), and returns
+/// which. The deep troughs are then closed on themselves, and a closed trough only deepens: that
+/// state is classified by [`post_buckling`] as any later one is (checked against the whole run
+/// by the tests).
+fn seeded_run(
+    parameters: &Parameters,
+    study: &SimulateStudy,
+    stop_at_closed_fold: bool,
+) -> Result<(Solution, Option<BranchKind>)> {
+    let closed: Mutex<Option<BranchKind>> = Mutex::new(None);
     let (k, imperfection) = (study.protocol.k, study.protocol.imperfection);
     let mut observer = |observed: Observed<'_>, _: &_| {
         if let Observed::Event(Event::Step { record, system, u }) = observed {
             let in_contact = record.augmented.as_ref().is_some_and(|a| a.in_contact);
-            if stop_at_closed_fold
-                && in_contact
-                && branch(system.mesh(), u, k, imperfection).kind == BranchKind::Localised
-            {
-                closed.store(true, Ordering::Relaxed);
+            if stop_at_closed_fold && in_contact {
+                let kind = branch(system.mesh(), u, k, imperfection).kind;
+                if kind != BranchKind::Periodic {
+                    *closed.lock().expect("the observer does not panic") = Some(kind);
+                }
             }
         }
         Ok(())
     };
     // The monitor sees the state after it is recorded: the path ends with the closed fold.
-    let monitor = |_: Progress<'_>| match closed.load(Ordering::Relaxed) {
-        true => Err(Error::Interrupted("a fold closed on itself".into())),
-        false => Ok(()),
+    let monitor = |_: Progress<'_>| match *closed.lock().expect("the observer does not panic") {
+        Some(_) => Err(Error::Interrupted("a fold closed on itself".into())),
+        None => Ok(()),
     };
     let solution = solve_observed(parameters, study, &monitor, None, &mut observer)?.solution;
-    let closed = closed.load(Ordering::Relaxed);
+    let closed = *closed.lock().expect("the observer does not panic");
     Ok((solution, closed))
 }
 
