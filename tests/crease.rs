@@ -431,3 +431,47 @@ fn a_folds_threshold_does_not_depend_on_the_other_folds_asked_for() {
     assert_eq!(alone, threshold("0.5,2"));
     assert!((0.3..0.42).contains(&alone), "{alone}");
 }
+
+/// A threshold's search continues each fold from the last one solved near it
+/// (`FoldSearch`): at the same strain it is the fold folded from the flat state, to the
+/// contact's tolerance. Isotropic bilayer, mu_l/mu_s = 3, K = 100 mu, a = 0.5 H, base crease
+/// mesh, near its threshold: the flat state's energy is the same to round-off, the creased
+/// state's energy difference within 1e-3 of the change it makes over the 0.0025 in d it was
+/// continued across, the depth within 1e-6 H; a strain farther than the reach is folded
+/// afresh, bit for bit.
+#[test]
+fn a_fold_continued_from_a_nearby_strain_is_the_fold_from_the_flat_state() {
+    use fiberfold::material::Bilayer;
+    use fiberfold::protocol::crease_seed::{crease_energy, FoldSearch, CONTINUATION_REACH};
+    use fiberfold::studies::crease::CreaseStudy;
+    let params = Parameters {
+        mu_l: 3.0,
+        K_l: 300.0,
+        K_s: 100.0,
+        phi_m: 1.0,
+        phi_f: 0.0,
+        ..Parameters::default()
+    };
+    let materials = Bilayer::new(&params);
+    let spec = CreaseStudy::default().mesh.spec(0.5);
+    let mut search = FoldSearch::new(&materials, spec, 0.5);
+    let before = search.energy(0.2275).unwrap();
+    let continued = search.energy(0.23).unwrap();
+    let fresh = crease_energy(&materials, spec, 0.23, 0.5).unwrap();
+    println!("continued {continued:?}\nfresh {fresh:?}");
+    assert_eq!(continued.steps, 1, "continued in one step");
+    assert!(fresh.steps > 1, "folded in ramp steps");
+    assert!((continued.flat_energy - fresh.flat_energy).abs() <= 1e-12 * fresh.flat_energy.abs());
+    let change = (fresh.difference - before.difference).abs();
+    assert!(
+        (continued.difference - fresh.difference).abs() < 1e-3 * change,
+        "{} against {} (change over 0.0025: {change})",
+        continued.difference,
+        fresh.difference
+    );
+    assert!((continued.depth - fresh.depth).abs() < 1e-6);
+    let far = search.energy(0.23 - 2.0 * CONTINUATION_REACH).unwrap();
+    let far_fresh = crease_energy(&materials, spec, 0.23 - 2.0 * CONTINUATION_REACH, 0.5).unwrap();
+    assert_eq!(far.difference, far_fresh.difference);
+    assert_eq!(far.steps, far_fresh.steps);
+}
