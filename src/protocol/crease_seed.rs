@@ -47,7 +47,7 @@ pub struct CreaseEnergy {
     pub tensile_nodes: usize,
     /// Smallest `J` at a Gauss point of the creased state.
     pub min_jacobian: f64,
-    /// Ramp steps taken (1 for a fold continued from one at a nearby strain).
+    /// Ramp steps taken.
     pub steps: usize,
     /// The smallest strong-ellipticity margins over the Gauss points of the creased state.
     pub ellipticity: EllipticityMargins,
@@ -91,47 +91,6 @@ pub struct ReleasedCrease {
 /// shear modulus `mu`).
 pub fn crease_energy(materials: &Bilayer, spec: MeshSpec, strain: f64, fold_length: f64) -> Result<CreaseEnergy> {
     fold(materials, spec, strain, fold_length)?.energy()
-}
-
-/// Folds of one length on one mesh at strains near each other, as a threshold's search asks for
-/// them: each fold within [`CONTINUATION_REACH`] of the last one solved is continued from it
-/// ([`Folded::refolded`]), any other folded from the flat state. Both give the held fold's
-/// equilibrium at that strain, to the solver's tolerance.
-pub struct FoldSearch<'a> {
-    materials: &'a Bilayer,
-    spec: MeshSpec,
-    fold_length: f64,
-    last: Option<Folded>,
-}
-
-/// The largest change of strain across which a fold is continued rather than folded again.
-pub const CONTINUATION_REACH: f64 = 0.003;
-
-impl<'a> FoldSearch<'a> {
-    pub fn new(materials: &'a Bilayer, spec: MeshSpec, fold_length: f64) -> Self {
-        FoldSearch {
-            materials,
-            spec,
-            fold_length,
-            last: None,
-        }
-    }
-
-    /// [`crease_energy`] at `strain`.
-    pub fn energy(&mut self, strain: f64) -> Result<CreaseEnergy> {
-        let near = self
-            .last
-            .take()
-            .filter(|f| (f.strain - strain).abs() <= CONTINUATION_REACH);
-        let folded = match near.map(|f| f.refolded(self.materials, strain)) {
-            Some(Ok(folded)) => folded,
-            Some(Err(Error::Solver(_))) | None => fold(self.materials, self.spec, strain, self.fold_length)?,
-            Some(Err(e)) => return Err(e),
-        };
-        let energy = folded.energy();
-        self.last = Some(folded);
-        energy
-    }
 }
 
 /// The fold of [`crease_energy`], released ([`ReleasedCrease`]).
@@ -297,32 +256,6 @@ impl Folded {
 }
 
 impl Folded {
-    /// The same fold at `strain`, continued from this one: the change of the homogeneous state
-    /// added to the folded state, then the equilibrium with the whole fold held on the plane
-    /// and the contact as it was.
-    fn refolded(mut self, materials: &Bilayer, strain: f64) -> Result<Folded> {
-        let before = homogeneous_unknowns(&self.system, materials, &homogeneous_state(materials, self.strain)?)?;
-        let state = homogeneous_state(materials, strain)?;
-        self.model = self.system.load_to(strain)?;
-        let flat = homogeneous_unknowns(&self.system, materials, &state)?;
-        self.flat_energy = self.system.assemble(&flat, &self.model, None, false)?.energy;
-        for ((u, now), then) in self.u.iter_mut().zip(&flat).zip(&before) {
-            *u += now - then;
-        }
-        let held = folding_conditions(&self.system, &self.model, &self.folded, state.lambda1, 1.0)?;
-        self.report = solve_with_contact(
-            &mut self.newton,
-            &mut self.system,
-            &mut self.u,
-            &held,
-            &mut self.contact,
-            &NoAddedEnergy,
-            &fold_policy(),
-        )?;
-        (self.held, self.strain, self.steps) = (held, strain, 1);
-        Ok(self)
-    }
-
     /// Frees the folded nodes and minimises the energy, contact with the plane as an inequality.
     fn release(mut self) -> Result<ReleasedCrease> {
         let held_difference = self.report.energy - self.flat_energy;

@@ -11,7 +11,7 @@ use crate::error::{Error, Result};
 use crate::material::Bilayer;
 use crate::mesh::MeshSpec;
 use crate::numerics::roots::brent_from;
-use crate::protocol::crease_seed::{released_crease, CreaseEnergy, FoldSearch};
+use crate::protocol::crease_seed::{crease_energy, released_crease, CreaseEnergy};
 use crate::studies::Tick;
 
 /// `d(a)` on `spec` by `criterion`: the held fold's scan, then Brent within its first sign
@@ -49,13 +49,12 @@ fn held_threshold(materials: &Bilayer, spec: MeshSpec, a: f64, scan: Scan, tick:
     let mut evaluations: Vec<CreaseEnergy> = Vec::new();
     let mut stopped = None;
     let mut bracket = None;
-    let mut folds = FoldSearch::new(materials, spec, a);
     let grid = (0..)
         .map(|i| scan.from + i as f64 * scan.step)
         .take_while(|&d| d < scan.to - 1e-9)
         .chain(std::iter::once(scan.to));
     for d in grid {
-        match folds.energy(d) {
+        match crease_energy(materials, spec, d, a) {
             Ok(e) => {
                 let pays = e.difference <= 0.0;
                 let previous = evaluations.last().map(|p| (p.strain, p.difference));
@@ -69,7 +68,7 @@ fn held_threshold(materials: &Bilayer, spec: MeshSpec, a: f64, scan: Scan, tick:
             }
             Err(Error::Solver(m)) => {
                 // The fold snapped: look for the sign change between the last good d and here.
-                let (found, why) = halve_towards(&mut folds, &mut evaluations, d, m, tick)?;
+                let (found, why) = halve_towards(materials, spec, a, &mut evaluations, d, m, tick)?;
                 bracket = found;
                 if bracket.is_none() {
                     stopped = Some(why);
@@ -84,7 +83,7 @@ fn held_threshold(materials: &Bilayer, spec: MeshSpec, a: f64, scan: Scan, tick:
         let root = brent_from(
             "the energy of a seeded crease minus that of the flat state",
             |d| {
-                let e = folds.energy(d)?;
+                let e = crease_energy(materials, spec, d, a)?;
                 let difference = e.difference;
                 evaluations.push(e);
                 tick();
@@ -125,7 +124,9 @@ type Bracket = ((f64, f64), (f64, f64));
 /// After a failed fold at `failed`: up to three halvings of the interval from the last good
 /// evaluation; a bracket if one of them pays off, else why the scan ends.
 fn halve_towards(
-    folds: &mut FoldSearch<'_>,
+    materials: &Bilayer,
+    spec: MeshSpec,
+    a: f64,
     evaluations: &mut Vec<CreaseEnergy>,
     mut failed: f64,
     mut why: String,
@@ -136,7 +137,7 @@ fn halve_towards(
     };
     for _ in 0..3 {
         let mid = 0.5 * (lo.0 + failed);
-        match folds.energy(mid) {
+        match crease_energy(materials, spec, mid, a) {
             Ok(e) => {
                 let here = (mid, e.difference);
                 let pays = e.difference <= 0.0;
