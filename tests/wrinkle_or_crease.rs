@@ -23,11 +23,12 @@ fn d_wrinkle(ratio: f64) -> f64 {
 
 #[test]
 fn a_soft_bilayer_creases_first_a_stiff_one_wrinkles_first() {
-    // The decision on one mesh, as fine as the base mesh's second: the convergence of the
-    // onset has its own tests (crease_convergence.rs).
+    // The decision on the base mesh alone: the convergence of the onset has its own tests
+    // (crease_convergence.rs), and the half-space's threshold moves by about 1e-3 from one
+    // mesh to the next, well inside the bounds below.
     let settings = MapSettings {
         crease_refinement: None,
-        crease_mesh: CreaseStudy::default().mesh.scaled(2),
+        crease_mesh: CreaseStudy::default().mesh,
         ..MapSettings::default()
     };
     let crease = settings.crease_study();
