@@ -389,9 +389,9 @@ fn seeded_run(
         }
         Ok(())
     };
-    // The monitor sees the state after it is recorded: the path ends with the closed fold.
+    // The monitor sees the state after it is recorded: the path ends with the closed trough.
     let monitor = |_: Progress<'_>| match *closed.lock().expect("the observer does not panic") {
-        Some(_) => Err(Error::Interrupted("a fold closed on itself".into())),
+        Some(_) => Err(Error::Interrupted("a fold or a doubled period closed on itself".into())),
         None => Ok(()),
     };
     let solution = solve_observed(parameters, study, &monitor, None, &mut observer)?.solution;
