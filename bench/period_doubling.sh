@@ -18,6 +18,11 @@
 #   bench/period_doubling.sh        (after cargo build --release; about an hour on 2 cores, most
 #                                    of it the contrasts 5 and 10 followed through contact)
 #   bench/period_doubling.sh table  (the table of the runs done so far, running none)
+#   bench/period_doubling.sh long   (contrasts 5 and 10 at K / mu = 3 and 100 on a half domain
+#                                    eight natural wavelengths long, the coarse mesh: whether the
+#                                    wrinkle's first secondary mode is the doubled period or a
+#                                    long-wave modulation, the start of a fold; its own table,
+#                                    period-doubling-long-table.md; about half an hour)
 #
 # Runs are kept in $PD_WORK (default results/period-doubling-study): a run whose secondary.json is
 # there is not run again.
@@ -25,10 +30,15 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 binary=${FIBERFOLD:-$root/target/release/fiberfold}
 work=${PD_WORK:-$root/results/period-doubling-study}
-table=$root/docs/guide/src/results/period-doubling-table.md
 [ -x "$binary" ] || { echo "no $binary: run cargo build --release first (or set FIBERFOLD)" >&2; exit 1; }
 mkdir -p "$work"
 mode=${1:-all}
+# Natural wavelengths across the half domain, and how far past the onset the path goes.
+if [ "$mode" = long ]; then
+  WAVELENGTHS=8 PAST_ONSET=0.15 table=$root/docs/guide/src/results/period-doubling-long-table.md
+else
+  WAVELENGTHS=2 PAST_ONSET=0.3 table=$root/docs/guide/src/results/period-doubling-table.md
+fi
 
 # The stiff layers first: the literature's period doubling is theirs.
 CONTRASTS=(100 1000 30 10 5)
@@ -42,6 +52,7 @@ compressibility() {
 }
 # mesh name, elements per wavelength, layer elements, substrate elements, h0
 MESHES=("coarse 20 2 25 0.5" "fine 40 4 45 0.25")
+[ "$mode" != long ] || MESHES=("${MESHES[0]}")
 
 json() { python3 -c "import json, sys; print(json.load(open(sys.argv[1]))$2)" "$1"; }
 
@@ -66,16 +77,17 @@ study_case() {
     "$binary" onset $params --out "$work/$name-onset" >/dev/null
     k0=$(json "$work/$name-onset/onset.json" "['k0']")
     d_c=$(json "$work/$name-onset/onset.json" "['d_c']")
-    length=$(python3 -c "import math; print(2 * 2 * math.pi / $k0)")
+    length=$(python3 -c "import math; print($WAVELENGTHS * 2 * math.pi / $k0)")
     depth=$(python3 -c "print(max(50.0, $length))")
-    d_max=$(python3 -c "print(round(min($d_c + 0.3, 0.6), 4))")
+    d_max=$(python3 -c "print(round(min($d_c + $PAST_ONSET, 0.6), 4))")
     # Stage 1 below the onset (a contrast of 1000 wrinkles at d_c = 0.005, stage 1's default).
     d_start=$(python3 -c "print(round(min(0.005, $d_c / 2), 5))")
     for mesh in "${MESHES[@]}"; do
       read -r mesh_name per_wave layer substrate h0 <<<"$mesh"
-      domain="--waves 2 --length $length --depth $depth --nx $((2 * per_wave)) --layer-elements $layer \
+      domain="--waves $WAVELENGTHS --length $length --depth $depth --nx $((WAVELENGTHS * per_wave)) --layer-elements $layer \
         --substrate-elements $substrate --h0 $h0 --imperfection -0.05 --max-step 0.001 --d-max $d_max \
         --d-start $d_start"
+      [ "$mode" != long ] || mesh_name="long-$mesh_name"
       periodic=$work/$name-$mesh_name-periodic
       echo "$name ($mesh_name): k0 = $k0, d_c = $d_c, L = $length, to d = $d_max"
       # shellcheck disable=SC2086
@@ -100,21 +112,33 @@ EOF
     done
 }
 
-# The compressible cases of every contrast first: the exactly incompressible ones are the slowest.
-for bulk in K3 K100 incompressible; do
-  for ratio in "${CONTRASTS[@]}"; do
-    # shellcheck disable=SC2046
-    study_case "mu$ratio-$bulk" "$ratio" "$bulk" \
-      --set mu_l="$ratio" --set phi_m=1 --set phi_f=0 $(compressibility $bulk "$ratio")
+if [ "$mode" = long ]; then
+  # The low contrasts, where the literature has folds.
+  for bulk in K3 K100; do
+    for ratio in 5 10; do
+      # shellcheck disable=SC2046
+      study_case "mu$ratio-$bulk" "$ratio" "$bulk" \
+        --set mu_l="$ratio" --set phi_m=1 --set phi_f=0 $(compressibility $bulk "$ratio")
+    done
   done
-done
-# Table 1 (contrast 10, K / mu = 3) with its fibres along, at 45 degrees to and across the
-# compression.
-for beta in 0 0.7854 1.5708; do
-  study_case "table1-beta$beta" 10 "table1-beta$beta" --set beta="$beta"
-done
+else
+  # The compressible cases of every contrast first: the exactly incompressible ones are the
+  # slowest.
+  for bulk in K3 K100 incompressible; do
+    for ratio in "${CONTRASTS[@]}"; do
+      # shellcheck disable=SC2046
+      study_case "mu$ratio-$bulk" "$ratio" "$bulk" \
+        --set mu_l="$ratio" --set phi_m=1 --set phi_f=0 $(compressibility $bulk "$ratio")
+    done
+  done
+  # Table 1 (contrast 10, K / mu = 3) with its fibres along, at 45 degrees to and across the
+  # compression.
+  for beta in 0 0.7854 1.5708; do
+    study_case "table1-beta$beta" 10 "table1-beta$beta" --set beta="$beta"
+  done
+fi
 
-python3 - "$table" "${rows[@]}" <<'EOF'
+WAVELENGTHS=$WAVELENGTHS python3 - "$table" "${rows[@]}" <<'EOF'
 import json, os, sys
 
 def load(path):
@@ -130,8 +154,9 @@ def stop(folder):
     lines = [l for l in open(log) if l.startswith("error:")]
     return lines[-1].strip().split(" with ")[0].replace("error: ", "") if lines else ""
 
+wrinkle = 2 * int(os.environ["WAVELENGTHS"])
 out = [
-    "| mu_l/mu_s | K/mu | mesh | k0 | d_c | d_secondary | mode (half waves; 4 is the wrinkle) | the count back to zero after it (the path left the periodic branch) | seeded run ends at d | its troughs (plane, middle, plane) | branch |",
+    f"| mu_l/mu_s | K/mu | mesh | k0 | d_c | d_secondary | mode (half waves; {wrinkle} is the wrinkle) | the count back to zero after it (the path left the periodic branch) | seeded run ends at d | its troughs (plane, ..., plane) | branch |",
     "|---:|---|---|---:|---:|---|---:|---|---:|---|---|",
 ]
 order = {"K3": 0, "K100": 1, "incompressible": 2}

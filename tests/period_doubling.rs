@@ -191,6 +191,53 @@ fn the_default_steps_follow_the_stable_wrinkle_to_its_period_doubling() {
     assert!((0.15..0.22).contains(&mode.d), "{}", mode.d);
 }
 
+/// A layer a thousand times stiffer than its substrate (`K = 100 mu`) loses stability near
+/// `d = 0.19`, where it does at Table 1's Poisson ratio: the viscous damper does not engage just
+/// past the onset (`d_c = 0.0052`), where a cut step fails once and the shorter ones converge
+/// as the wrinkle's amplitude shoots up, and the path is undamped to that first change. (It engaged at that first failure and held
+/// the path near the flat state: the count of negative pivots climbed from 1 at d = 0.0054 to
+/// 26 at 0.08, and the study's row at this contrast was no result.)
+#[test]
+fn a_layer_a_thousand_times_stiffer_doubles_its_period_undamped_from_its_onset() {
+    let params = isotropic(1000.0);
+    let onset = StabilityAnalysis::new(&params, Method::Exact).unwrap().onset().unwrap();
+    let length = 2.0 * 2.0 * std::f64::consts::PI / onset.k0;
+    let options = SimulateOptions {
+        mesh: MeshChoice {
+            nx: Some(40),
+            length: Some(length),
+            depth: Some(length),
+            ..MeshChoice::default()
+        },
+        waves: Some(2.0),
+        imperfection: -0.05,
+        d_start: 0.5 * onset.d_c,
+        d_max: 0.21,
+        max_step: 0.001,
+        ..SimulateOptions::default()
+    };
+    let study = options.study().unwrap();
+    let mut records = Vec::new();
+    stages::run(&Bilayer::new(&params), study.mesh, &study.protocol, &mut |event| {
+        if let Event::Step { record, .. } = event {
+            records.push(record.clone());
+        }
+        Ok(())
+    })
+    .unwrap();
+    let damped_at = records
+        .iter()
+        .find(|r| r.augmented.as_ref().is_some_and(|a| a.dissipated_energy > 0.0))
+        .map(|r| r.d);
+    let changes = inertia_changes(&records);
+    println!("first damped state at {damped_at:?}; changes of the inertia {changes:?}");
+    let first = changes
+        .first()
+        .expect("the periodic wrinkle loses stability before d = 0.21");
+    assert!((0.18..0.2).contains(&first.d_before), "{first:?}");
+    assert!(damped_at.is_none_or(|d| d >= first.d_before), "{damped_at:?}");
+}
+
 /// An exactly incompressible bilayer of contrast 100 (the mixed element's multipliers), seeded
 /// with one half wave of the domain as a new user seeds the doubled period: it reaches d = 0.3
 /// with its tangent's count of negative pivots zero along the stable wrinkle and changing only

@@ -183,13 +183,14 @@ impl Augmentation {
                 Some(contact) => solve_with_contact(newton, system, u, bc, contact, other, &step_policy),
                 None => solve_with(newton, system, u, bc, other, &step_policy),
             };
-            // An undamped step the damper may carry failed: a snap, carried from here by the
-            // damper (this step again, damped).
-            let snap =
+            // An undamped step the damper may carry failed: at the second in a row a snap,
+            // carried from here by the damper (this step again, damped).
+            let may_carry =
                 solved.is_err() && !damped && self.stabilisation.as_ref().is_some_and(|s| s.engages(control_step));
-            if snap {
-                if let Some(s) = &mut self.stabilisation {
-                    s.engage();
+            if may_carry {
+                let snap = self.stabilisation.as_mut().is_some_and(|s| s.note_undamped_failure());
+                if !snap {
+                    solved?;
                 }
                 u.copy_from_slice(&predictor);
                 self.contact.clone_from(&saved_contact);

@@ -7,12 +7,16 @@
 //! damped). The damping is proportional to the stiffness, `c_i = K_ii` of the reference state,
 //! so that `eta / h` is the damping relative to the elastic tangent at every scale of the mesh
 //! (the cusp of a closing trough is an element-scale instability). The damper engages only
-//! where an undamped step that the step control has cut below `engage_below` (`1e-3`, a fifth of
-//! the usual step, or a fifth of a shorter largest step) has failed, and from there on cut steps
-//! until a step of full length converges; a last step shortened only to land on the end of the
-//! path is not damped. Where the path is smooth it is not damped at all (so the onset and `A(d)`
-//! are those of the elastic problem, also where a step was cut only because Newton's iteration
-//! needed a closer start, as just past a stiff layer's onset); across a snap the step is cut and
+//! where cutting the step does not help: where a second undamped step cut by the step control
+//! below `engage_below` (`1e-3`, a fifth of the usual step, or a fifth of a shorter largest step)
+//! has failed before the steps grew back to full length; from there on it damps cut steps until
+//! a step of full length converges. A last step shortened only to land on the end of the path is
+//! not damped. Where the path is smooth it is not damped at all, so the onset and `A(d)` are
+//! those of the elastic problem, also where a step was cut only because Newton's iteration
+//! needed a closer start: just past a stiff layer's onset the wrinkle's amplitude grows as
+//! `sqrt(d - d_c)` over a tiny interval of `d`, one cut step fails and the shorter ones converge
+//! and grow back (damped from there, the flat state would be held past the onsets of many modes).
+//! Approaching a snap the cut steps fail again and again. Across a snap the step is cut and
 //! `eta / h` grows until the damped step is well posed, so the damper carries the jump. The
 //! work of the damping forces, `eta / h |du|_c^2` per step, is summed and reported against the
 //! strain energy; `eta` is cut whenever that fraction would exceed the budget, and the step is
@@ -71,7 +75,7 @@ impl StabilisationSettings {
 pub struct StabilisationMemory {
     pub eta: f64,
     pub dissipated: f64,
-    /// Whether a snap is being crossed ([`Stabilisation::engage`]).
+    /// Whether a snap is being crossed ([`Stabilisation::note_undamped_failure`]).
     #[serde(default)]
     pub engaged: bool,
 }
@@ -88,6 +92,9 @@ pub struct Stabilisation {
     /// Whether an undamped cut step has failed since the last step of full length: a snap is
     /// being crossed, and cut steps are damped.
     engaged: bool,
+    /// Whether an undamped step cut below `engage_below` has failed since the last step of full
+    /// length.
+    failed_undamped: bool,
 }
 
 impl Stabilisation {
@@ -104,6 +111,7 @@ impl Stabilisation {
             eta: settings.eta,
             dissipated: 0.0,
             engaged: false,
+            failed_undamped: false,
         })
     }
 
@@ -139,10 +147,17 @@ impl Stabilisation {
         control_step < self.settings.engage_below
     }
 
-    /// Notes that an undamped step the damper may carry failed: cut steps are damped from here
-    /// until a step of full length succeeds ([`Stabilisation::release`]).
-    pub fn engage(&mut self) {
-        self.engaged = true;
+    /// Notes that an undamped step the damper may carry failed, returning whether the damper is
+    /// now engaged: at the second such failure before a step of full length has converged (the
+    /// cut steps did not grow back), cut steps are damped from here until a step of full length
+    /// succeeds ([`Stabilisation::release`]); the first only asks the step control for a
+    /// shorter step.
+    pub fn note_undamped_failure(&mut self) -> bool {
+        if self.failed_undamped {
+            self.engaged = true;
+        }
+        self.failed_undamped = true;
+        self.engaged
     }
 
     /// Notes a converged step made at `control_step`: one the damper would not carry ends the
@@ -150,6 +165,7 @@ impl Stabilisation {
     pub fn release(&mut self, control_step: f64) {
         if !self.engages(control_step) {
             self.engaged = false;
+            self.failed_undamped = false;
         }
     }
 
@@ -250,9 +266,10 @@ mod tests {
     use crate::Parameters;
 
     /// The damper engages by the step control's step, not by the step's length, and only once
-    /// an undamped cut step has failed (a snap): the last step shortened to land on `d_max` is
-    /// as undamped as the full steps before it, a cut step is damped with `eta / h` of its own
-    /// length `h` once engaged, and a converged step of full length releases it.
+    /// two undamped cut steps have failed with no step of full length between (a snap): the last
+    /// step shortened to land on `d_max` is as undamped as the full steps before it, a cut step
+    /// is damped with `eta / h` of its own length `h` once engaged, and a converged step of full
+    /// length releases it.
     #[test]
     fn only_steps_the_control_has_cut_are_damped_and_only_across_a_snap() {
         let materials = Bilayer::new(&Parameters::default());
@@ -262,7 +279,15 @@ mod tests {
         let (d0, h) = (0.1, 2.5e-4);
         assert!(!stabilisation.damper(&system, (d0, &u0), d0 + h, h).unwrap().damps());
         assert!(stabilisation.engages(h) && !stabilisation.engages(5e-3));
-        stabilisation.engage();
+        // One failure, then steps of full length again: Newton's iteration needed a closer start.
+        assert!(!stabilisation.note_undamped_failure());
+        stabilisation.release(h);
+        stabilisation.release(5e-3);
+        assert!(!stabilisation.note_undamped_failure());
+        assert!(!stabilisation.damper(&system, (d0, &u0), d0 + h, h).unwrap().damps());
+        // A cut step converged, and the next cut step failed too: a snap.
+        stabilisation.release(h);
+        assert!(stabilisation.note_undamped_failure());
         stabilisation.release(h);
         let landing = stabilisation.damper(&system, (d0, &u0), d0 + h, 5e-3).unwrap();
         assert!(!landing.damps());

@@ -159,9 +159,10 @@ pub struct SimulateOptions {
     pub contact: bool,
 
     /// How to cross a snap (a limit point in d, a closing trough), where Newton's method cannot
-    /// follow the branch: `viscous` damps, from an undamped step cut below 1e-3 (a fifth of
-    /// --max-step if that is shorter) that failed, the cut steps until a full step converges
-    /// (ABAQUS's *STATIC, STABILIZE: those recorded states carry damping forces); `snap`
+    /// follow the branch: `viscous` damps, from the second failed undamped step cut below 1e-3
+    /// (a fifth of --max-step if that is shorter) before the steps grew back, the cut steps
+    /// until a full step converges (ABAQUS's *STATIC, STABILIZE: those recorded states carry
+    /// damping forces); `snap`
     /// minimises the energy where a step of 1e-6 fails and records the stable equilibrium
     /// reached (snaps.json: every recorded state an exact equilibrium; in contact a failed step
     /// from a stable state is corrected by minimisation too, `minimised` in amplitude.csv;
