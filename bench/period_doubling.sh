@@ -208,3 +208,14 @@ if missing:
 open(sys.argv[1], "w").write("\n".join(out) + "\n")
 print("\n".join(out))
 EOF
+
+# The guide's pictures of what the path becomes: the contrast-100 bilayer (K = 100 mu, coarse)
+# on two wavelengths, and contrast 5 (K = 3 mu) on eight.
+if [ "$mode" = long ]; then
+  picture=("$work/mu5-K3-long-coarse-seeded/fig7.png" period-doubling-long.png)
+else
+  picture=("$work/mu100-K100-coarse-seeded/fig7.png" period-doubling.png)
+fi
+if [ -f "${picture[0]}" ]; then
+  cp "${picture[0]}" "$root/docs/guide/src/figures/${picture[1]}"
+fi
