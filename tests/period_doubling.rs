@@ -18,7 +18,7 @@ use fiberfold::material::Bilayer;
 use fiberfold::parameters::Parameters;
 use fiberfold::protocol::secondary::{inertia_changes, BranchKind, InertiaChange};
 use fiberfold::protocol::{stages, Event};
-use fiberfold::stability::{Method, StabilityAnalysis};
+use fiberfold::stability::{Method, Onset, StabilityAnalysis};
 use fiberfold::studies::simulate::{solve, solve_to_secondary, MeshChoice, SimulateOptions, ToSecondary};
 
 /// Two natural wavelengths of the contrast-100 bilayer, 20 elements each, troughs on the
@@ -45,6 +45,31 @@ fn two_wavelengths() -> SimulateOptions {
         d_max: 0.25,
         ..SimulateOptions::default()
     }
+}
+
+/// The isotropic bilayer of contrast 1000 (`K = 100 mu`), its onset, and two natural
+/// wavelengths of it, 20 elements each, troughs on the planes, seeded at half the onset's
+/// compression, steps of at most 0.001 to `d_max(d_start)`.
+fn thousand_times_stiffer(d_max: impl Fn(f64) -> f64) -> (Parameters, Onset, SimulateOptions) {
+    let params = isotropic(1000.0);
+    let onset = StabilityAnalysis::new(&params, Method::Exact).unwrap().onset().unwrap();
+    let length = 2.0 * 2.0 * std::f64::consts::PI / onset.k0;
+    let d_start = 0.5 * onset.d_c;
+    let options = SimulateOptions {
+        mesh: MeshChoice {
+            nx: Some(40),
+            length: Some(length),
+            depth: Some(length),
+            ..MeshChoice::default()
+        },
+        waves: Some(2.0),
+        imperfection: -0.05,
+        d_start,
+        d_max: d_max(d_start),
+        max_step: 0.001,
+        ..SimulateOptions::default()
+    };
+    (params, onset, options)
 }
 
 #[test]
@@ -86,24 +111,8 @@ fn a_stiff_layers_wrinkles_double_their_period_near_a_fifth_compression() {
 /// (the classical amplification of an imperfection in the buckling mode).
 #[test]
 fn a_layer_a_thousand_times_stiffer_is_seeded_below_its_onset_in_steps() {
-    let params = isotropic(1000.0);
-    let onset = StabilityAnalysis::new(&params, Method::Exact).unwrap().onset().unwrap();
-    let length = 2.0 * 2.0 * std::f64::consts::PI / onset.k0;
-    let d_start = 0.5 * onset.d_c;
-    let options = SimulateOptions {
-        mesh: MeshChoice {
-            nx: Some(40),
-            length: Some(length),
-            depth: Some(length),
-            ..MeshChoice::default()
-        },
-        waves: Some(2.0),
-        imperfection: -0.05,
-        d_start,
-        d_max: d_start + 0.001,
-        max_step: 0.001,
-        ..SimulateOptions::default()
-    };
+    let (params, onset, options) = thousand_times_stiffer(|d_start| d_start + 0.001);
+    let d_start = options.d_start;
     let study = options.study().unwrap();
     let mut stages = Vec::new();
     let mut first = None;
@@ -194,28 +203,12 @@ fn the_default_steps_follow_the_stable_wrinkle_to_its_period_doubling() {
 /// A layer a thousand times stiffer than its substrate (`K = 100 mu`) loses stability near
 /// `d = 0.19`, where it does at Table 1's Poisson ratio: the viscous damper does not engage just
 /// past the onset (`d_c = 0.0052`), where a cut step fails once and the shorter ones converge
-/// as the wrinkle's amplitude shoots up, and the path is undamped to that first change. (It engaged at that first failure and held
-/// the path near the flat state: the count of negative pivots climbed from 1 at d = 0.0054 to
-/// 26 at 0.08, and the study's row at this contrast was no result.)
+/// as the wrinkle's amplitude shoots up, and the path is undamped to that first change (damped
+/// from the first failure, the path was held near the flat state, the count of negative pivots
+/// climbing from 1 at d = 0.0054 to 26 at 0.08).
 #[test]
 fn a_layer_a_thousand_times_stiffer_doubles_its_period_undamped_from_its_onset() {
-    let params = isotropic(1000.0);
-    let onset = StabilityAnalysis::new(&params, Method::Exact).unwrap().onset().unwrap();
-    let length = 2.0 * 2.0 * std::f64::consts::PI / onset.k0;
-    let options = SimulateOptions {
-        mesh: MeshChoice {
-            nx: Some(40),
-            length: Some(length),
-            depth: Some(length),
-            ..MeshChoice::default()
-        },
-        waves: Some(2.0),
-        imperfection: -0.05,
-        d_start: 0.5 * onset.d_c,
-        d_max: 0.21,
-        max_step: 0.001,
-        ..SimulateOptions::default()
-    };
+    let (params, _, options) = thousand_times_stiffer(|_| 0.21);
     let study = options.study().unwrap();
     let mut records = Vec::new();
     stages::run(&Bilayer::new(&params), study.mesh, &study.protocol, &mut |event| {
