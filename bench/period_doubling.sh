@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Writes the table of the guide's page "What the wrinkle becomes at high contrast"
-# (docs/guide/src/results/period-doubling-table.md) from `fiberfold simulate` runs of isotropic
+# Writes the table and picture of the guide's page "What the wrinkle becomes at high contrast"
+# (docs/guide/src/results/period-doubling-table.md, figures/period-doubling.png: the contrast-100
+# bilayer's seeded path at d = 0.24) from `fiberfold simulate` runs of isotropic
 # bilayers (phi_m = 1, phi_f = 0) at stiffness contrasts mu_l / mu_s of 5, 10, 30, 100 and 1000,
 # each with K / mu = 3 (Table 1's Poisson ratio), K / mu = 100, and exactly incompressible; then
 # Table 1's tissue with its fibres at beta = 0, pi/4 and pi/2.
