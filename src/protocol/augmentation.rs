@@ -183,20 +183,21 @@ impl Augmentation {
                 Some(contact) => solve_with_contact(newton, system, u, bc, contact, other, &step_policy),
                 None => solve_with(newton, system, u, bc, other, &step_policy),
             };
-            // An undamped step the damper may carry failed: at the second in a row a snap,
-            // carried from here by the damper (this step again, damped).
-            let may_carry =
-                solved.is_err() && !damped && self.stabilisation.as_ref().is_some_and(|s| s.engages(control_step));
-            if may_carry {
-                let snap = self.stabilisation.as_mut().is_some_and(|s| s.note_undamped_failure());
-                if !snap {
-                    solved?;
+            // An undamped step the damper may carry failed: the second such failure before the
+            // steps grew back is a snap, carried from here by the damper (this step again,
+            // damped); the first only cuts the step.
+            let may_carry = !damped && self.stabilisation.as_ref().is_some_and(|s| s.engages(control_step));
+            let mut report = match solved {
+                Err(e) if may_carry => {
+                    if !self.stabilisation.as_mut().is_some_and(|s| s.note_undamped_failure()) {
+                        return Err(e.into());
+                    }
+                    u.copy_from_slice(&predictor);
+                    self.contact.clone_from(&saved_contact);
+                    continue;
                 }
-                u.copy_from_slice(&predictor);
-                self.contact.clone_from(&saved_contact);
-                continue;
-            }
-            let mut report = solved?;
+                solved => solved?,
+            };
             let dissipation = damper.as_ref().map_or(0.0, |damper| damper.dissipation(u));
             // The predictor's inertia is the solution's for an undamped step without contact
             // forces, solved in one pass from close by.

@@ -78,6 +78,9 @@ pub struct StabilisationMemory {
     /// Whether a snap is being crossed ([`Stabilisation::note_undamped_failure`]).
     #[serde(default)]
     pub engaged: bool,
+    /// Whether an undamped cut step has failed since the last step of full length.
+    #[serde(default)]
+    pub failed_undamped: bool,
 }
 
 /// The damper of one system and the energy it has dissipated.
@@ -89,8 +92,8 @@ pub struct Stabilisation {
     stiffness: Vec<f64>,
     eta: f64,
     dissipated: f64,
-    /// Whether an undamped cut step has failed since the last step of full length: a snap is
-    /// being crossed, and cut steps are damped.
+    /// Whether a snap is being crossed (a second undamped cut step has failed since the last
+    /// step of full length): cut steps are damped.
     engaged: bool,
     /// Whether an undamped step cut below `engage_below` has failed since the last step of full
     /// length.
@@ -121,6 +124,7 @@ impl Stabilisation {
             eta: self.eta,
             dissipated: self.dissipated,
             engaged: self.engaged,
+            failed_undamped: self.failed_undamped,
         }
     }
 
@@ -129,6 +133,7 @@ impl Stabilisation {
         self.eta = memory.eta;
         self.dissipated = memory.dissipated;
         self.engaged = memory.engaged;
+        self.failed_undamped = memory.failed_undamped;
     }
 
     /// The current `eta`.
@@ -280,7 +285,12 @@ mod tests {
         assert!(!stabilisation.damper(&system, (d0, &u0), d0 + h, h).unwrap().damps());
         assert!(stabilisation.engages(h) && !stabilisation.engages(5e-3));
         // One failure, then steps of full length again: Newton's iteration needed a closer start.
+        // A resumed path remembers that failure.
         assert!(!stabilisation.note_undamped_failure());
+        let after_one_failure = stabilisation.memory();
+        let mut resumed = Stabilisation::new(&system, &materials, StabilisationSettings::default()).unwrap();
+        resumed.recall(after_one_failure);
+        assert!(resumed.note_undamped_failure());
         stabilisation.release(h);
         stabilisation.release(5e-3);
         assert!(!stabilisation.note_undamped_failure());

@@ -162,11 +162,11 @@ pub struct SimulateOptions {
     /// follow the branch: `viscous` damps, from the second failed undamped step cut below 1e-3
     /// (a fifth of --max-step if that is shorter) before the steps grew back, the cut steps
     /// until a full step converges (ABAQUS's *STATIC, STABILIZE: those recorded states carry
-    /// damping forces); `snap`
-    /// minimises the energy where a step of 1e-6 fails and records the stable equilibrium
-    /// reached (snaps.json: every recorded state an exact equilibrium; in contact a failed step
-    /// from a stable state is corrected by minimisation too, `minimised` in amplitude.csv;
-    /// slower than `viscous` through contact); `none` stops where Newton's method fails.
+    /// damping forces); `snap` minimises the energy where a step of 1e-6 fails and records the
+    /// stable equilibrium reached (snaps.json: every recorded state an exact equilibrium; in
+    /// contact a failed step from a stable state is corrected by minimisation too, `minimised`
+    /// in amplitude.csv; slower than `viscous` through contact); `none` stops where Newton's
+    /// method fails.
     #[serde(rename = "stabilisation")]
     #[arg(id = "stabilisation", long = "stabilisation", value_name = "STABILISATION", value_enum,
           default_value_t = defaults().crossing)]
